@@ -1,0 +1,201 @@
+// Shared command-line pieces: error reporting, number lists, camera/shading/device options.
+#include "CliSupport.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <mutex>
+#include <sstream>
+
+namespace lantern::cli {
+
+int report(const Error& error) {
+    std::cerr << "lantern: error: " << error.describe() << "\n";
+    return exitCodeFor(error.code);
+}
+
+LogSink stderrSink(bool verbose) {
+    auto mutex = std::make_shared<std::mutex>();
+    return [verbose, mutex](LogLevel level, std::string_view message) {
+        if (level == LogLevel::Debug || (level == LogLevel::Info && !verbose)) return;
+        std::lock_guard lock(*mutex);
+        std::cerr << "lantern: " << logLevelName(level) << ": " << message << "\n";
+    };
+}
+
+Result<std::vector<double>> parseNumbers(const std::string& text, std::size_t count,
+                                         const std::string& option,
+                                         const std::vector<bool>& allowInf) {
+    std::vector<double> values;
+    std::stringstream ss(text);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+        const std::size_t i = values.size();
+        const bool infOk = i < allowInf.size() && allowInf[i];
+        if (item == "inf" || item == "+inf" || item == "infinity") {
+            if (!infOk)
+                return makeError(ErrorCode::InvalidInput,
+                                 "value " + std::to_string(i + 1) + " must be finite", option);
+            values.push_back(kInfinity);
+            continue;
+        }
+        char* end = nullptr;
+        const double v = std::strtod(item.c_str(), &end);
+        if (item.empty() || end != item.c_str() + item.size())
+            return makeError(ErrorCode::InvalidInput, "\"" + item + "\" is not a number", option);
+        if (!std::isfinite(v))
+            return makeError(ErrorCode::InvalidInput,
+                             "value " + std::to_string(i + 1) + " (" + item + ") is not finite", option);
+        values.push_back(v);
+    }
+    if (values.size() != count)
+        return makeError(ErrorCode::InvalidInput,
+                         "expected " + std::to_string(count) + " comma-separated numbers, got " +
+                             std::to_string(values.size()),
+                         option);
+    return values;
+}
+
+void CameraOptions::add(CLI::App& app) {
+    app.add_option("--camera", cameras, "Use the scene's camera N (glTF index); repeat once per --viewport");
+    app.add_flag("--default-camera", defaultCamera,
+                 "The GL default camera: origin, looking down -Z, orthographic 2x2x2 cube");
+    app.add_option("--look-at", lookAt, "Place the camera as gluLookAt: EX,EY,EZ,TX,TY,TZ,UX,UY,UZ");
+    app.add_option("--perspective", perspective, "Projection as gluPerspective: FOVY_DEG,ASPECT,NEAR,FAR (FAR may be inf)");
+    app.add_option("--ortho", ortho, "Projection as glOrtho: L,R,B,T,N,F");
+    app.add_option("--frustum", frustum, "Projection as glFrustum: L,R,B,T,N,F (F may be inf)");
+    app.add_option("--viewport", viewports,
+                   "Draw into X,Y,W,H (pixels, origin bottom-left as glViewport); repeatable");
+    app.add_option("--layout", layout, "quad: top, front, side (orthographic) and the perspective camera")
+        ->check(CLI::IsMember({"quad"}));
+}
+
+Result<void> CameraOptions::apply(RenderOptions& o) const {
+    const int projections = !perspective.empty() + !ortho.empty() + !frustum.empty();
+    if (projections > 1)
+        return makeError(ErrorCode::Usage, "give at most one of --perspective, --ortho and --frustum",
+                         "--perspective/--ortho/--frustum");
+    CameraSpec spec;
+    if (defaultCamera) spec.source = CameraSpec::Source::GlDefault;
+    if (!lookAt.empty()) {
+        auto v = parseNumbers(lookAt, 9, "--look-at");
+        if (!v) return std::move(v).error();
+        const auto& n = *v;
+        LookAt la{{n[0], n[1], n[2]}, {n[3], n[4], n[5]}, {n[6], n[7], n[8]}};
+        LANTERN_TRY(checkLookAt(la, "--look-at"));
+        spec.lookAt = la;
+    }
+    if (!perspective.empty()) {
+        auto v = parseNumbers(perspective, 4, "--perspective", {false, false, false, true});
+        if (!v) return std::move(v).error();
+        const auto& n = *v;
+        if (!(n[1] > 0.0))
+            return makeError(ErrorCode::InvalidInput, "aspect must be > 0", "--perspective");
+        Projection p = Projection::makePerspective(n[0] * 3.14159265358979323846 / 180.0, n[1], n[2], n[3]);
+        LANTERN_TRY(checkProjection(p, "--perspective"));
+        spec.projection = p;
+    }
+    if (!ortho.empty()) {
+        auto v = parseNumbers(ortho, 6, "--ortho");
+        if (!v) return std::move(v).error();
+        const auto& n = *v;
+        Projection p = Projection::makeOrtho(n[0], n[1], n[2], n[3], n[4], n[5]);
+        LANTERN_TRY(checkProjection(p, "--ortho"));
+        spec.projection = p;
+    }
+    if (!frustum.empty()) {
+        auto v = parseNumbers(frustum, 6, "--frustum", {false, false, false, false, false, true});
+        if (!v) return std::move(v).error();
+        const auto& n = *v;
+        Projection p = Projection::makeFrustum(n[0], n[1], n[2], n[3], n[4], n[5]);
+        LANTERN_TRY(checkProjection(p, "--frustum"));
+        spec.projection = p;
+    }
+    if (!layout.empty() && !viewports.empty())
+        return makeError(ErrorCode::Usage, "--layout and --viewport cannot be combined", "--layout");
+    if (cameras.size() > 1 && cameras.size() != viewports.size())
+        return makeError(ErrorCode::Usage,
+                         "give one --camera, or one per --viewport (" +
+                             std::to_string(viewports.size()) + " viewports, " +
+                             std::to_string(cameras.size()) + " cameras)",
+                         "--camera");
+    auto withCamera = [&](CameraSpec s, std::size_t i) {
+        if (!cameras.empty()) {
+            s.source = CameraSpec::Source::SceneCamera;
+            s.sceneCamera = cameras[cameras.size() == 1 ? 0 : i];
+        }
+        return s;
+    };
+    o.camera = withCamera(spec, 0);
+    o.views.clear();
+    for (std::size_t i = 0; i < viewports.size(); ++i) {
+        auto v = parseNumbers(viewports[i], 4, "--viewport");
+        if (!v) return std::move(v).error();
+        const auto& n = *v;
+        for (double x : n)
+            if (x != std::floor(x) || x < 0 || x > 1e6)
+                return makeError(ErrorCode::InvalidInput, "viewport values must be whole pixels >= 0",
+                                 "--viewport");
+        o.views.push_back(View{int(n[0]), int(n[1]), int(n[2]), int(n[3]), withCamera(spec, i)});
+    }
+    if (layout == "quad") {
+        // A classic modeller's four views (GL origin bottom-left): top view top-left, front
+        // top-right, side bottom-left, the perspective camera bottom-right.
+        const int w = o.width / 2, h = o.height / 2;
+        auto orthoView = [](glm::dvec3 direction) {
+            CameraSpec s;
+            s.source = CameraSpec::Source::Framing;
+            s.framingDirection = direction;
+            s.framingOrthographic = true;
+            return s;
+        };
+        o.views = {
+            View{0, o.height - h, w, h, orthoView({0, -1, 0})},
+            View{w, o.height - h, o.width - w, h, orthoView({0, 0, -1})},
+            View{0, 0, w, o.height - h, orthoView({-1, 0, 0})},
+            View{w, 0, o.width - w, o.height - h, o.camera},
+        };
+    }
+    return {};
+}
+
+void ShadingOptions::add(CLI::App& app) {
+    app.add_option("--shading", shading, "Where lighting is evaluated: flat, gouraud or phong")
+        ->check(CLI::IsMember({"flat", "gouraud", "phong"}));
+    app.add_option("--specular", specular, "Specular term: blinn or phong")
+        ->check(CLI::IsMember({"blinn", "phong"}));
+    app.add_flag("--local-viewer", localViewer, "View vector towards the eye (GL_LIGHT_MODEL_LOCAL_VIEWER)");
+    app.add_flag("--two-sided", twoSided, "Light back faces with the back material (GL_LIGHT_MODEL_TWO_SIDE)");
+    app.add_flag("--clamp", clamp, "Clamp lit colours to [0,1]");
+    app.add_flag("--gl-compat", glCompat,
+                 "Reproduce OpenGL's fixed-function pipeline (provoking-vertex flat, per-vertex clamp, limits)");
+    app.add_option("--msaa", msaa, "Samples per pixel: 1, 2, 4 or 8")->check(CLI::IsMember({1, 2, 4, 8}));
+}
+
+Result<void> ShadingOptions::apply(RenderOptions& o) const {
+    if (!shading.empty()) o.shading = parseShadingMode(shading);
+    if (!specular.empty()) o.specular = parseSpecularModel(specular);
+    if (localViewer) o.localViewer = true;
+    if (twoSided) o.twoSided = true;
+    o.clamp = clamp;
+    o.glCompat = glCompat;
+    o.msaa = msaa;
+    return {};
+}
+
+void DeviceOptions::add(CLI::App& app) {
+    app.add_option("--device", device, "Use the first Vulkan device whose name contains NAME");
+    app.add_flag("--validation", validation, "Enable the Khronos validation layer");
+    app.add_flag("-v,--verbose", verbose, "Print the device chosen and other information");
+}
+
+RendererDesc DeviceOptions::desc() const {
+    RendererDesc d;
+    d.deviceName = device;
+    const char* env = std::getenv("LANTERN_VALIDATION");
+    d.validation = validation || (env && std::string(env) != "0" && std::string(env) != "");
+    d.log = stderrSink(verbose);
+    return d;
+}
+
+} // namespace lantern::cli

@@ -1,0 +1,53 @@
+# Build-time shader compilation: glslangValidator turns each GLSL entry point into SPIR-V words
+# in a generated header (--vn), and lantern_shader_registry() writes one C++ file that embeds
+# them all behind an enum, so nothing is looked up on disk at run time.
+find_program(LANTERN_GLSLANG_VALIDATOR glslangValidator REQUIRED)
+
+# lantern_add_shader(<id> SOURCE <file> [DEFINES A=1 B ...])
+# Appends the compiled header to the LANTERN_SHADER_HEADERS / LANTERN_SHADER_IDS globals.
+function(lantern_add_shader id)
+    cmake_parse_arguments(ARG "" "SOURCE" "DEFINES" ${ARGN})
+    set(src "${CMAKE_CURRENT_SOURCE_DIR}/${ARG_SOURCE}")
+    set(out "${CMAKE_CURRENT_BINARY_DIR}/spv/${id}.h")
+    set(defs "")
+    foreach(d IN LISTS ARG_DEFINES)
+        list(APPEND defs "-D${d}")
+    endforeach()
+    set(dbg "")
+    if(LANTERN_SHADER_DEBUG_INFO)
+        set(dbg "-g")
+    endif()
+    add_custom_command(
+        OUTPUT "${out}"
+        COMMAND "${LANTERN_GLSLANG_VALIDATOR}" -V --target-env vulkan1.3 --quiet ${dbg}
+                -I${CMAKE_CURRENT_SOURCE_DIR}/include ${defs}
+                --depfile "${out}.d" --vn lantern_spv_${id} -o "${out}" "${src}"
+        DEPENDS "${src}"
+        DEPFILE "${out}.d"
+        COMMENT "glslang: ${ARG_SOURCE} -> ${id}"
+        VERBATIM)
+    set_property(GLOBAL APPEND PROPERTY LANTERN_SHADER_HEADERS "${out}")
+    set_property(GLOBAL APPEND PROPERTY LANTERN_SHADER_IDS "${id}")
+endfunction()
+
+# lantern_shader_registry(<target>): an OBJECT library embedding every shader added so far.
+function(lantern_shader_registry target)
+    get_property(headers GLOBAL PROPERTY LANTERN_SHADER_HEADERS)
+    get_property(ids GLOBAL PROPERTY LANTERN_SHADER_IDS)
+    set(gen "${CMAKE_CURRENT_BINARY_DIR}/gen")
+    set(enum_entries "")
+    set(includes "")
+    set(table "")
+    foreach(id IN LISTS ids)
+        string(APPEND enum_entries "    ${id},\n")
+        string(APPEND includes "#include \"spv/${id}.h\"\n")
+        string(APPEND table "    {\"${id}\", lantern_spv_${id}, sizeof(lantern_spv_${id}) / 4},\n")
+    endforeach()
+    list(LENGTH ids count)
+    configure_file("${PROJECT_SOURCE_DIR}/cmake/ShaderBlobs.h.in" "${gen}/ShaderBlobs.h" @ONLY)
+    configure_file("${PROJECT_SOURCE_DIR}/cmake/ShaderBlobs.cpp.in" "${gen}/ShaderBlobs.cpp" @ONLY)
+    add_library(${target} OBJECT "${gen}/ShaderBlobs.cpp" ${headers})
+    target_include_directories(${target} PUBLIC "${gen}" PRIVATE "${CMAKE_CURRENT_BINARY_DIR}")
+    target_compile_features(${target} PUBLIC cxx_std_20)
+    set_target_properties(${target} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+endfunction()

@@ -1,0 +1,41 @@
+// Image: a rendered picture in memory: linear RGBA float pixels plus optional AOV planes.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace lantern {
+
+/// Which extra planes (arbitrary output values) a render produces.
+struct AovSet {
+    bool depth = false;   ///< Z: eye-space distance from the eye to the surface (+inf: nothing)
+    bool normal = false;  ///< N.X, N.Y, N.Z: unit eye-space normal of the visible side (0: nothing)
+    bool any() const { return depth || normal; }
+};
+
+/// A picture: width x height pixels, top row first, each pixel RGBA as 32-bit floats in
+/// linear light, colour premultiplied by alpha (the OpenEXR convention). Values are HDR:
+/// not clamped, but always finite (Lantern guarantees no NaN or Inf reaches an Image).
+struct Image {
+    int width = 0;
+    int height = 0;
+    std::vector<float> rgba;    ///< 4 * width * height floats
+    std::vector<float> depth;   ///< width * height floats when the depth AOV was asked for
+    std::vector<float> normal;  ///< 3 * width * height floats when the normal AOV was asked for
+    /// Key/value metadata written as EXR string attributes (camera matrices, frame, time...).
+    std::vector<std::pair<std::string, std::string>> metadata;
+
+    Image() = default;
+    Image(int w, int h) : width(w), height(h), rgba(std::size_t(w) * std::size_t(h) * 4, 0.0f) {}
+
+    std::size_t pixelCount() const { return std::size_t(width) * std::size_t(height); }
+    float* pixel(int x, int y) { return rgba.data() + (std::size_t(y) * width + x) * 4; }
+    const float* pixel(int x, int y) const {
+        return rgba.data() + (std::size_t(y) * width + x) * 4;
+    }
+};
+
+} // namespace lantern

@@ -1,0 +1,174 @@
+// Renderer: turns a Scene at an instant into an Image, headless, on any Vulkan device
+// (lavapipe included). The only public entry to the GPU; no Vulkan type appears here.
+#pragma once
+
+#include <lantern/Camera.h>
+#include <lantern/Image.h>
+#include <lantern/Log.h>
+#include <lantern/Result.h>
+#include <lantern/Scene.h>
+
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lantern {
+
+namespace render {
+class GpuScene;
+}
+
+/// Which camera a view uses, and optional overrides of its parts.
+struct CameraSpec {
+    enum class Source {
+        Automatic,    ///< the scene's first camera, else automatic framing of the bounds
+        SceneCamera,  ///< Scene::cameras[sceneCamera] on the first node that carries it
+        Framing,      ///< automatic framing of the scene's bounds
+        GlDefault,    ///< GL's default: origin, looking down -Z, the 2x2x2 orthographic cube
+    };
+    Source source = Source::Automatic;
+    int sceneCamera = -1;
+    std::optional<LookAt> lookAt;          ///< replaces the view (gluLookAt), world space
+    std::optional<Projection> projection;  ///< replaces the projection
+
+    /// Which fixed direction automatic framing looks from (world space, towards the scene):
+    /// the default is the GL camera's -Z. The quad layout uses -Y (top) and -X (side) too.
+    glm::dvec3 framingDirection{0.0, 0.0, -1.0};
+    bool framingOrthographic = false;  ///< frame with an orthographic projection
+};
+
+/// A pixel rectangle in GL's convention (origin at the bottom-left of the image, as
+/// glViewport) drawn with its own camera.
+struct View {
+    int x = 0, y = 0, width = 0, height = 0;
+    CameraSpec camera;
+};
+
+/// Which pipeline features are compiled in: only those the scene needs (the default), or all
+/// of them (for measuring what specialisation saves).
+enum class FeatureMode { Specialised, AllFeatures };
+
+/// Everything that affects a render besides the scene and the time.
+struct RenderOptions {
+    int width = 1280;
+    int height = 720;
+    int root = -1;  ///< glTF scene index; -1: the scene's default
+    std::optional<ShadingMode> shading;     ///< default: the scene's, else Phong
+    std::optional<SpecularModel> specular;  ///< default: the scene's, else Blinn
+    std::optional<bool> localViewer;        ///< default: the scene's
+    std::optional<bool> twoSided;           ///< default: the scene's
+    bool clamp = false;     ///< clamp lit colours to [0,1] (GL's behaviour)
+    bool glCompat = false;  ///< reproduce GL fixed function: provoking-vertex flat, per-vertex
+                            ///< clamp, shininess and spot exponent limited to [0,128]
+    int msaa = 1;           ///< samples per pixel: 1, 2, 4 or 8 (as the device supports)
+    DepthMode depth = DepthMode::ReversedZ;
+    CameraSpec camera;       ///< the camera when `views` is empty
+    std::vector<View> views; ///< several views in one image; empty: one full-image view
+    AovSet aovs;
+    FeatureMode features = FeatureMode::Specialised;
+    glm::vec4 background{0.0f, 0.0f, 0.0f, 0.0f};  ///< linear, premultiplied
+};
+
+/// How the renderer is created.
+struct RendererDesc {
+    /// Use the first device whose name contains this text (case-insensitive); empty: the
+    /// first device that can render (discrete GPUs first, then integrated, virtual, CPU).
+    std::string deviceName;
+    /// Enable the Khronos validation layer when it is installed; its messages go to `log` at
+    /// Warning or Error level and are counted (validationMessageCount()).
+    bool validation = false;
+    /// Also enable synchronisation validation (implies `validation`).
+    bool synchronizationValidation = false;
+    /// Frames that may be in flight at once (each with its own images, command buffer, fence
+    /// and readback buffer): 2 is the classic double buffer.
+    int framesInFlight = 2;
+    LogSink log;
+};
+
+/// A scene uploaded to a renderer's device: geometry and textures stay on the device for as
+/// many frames as the host renders. Holds a reference to the (immutable) Scene and keeps the
+/// device alive; cheap to copy (shared).
+class PreparedScene {
+public:
+    PreparedScene() = default;
+    const Scene& scene() const;
+    explicit operator bool() const { return m_gpu != nullptr; }
+
+private:
+    friend class Renderer;
+    std::shared_ptr<render::GpuScene> m_gpu;
+};
+
+/// Measurements of the last frame rendered.
+struct FrameStats {
+    double gpuMs = -1.0;    ///< render-pass time from GPU timestamps (-1: not available)
+    double cpuMs = 0.0;     ///< planning, recording and submission on the CPU
+    double waitMs = 0.0;    ///< waiting for the GPU and reading the image back
+    std::size_t draws = 0;
+    std::size_t pipelinesCreated = 0;  ///< variants compiled for this frame (first use)
+    std::uint64_t nonFinite = 0;       ///< NaN/Inf values replaced by 0 (always 0 unless a bug)
+};
+
+/// What the device is.
+struct DeviceInfo {
+    std::string name;         ///< e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+    std::string driver;       ///< e.g. "Mesa 22.3.6 (LLVM 15.0.6)"
+    std::string type;         ///< "cpu", "discrete-gpu", "integrated-gpu", "virtual-gpu", "other"
+    std::uint32_t apiVersion = 0;
+    bool validationEnabled = false;
+    std::vector<int> msaaSampleCounts;  ///< supported for float colour + depth
+};
+
+/// What a render needs (the features the scene uses) and the pipelines chosen for it.
+struct FeatureReport {
+    std::vector<std::string> features;  ///< e.g. "light:directional", "specular:blinn"
+    std::vector<std::string> variants;  ///< one line per pipeline variant
+};
+
+/// The headless renderer. Move-only; one per thread (see docs/library.md for thread rules).
+class Renderer {
+public:
+    /// Creates the Vulkan instance and device. Fails with NoDevice when no device exists (or
+    /// none matches RendererDesc::deviceName; the message lists the devices present).
+    static Result<Renderer> create(const RendererDesc& desc = {});
+
+    Renderer(Renderer&&) noexcept;
+    Renderer& operator=(Renderer&&) noexcept;
+    ~Renderer();
+
+    /// Validates `scene` and uploads it. The Scene must not change while prepared.
+    Result<PreparedScene> prepare(std::shared_ptr<const Scene> scene);
+
+    /// Renders a prepared scene at `timeSeconds` and reads the picture back. Options are
+    /// checked first (InvalidInput on bad values; OutOfMemory for images too large, refused
+    /// before anything is allocated).
+    Result<Image> render(const PreparedScene& scene, const RenderOptions& options,
+                         double timeSeconds);
+
+    /// Convenience: validates, uploads and renders `scene` in one call (the upload is not
+    /// kept; prepare() once to render many frames).
+    Result<Image> render(const Scene& scene, const RenderOptions& options, double timeSeconds);
+
+    /// The features the scene needs under these options and the pipeline variants chosen.
+    Result<FeatureReport> explain(const Scene& scene, const RenderOptions& options,
+                                  double timeSeconds = 0.0);
+
+    /// Measurements of the last frame (render or sequence).
+    const FrameStats& lastFrameStats() const;
+
+    const DeviceInfo& device() const;
+
+    /// Validation-layer messages of Warning or Error severity seen so far.
+    std::uint64_t validationMessageCount() const;
+
+private:
+    struct Impl;
+    explicit Renderer(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> m_impl;
+};
+
+} // namespace lantern

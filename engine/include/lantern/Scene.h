@@ -1,0 +1,266 @@
+// Scene: Lantern's scene model, plain value data in double precision (transforms, colours)
+// and float (vertex data, which is object-local). A glTF file loads into it; a host can build
+// one in code. Nothing here knows about glTF or Vulkan.
+//
+// Spaces and units: right-handed, +Y up, a camera looks down its local -Z. Lengths are in the
+// file's units (glTF: metres). Angles are radians unless a name ends in Deg. Colours are linear
+// RGB(A). Scene section numbers refer to ../shared/spec/scene-format.md.
+#pragma once
+
+#include <lantern/Camera.h>
+#include <lantern/Result.h>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace lantern {
+
+// --- Lighting model (spec section 1 and LANTERN_lighting) ---------------------------------
+
+/// Where the lighting equation is evaluated (spec section 1).
+enum class ShadingMode {
+    Flat,     ///< once per triangle, at its centroid, with the face normal
+    Gouraud,  ///< per vertex with the vertex normal; colours interpolated
+    Phong,    ///< per fragment with the interpolated, renormalised normal
+};
+/// The specular term: Blinn's halfway vector (GL's) or Phong's reflection vector.
+enum class SpecularModel { Blinn, Phong };
+
+const char* toString(ShadingMode mode) noexcept;    ///< "flat", "gouraud", "phong"
+const char* toString(SpecularModel model) noexcept; ///< "blinn", "phong"
+std::optional<ShadingMode> parseShadingMode(std::string_view text) noexcept;
+std::optional<SpecularModel> parseSpecularModel(std::string_view text) noexcept;
+
+/// LANTERN_lighting: scene-wide lighting-model switches (GL's glLightModel).
+struct LightingModel {
+    glm::dvec3 globalAmbient{0.2, 0.2, 0.2};  ///< GL_LIGHT_MODEL_AMBIENT, linear RGB
+    bool localViewer = false;  ///< true: v points to the eye; false: v = (0,0,1) (GL's default)
+    bool twoSided = false;     ///< back faces use the back material and the negated normal
+    ShadingMode shading = ShadingMode::Phong;
+    SpecularModel specular = SpecularModel::Blinn;
+};
+
+// --- Materials (spec section 2) ---------------------------------------------------------------
+
+/// One side of a Phong material (GL's glMaterial). Defaults are OpenGL's.
+struct MaterialSide {
+    glm::dvec3 ambient{0.2, 0.2, 0.2};
+    glm::dvec4 diffuse{0.8, 0.8, 0.8, 1.0};  ///< alpha is the material's opacity
+    glm::dvec3 specular{0.0, 0.0, 0.0};
+    glm::dvec3 emission{0.0, 0.0, 0.0};
+    double shininess = 0.0;  ///< any finite value >= 0 (not limited to GL's 128)
+};
+
+enum class AlphaMode { Opaque, Mask, Blend };
+
+struct Material {
+    std::string name;
+    MaterialSide front;
+    std::optional<MaterialSide> back;  ///< without it both sides use `front`
+    bool unlit = false;  ///< KHR_materials_unlit: colour = front.diffuse (x COLOR_0 x texture)
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    double alphaCutoff = 0.5;  ///< for AlphaMode::Mask
+    bool doubleSided = false;  ///< false: back faces are culled (glTF)
+    int baseColorTexture = -1; ///< index into Scene::textures; multiplies the diffuse colour
+    /// True when the ambient colour is the diffuse colour by definition (the PBR fallback maps
+    /// ambient = diffuse): then the base-colour texture and COLOR_0 scale the ambient too.
+    bool ambientFollowsDiffuse = false;
+
+    const MaterialSide& side(bool backFace) const { return backFace && back ? *back : front; }
+};
+
+// --- Lights (spec section 3) ----------------------------------------------------------------
+
+enum class LightType { Directional, Point, Spot };
+
+/// How a light's strength falls off with distance and across a spot cone.
+enum class LightFalloff {
+    Gl,    ///< LANTERN_lights_phong / glLight: 1/(kc + kl d + kq d^2), GL spot cutoff + exponent
+    Gltf,  ///< KHR_lights_punctual alone: 1/max(d^2, 1e-4) times the range window, smooth cone
+};
+
+/// A light. Its position and direction come from its node: it sits at the node's origin and
+/// shines down the node's local -Z (for spots and directional lights).
+struct Light {
+    std::string name;
+    LightType type = LightType::Point;
+    glm::dvec3 ambient{0.0, 0.0, 0.0};
+    glm::dvec3 diffuse{1.0, 1.0, 1.0};
+    glm::dvec3 specular{1.0, 1.0, 1.0};
+    LightFalloff falloff = LightFalloff::Gl;
+    // Gl falloff
+    glm::dvec3 attenuation{1.0, 0.0, 0.0};  ///< kc, kl, kq: >= 0, not all zero
+    double spotExponent = 0.0;              ///< >= 0
+    double spotCutoffDeg = 180.0;           ///< [0, 90], or exactly 180 (no cone)
+    // Gltf falloff
+    double range = kInfinity;        ///< > 0; +inf: unlimited
+    double innerConeAngle = 0.0;     ///< radians, [0, outer)
+    double outerConeAngle = 0.7853981633974483;  ///< radians, (inner, pi/2]
+};
+
+// --- Meshes ---------------------------------------------------------------------------------
+
+/// A triangle list. Attributes are per vertex and object-local. Loaders convert strips and
+/// fans to lists, and fill in missing normals (angle-weighted vertex normals).
+struct Primitive {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;    ///< same count as positions (may contain zero vectors)
+    std::vector<glm::vec4> colors;     ///< empty, or COLOR_0 per vertex (linear RGBA)
+    std::vector<glm::vec2> texcoords;  ///< empty, or TEXCOORD_0 per vertex
+    std::vector<std::uint32_t> indices;  ///< triangle list; empty: vertices taken in threes
+    int material = -1;  ///< index into Scene::materials; -1: the default material
+
+    std::size_t triangleCount() const {
+        return (indices.empty() ? positions.size() : indices.size()) / 3;
+    }
+};
+
+struct Mesh {
+    std::string name;
+    std::vector<Primitive> primitives;
+};
+
+/// An RGBA8 texture in sRGB encoding (the glTF base-colour convention), top row first.
+struct Texture {
+    std::string name;
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> rgba8;
+    bool nearest = false;     ///< nearest filtering instead of linear
+    bool clampToEdge = false; ///< clamp instead of repeat
+};
+
+// --- Nodes and animation --------------------------------------------------------------------
+
+struct Node {
+    std::string name;
+    glm::dvec3 translation{0.0, 0.0, 0.0};
+    glm::dquat rotation{1.0, 0.0, 0.0, 0.0};  ///< unit quaternion (w, x, y, z)
+    glm::dvec3 scale{1.0, 1.0, 1.0};
+    std::optional<glm::dmat4> matrix;  ///< when set, replaces TRS (and cannot be animated)
+    std::vector<int> children;
+    int mesh = -1;
+    int camera = -1;
+    int light = -1;
+
+    /// parentFromNode: `matrix`, or T * R * S.
+    glm::dmat4 localTransform() const;
+};
+
+enum class Interpolation { Step, Linear, CubicSpline };
+enum class AnimationPath { Translation, Rotation, Scale };
+
+/// Keyframes. `values` holds one entry per key (xyz, or a quaternion as x,y,z,w), or for
+/// CubicSpline three per key: in-tangent, value, out-tangent.
+struct AnimationSampler {
+    Interpolation interpolation = Interpolation::Linear;
+    std::vector<double> times;  ///< seconds, strictly increasing, >= 0
+    std::vector<glm::dvec4> values;
+};
+
+struct AnimationChannel {
+    int node = -1;
+    AnimationPath path = AnimationPath::Translation;
+    int sampler = -1;
+};
+
+struct Animation {
+    std::string name;
+    std::vector<AnimationSampler> samplers;
+    std::vector<AnimationChannel> channels;
+
+    double startTime() const;  ///< the earliest key time (0 if none)
+    double endTime() const;    ///< the latest key time (0 if none)
+};
+
+/// Samples one sampler at `time` (seconds): times before the first key and after the last
+/// clamp; rotations use shortest-arc slerp (Linear) and are normalised (CubicSpline).
+glm::dvec4 sampleAnimation(const AnimationSampler& sampler, AnimationPath path, double time);
+
+/// A glTF scene: the root nodes to draw and the scene's lighting model (LANTERN_lighting).
+struct SceneRoot {
+    std::string name;
+    std::vector<int> nodes;
+    std::optional<LightingModel> lighting;  ///< absent: GL's defaults
+};
+
+// --- The scene ------------------------------------------------------------------------------
+
+/// Everything a file (or a host) describes. Indices refer into the vectors of the same Scene.
+struct Scene {
+    std::string sourcePath;  ///< the file it came from ("builtin:NAME" for built-in scenes)
+    std::vector<Mesh> meshes;
+    std::vector<Material> materials;
+    std::vector<Texture> textures;
+    std::vector<Light> lights;
+    std::vector<Camera> cameras;
+    std::vector<Node> nodes;
+    std::vector<Animation> animations;
+    std::vector<SceneRoot> roots;  ///< glTF scenes
+    int defaultRoot = 0;           ///< the root drawn unless another is chosen
+
+    /// Checks every index, count and number (spec section 6); the error names the object.
+    Result<void> validate() const;
+};
+
+/// Axis-aligned bounds in world space.
+struct Bounds {
+    glm::dvec3 min{kInfinity};
+    glm::dvec3 max{-kInfinity};
+    bool empty() const { return !(min.x <= max.x && min.y <= max.y && min.z <= max.z); }
+    glm::dvec3 center() const { return (min + max) * 0.5; }
+    double radius() const;  ///< half the diagonal (0 when empty)
+    void extend(const glm::dvec3& p);
+};
+
+/// The state of a scene at one instant: world transforms of the root's nodes in double
+/// precision, with animations applied. A pure function of (scene, root, time).
+struct Pose {
+    int root = 0;
+    double time = 0.0;
+    std::vector<glm::dmat4> worldFromNode;  ///< one per Scene::nodes entry
+    std::vector<bool> visible;              ///< true for nodes reachable from the root
+};
+
+/// Evaluates every animation of the scene at `time` (seconds) and composes node transforms.
+/// `root` -1 means scene.defaultRoot. Assumes scene.validate() succeeded.
+Pose evaluatePose(const Scene& scene, int root, double time);
+
+/// World-space bounds of everything drawn in a pose.
+Bounds computeBounds(const Scene& scene, const Pose& pose);
+
+/// What a scene contains, for `lantern info` and --explain.
+struct SceneSummary {
+    std::size_t nodes = 0, meshes = 0, primitives = 0, triangles = 0, vertices = 0;
+    std::size_t materials = 0, textures = 0, lights = 0, cameras = 0, animations = 0;
+    std::size_t roots = 0;
+    Bounds bounds;  ///< at time 0, default root
+};
+SceneSummary summarize(const Scene& scene);
+
+// --- Building blocks ------------------------------------------------------------------------
+
+/// Angle-weighted vertex normals (each face contributes its unit normal times the angle it
+/// makes at the vertex): the classic smooth "mesh shading" normals. Degenerate faces add
+/// nothing; a vertex with no usable face gets the zero vector.
+std::vector<glm::vec3> computeSmoothNormals(const std::vector<glm::vec3>& positions,
+                                            const std::vector<std::uint32_t>& indices);
+
+/// A UV sphere of radius r centred at the origin with analytic normals: `segments` around
+/// (>= 3) and `rings` from pole to pole (>= 2).
+Primitive makeSphere(double radius, int segments, int rings);
+/// A square in the XY plane, side `size`, normal +Z, split into n x n quads.
+Primitive makePlane(double size, int subdivisions = 1);
+/// An axis-aligned cube of side `size` with flat faces (24 vertices).
+Primitive makeCube(double size);
+
+} // namespace lantern

@@ -1,0 +1,110 @@
+// Context: the Vulkan instance (with the validation layer and a debug messenger when asked and
+// installed), the chosen physical device, the logical device, its graphics queue, a pipeline
+// cache and helpers for one-off submissions. Shared (std::shared_ptr) by everything that owns
+// device objects, so the device outlives them whatever order a host destroys things in.
+#pragma once
+
+#include "gpu/Handles.h"
+#include "gpu/Vk.h"
+
+#include <lantern/Log.h>
+#include <lantern/Result.h>
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace lantern::gpu {
+
+struct ContextDesc {
+    std::string deviceName;  ///< substring match, case-insensitive; empty: best available
+    bool validation = false;
+    bool synchronizationValidation = false;
+    std::vector<std::string> instanceExtensions;  ///< e.g. surface extensions for a window
+    bool swapchain = false;                       ///< enable VK_KHR_swapchain on the device
+    LogSink log;
+};
+
+/// Optional capabilities the device turned out to have.
+struct Capabilities {
+    bool provokingVertexLast = false;  ///< VK_EXT_provoking_vertex (GL-compatible flat)
+    bool shaderFloat64 = false;
+    bool fillModeNonSolid = false;     ///< wireframe
+    bool wideLines = false;
+    bool debugUtils = false;           ///< object names and the messenger
+    std::uint32_t colorDepthSampleCounts = VK_SAMPLE_COUNT_1_BIT;  ///< float colour & depth
+};
+
+class Context {
+public:
+    static Result<std::shared_ptr<Context>> create(const ContextDesc& desc);
+    ~Context();
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+
+    VkInstance instance() const { return m_instance; }
+    VkPhysicalDevice physicalDevice() const { return m_physical; }
+    VkDevice device() const { return m_device; }
+    VkQueue queue() const { return m_queue; }
+    std::uint32_t queueFamily() const { return m_queueFamily; }
+    VkPipelineCache pipelineCache() const { return m_pipelineCache.get(); }
+    const VkPhysicalDeviceProperties& properties() const { return m_properties; }
+    const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return m_memory; }
+    const Capabilities& capabilities() const { return m_caps; }
+    bool validationEnabled() const { return m_validation; }
+    std::string driverInfo() const { return m_driverInfo; }
+
+    /// A memory type index with all `required` flags among `typeBits`, preferring one that
+    /// also has `preferred`; -1 when none.
+    int findMemoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required,
+                       VkMemoryPropertyFlags preferred = 0) const;
+
+    /// Records `record` into a fresh command buffer, submits it and waits for it.
+    Result<void> submitAndWait(const std::function<void(VkCommandBuffer)>& record);
+
+    /// Names a Vulkan object for validation messages and debuggers (no-op without debug utils).
+    void setName(VkObjectType type, std::uint64_t handle, const std::string& name) const;
+    template <typename T>
+    void setName(VkObjectType type, T handle, const std::string& name) const {
+        setName(type, reinterpret_cast<std::uint64_t>(handle), name);
+    }
+
+    void log(LogLevel level, const std::string& message) const {
+        if (m_log) m_log(level, message);
+    }
+    std::uint64_t validationMessageCount() const { return m_validationMessages.load(); }
+
+    /// Queue submissions must be externally synchronised (one queue, many users).
+    std::mutex& queueMutex() { return m_queueMutex; }
+
+private:
+    Context() = default;
+    static VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(
+        VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
+        const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
+
+    LogSink m_log;
+    VkInstance m_instance = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT m_messenger = VK_NULL_HANDLE;
+    VkPhysicalDevice m_physical = VK_NULL_HANDLE;
+    VkDevice m_device = VK_NULL_HANDLE;
+    VkQueue m_queue = VK_NULL_HANDLE;
+    std::uint32_t m_queueFamily = 0;
+    VkPhysicalDeviceProperties m_properties{};
+    VkPhysicalDeviceMemoryProperties m_memory{};
+    Capabilities m_caps;
+    bool m_validation = false;
+    std::string m_driverInfo;
+    UniquePipelineCache m_pipelineCache;
+    UniqueCommandPool m_oneShotPool;
+    std::mutex m_oneShotMutex;
+    std::mutex m_queueMutex;
+    std::atomic<std::uint64_t> m_validationMessages{0};
+    PFN_vkSetDebugUtilsObjectNameEXT m_setObjectName = nullptr;
+};
+
+} // namespace lantern::gpu

@@ -1,0 +1,178 @@
+// Buffers, images, memory types and barriers.
+#include "gpu/Resources.h"
+
+#include <cstring>
+
+namespace lantern::gpu {
+
+Result<Buffer> createBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage,
+                            MemoryUsage memory, const std::string& name) {
+    Buffer b;
+    b.size = size;
+    VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    bci.size = size > 0 ? size : 16;
+    bci.usage = usage;
+    bci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    VkBuffer buffer = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkCreateBuffer(ctx.device(), &bci, nullptr, &buffer));
+    b.buffer = UniqueBuffer(ctx.device(), buffer);
+    ctx.setName(VK_OBJECT_TYPE_BUFFER, buffer, name);
+
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(ctx.device(), buffer, &req);
+    int type = -1;
+    switch (memory) {
+    case MemoryUsage::DeviceLocal:
+        // Prefer memory that is also host-visible (CPU devices, resizable BAR): no staging.
+        type = ctx.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT,
+                                  VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                      VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+        if (type < 0) type = ctx.findMemoryType(req.memoryTypeBits, 0);
+        break;
+    case MemoryUsage::Upload:
+        type = ctx.findMemoryType(req.memoryTypeBits,
+                                  VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                      VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
+                                  VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+        break;
+    case MemoryUsage::Readback:
+        type = ctx.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT,
+                                  VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
+        break;
+    }
+    if (type < 0)
+        return makeError(ErrorCode::Unsupported, "no suitable memory type for buffer " + name);
+    const VkMemoryPropertyFlags flags = ctx.memoryProperties().memoryTypes[type].propertyFlags;
+
+    VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    mai.allocationSize = req.size;
+    mai.memoryTypeIndex = std::uint32_t(type);
+    VkDeviceMemory mem = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkAllocateMemory(ctx.device(), &mai, nullptr, &mem));
+    b.memory = UniqueMemory(ctx.device(), mem);
+    LANTERN_VK_TRY(vkBindBufferMemory(ctx.device(), buffer, mem, 0));
+    if (flags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) {
+        LANTERN_VK_TRY(vkMapMemory(ctx.device(), mem, 0, VK_WHOLE_SIZE, 0, &b.mapped));
+        b.coherent = (flags & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT) != 0;
+    }
+    return b;
+}
+
+Result<void> flush(Context& ctx, const Buffer& buffer) {
+    if (buffer.coherent || !buffer.mapped) return {};
+    VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE};
+    range.memory = buffer.memory.get();
+    range.size = VK_WHOLE_SIZE;
+    LANTERN_VK_TRY(vkFlushMappedMemoryRanges(ctx.device(), 1, &range));
+    return {};
+}
+
+Result<void> invalidate(Context& ctx, const Buffer& buffer) {
+    if (buffer.coherent || !buffer.mapped) return {};
+    VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE};
+    range.memory = buffer.memory.get();
+    range.size = VK_WHOLE_SIZE;
+    LANTERN_VK_TRY(vkInvalidateMappedMemoryRanges(ctx.device(), 1, &range));
+    return {};
+}
+
+Result<Image> createImage(Context& ctx, const ImageDesc& desc) {
+    Image img;
+    img.desc = desc;
+    VkImageCreateInfo ici{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    ici.imageType = VK_IMAGE_TYPE_2D;
+    ici.format = desc.format;
+    ici.extent = {desc.width, desc.height, 1};
+    ici.mipLevels = desc.mipLevels;
+    ici.arrayLayers = 1;
+    ici.samples = desc.samples;
+    ici.tiling = VK_IMAGE_TILING_OPTIMAL;
+    ici.usage = desc.usage;
+    ici.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    ici.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    VkImage image = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkCreateImage(ctx.device(), &ici, nullptr, &image));
+    img.image = UniqueImage(ctx.device(), image);
+    ctx.setName(VK_OBJECT_TYPE_IMAGE, image, desc.name);
+
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(ctx.device(), image, &req);
+    const int type =
+        ctx.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    if (type < 0)
+        return makeError(ErrorCode::Unsupported, "no device-local memory for image " + desc.name);
+    VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    mai.allocationSize = req.size;
+    mai.memoryTypeIndex = std::uint32_t(type);
+    VkDeviceMemory mem = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkAllocateMemory(ctx.device(), &mai, nullptr, &mem));
+    img.memory = UniqueMemory(ctx.device(), mem);
+    LANTERN_VK_TRY(vkBindImageMemory(ctx.device(), image, mem, 0));
+
+    VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    vci.image = image;
+    vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    vci.format = desc.format;
+    vci.subresourceRange = {desc.aspect, 0, desc.mipLevels, 0, 1};
+    VkImageView view = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkCreateImageView(ctx.device(), &vci, nullptr, &view));
+    img.view = UniqueImageView(ctx.device(), view);
+    ctx.setName(VK_OBJECT_TYPE_IMAGE_VIEW, view, desc.name + " view");
+    return img;
+}
+
+void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
+                  VkImageLayout from, VkImageLayout to, VkPipelineStageFlags2 srcStage,
+                  VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
+                  VkAccessFlags2 dstAccess, std::uint32_t baseMip, std::uint32_t mipCount) {
+    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    b.srcStageMask = srcStage;
+    b.srcAccessMask = srcAccess;
+    b.dstStageMask = dstStage;
+    b.dstAccessMask = dstAccess;
+    b.oldLayout = from;
+    b.newLayout = to;
+    b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = image;
+    b.subresourceRange = {aspect, baseMip, mipCount, 0, 1};
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.imageMemoryBarrierCount = 1;
+    dep.pImageMemoryBarriers = &b;
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+    VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    b.srcStageMask = srcStage;
+    b.srcAccessMask = srcAccess;
+    b.dstStageMask = dstStage;
+    b.dstAccessMask = dstAccess;
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.memoryBarrierCount = 1;
+    dep.pMemoryBarriers = &b;
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+Result<void> uploadToBuffer(Context& ctx, Buffer& dst, VkDeviceSize offset, const void* data,
+                            VkDeviceSize size) {
+    if (size == 0) return {};
+    if (dst.mapped) {
+        std::memcpy(static_cast<char*>(dst.mapped) + offset, data, size);
+        return flush(ctx, dst);
+    }
+    auto staging = createBuffer(ctx, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload,
+                                "staging");
+    if (!staging) return std::move(staging).error();
+    std::memcpy(staging->mapped, data, size);
+    LANTERN_TRY(flush(ctx, *staging));
+    return ctx.submitAndWait([&](VkCommandBuffer cmd) {
+        VkBufferCopy region{0, offset, size};
+        vkCmdCopyBuffer(cmd, staging->get(), dst.get(), 1, &region);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT);
+    });
+}
+
+} // namespace lantern::gpu

@@ -1,0 +1,76 @@
+// Resources.h: buffers and images with their memory (one dedicated allocation each; Lantern
+// packs a scene's geometry into a few large buffers, so allocation counts stay small), and the
+// barrier helper used around them.
+#pragma once
+
+#include "gpu/Context.h"
+#include "gpu/Handles.h"
+
+#include <lantern/Result.h>
+
+#include <cstdint>
+#include <string>
+
+namespace lantern::gpu {
+
+enum class MemoryUsage {
+    DeviceLocal,  ///< GPU-only; filled by copies
+    Upload,       ///< host-visible, coherent, written by the CPU each frame
+    Readback,     ///< host-visible, preferably cached, read by the CPU
+};
+
+struct Buffer {
+    UniqueBuffer buffer;
+    UniqueMemory memory;
+    VkDeviceSize size = 0;
+    void* mapped = nullptr;  ///< persistently mapped for Upload/Readback (and host-visible DeviceLocal)
+    bool coherent = true;
+
+    VkBuffer get() const { return buffer.get(); }
+};
+
+Result<Buffer> createBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage,
+                            MemoryUsage memory, const std::string& name);
+
+/// Makes CPU writes visible to the device (no-op for coherent memory).
+Result<void> flush(Context& ctx, const Buffer& buffer);
+/// Makes device writes visible to the CPU (no-op for coherent memory).
+Result<void> invalidate(Context& ctx, const Buffer& buffer);
+
+struct ImageDesc {
+    VkFormat format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    std::uint32_t width = 1, height = 1, mipLevels = 1;
+    VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+    VkImageUsageFlags usage = 0;
+    VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
+    std::string name;
+};
+
+struct Image {
+    UniqueImage image;
+    UniqueMemory memory;
+    UniqueImageView view;
+    ImageDesc desc;
+
+    VkImage get() const { return image.get(); }
+};
+
+Result<Image> createImage(Context& ctx, const ImageDesc& desc);
+
+/// Records one image layout transition / memory dependency (synchronization2).
+void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
+                  VkImageLayout from, VkImageLayout to, VkPipelineStageFlags2 srcStage,
+                  VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
+                  VkAccessFlags2 dstAccess, std::uint32_t baseMip = 0,
+                  std::uint32_t mipCount = VK_REMAINING_MIP_LEVELS);
+
+/// Records a global memory dependency (synchronization2).
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+
+/// Copies `size` bytes from host memory into a device-local buffer at `offset`, through a
+/// temporary staging buffer (or directly when the buffer is host-visible).
+Result<void> uploadToBuffer(Context& ctx, Buffer& dst, VkDeviceSize offset, const void* data,
+                            VkDeviceSize size);
+
+} // namespace lantern::gpu

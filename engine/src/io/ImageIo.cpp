@@ -1,0 +1,234 @@
+// OpenEXR and PNG writers (atomic) and the EXR reader.
+#include <lantern/Io.h>
+
+#include "io/AtomicFile.h"
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
+#include <half.h>
+
+#include <stb_image_write.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+namespace lantern {
+namespace {
+
+Imf::Compression toImf(ExrCompression c) {
+    switch (c) {
+    case ExrCompression::None: return Imf::NO_COMPRESSION;
+    case ExrCompression::Rle: return Imf::RLE_COMPRESSION;
+    case ExrCompression::Zips: return Imf::ZIPS_COMPRESSION;
+    case ExrCompression::Zip: return Imf::ZIP_COMPRESSION;
+    case ExrCompression::Piz: return Imf::PIZ_COMPRESSION;
+    case ExrCompression::Pxr24: return Imf::PXR24_COMPRESSION;
+    case ExrCompression::B44: return Imf::B44_COMPRESSION;
+    case ExrCompression::B44a: return Imf::B44A_COMPRESSION;
+    case ExrCompression::Dwaa: return Imf::DWAA_COMPRESSION;
+    case ExrCompression::Dwab: return Imf::DWAB_COMPRESSION;
+    }
+    return Imf::ZIP_COMPRESSION;
+}
+
+Result<void> checkImage(const Image& image, const std::filesystem::path& path) {
+    if (image.width <= 0 || image.height <= 0 || image.rgba.size() != image.pixelCount() * 4)
+        return makeError(ErrorCode::InvalidInput, "image has no pixels or a wrong pixel count", {},
+                         path.string());
+    if (!image.depth.empty() && image.depth.size() != image.pixelCount())
+        return makeError(ErrorCode::InvalidInput, "depth plane has a wrong size", {}, path.string());
+    if (!image.normal.empty() && image.normal.size() != image.pixelCount() * 3)
+        return makeError(ErrorCode::InvalidInput, "normal plane has a wrong size", {}, path.string());
+    return {};
+}
+
+float srgbEncode(float linear) {
+    const float c = std::clamp(linear, 0.0f, 1.0f);
+    return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+} // namespace
+
+const char* toString(ExrCompression c) noexcept {
+    switch (c) {
+    case ExrCompression::None: return "none";
+    case ExrCompression::Rle: return "rle";
+    case ExrCompression::Zips: return "zips";
+    case ExrCompression::Zip: return "zip";
+    case ExrCompression::Piz: return "piz";
+    case ExrCompression::Pxr24: return "pxr24";
+    case ExrCompression::B44: return "b44";
+    case ExrCompression::B44a: return "b44a";
+    case ExrCompression::Dwaa: return "dwaa";
+    case ExrCompression::Dwab: return "dwab";
+    }
+    return "?";
+}
+
+std::optional<ExrCompression> parseExrCompression(std::string_view t) noexcept {
+    for (ExrCompression c : {ExrCompression::None, ExrCompression::Rle, ExrCompression::Zips,
+                             ExrCompression::Zip, ExrCompression::Piz, ExrCompression::Pxr24,
+                             ExrCompression::B44, ExrCompression::B44a, ExrCompression::Dwaa,
+                             ExrCompression::Dwab})
+        if (t == toString(c)) return c;
+    return std::nullopt;
+}
+
+Result<void> writeExr(const std::filesystem::path& path, const Image& image,
+                      const ExrOptions& options) {
+    LANTERN_TRY(checkImage(image, path));
+    io::AtomicFile file(path);
+    LANTERN_TRY(file.checkWritable());
+    const int w = image.width, h = image.height;
+    const std::size_t n = image.pixelCount();
+    std::vector<half> halves;
+    std::uint64_t clamped = 0;
+    try {
+        Imf::Header header(w, h);
+        header.compression() = toImf(options.compression);
+        const Imf::PixelType colorType = options.half ? Imf::HALF : Imf::FLOAT;
+        Imf::FrameBuffer fb;
+        const char* names[4] = {"R", "G", "B", "A"};
+        if (options.half) {
+            // Values beyond the half range clamp to +-65504 (never Inf); the caller is told.
+            constexpr float kHalfMax = 65504.0f;
+            halves.resize(n * 4);
+            for (std::size_t i = 0; i < n * 4; ++i) {
+                float v = image.rgba[i];
+                if (!std::isfinite(v)) v = 0.0f;
+                if (v > kHalfMax || v < -kHalfMax) {
+                    v = std::clamp(v, -kHalfMax, kHalfMax);
+                    ++clamped;
+                }
+                halves[i] = half(v);
+            }
+            for (int c = 0; c < 4; ++c) {
+                header.channels().insert(names[c], Imf::Channel(colorType));
+                fb.insert(names[c], Imf::Slice(Imf::HALF, reinterpret_cast<char*>(halves.data() + c),
+                                               sizeof(half) * 4, sizeof(half) * 4 * std::size_t(w)));
+            }
+        } else {
+            for (int c = 0; c < 4; ++c) {
+                header.channels().insert(names[c], Imf::Channel(colorType));
+                fb.insert(names[c],
+                          Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(image.rgba.data() + c)),
+                                     sizeof(float) * 4, sizeof(float) * 4 * std::size_t(w)));
+            }
+        }
+        // AOVs are always 32-bit float: half has 0.5-unit spacing at depth 1000.
+        if (!image.depth.empty()) {
+            header.channels().insert("Z", Imf::Channel(Imf::FLOAT));
+            fb.insert("Z", Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(image.depth.data())),
+                                      sizeof(float), sizeof(float) * std::size_t(w)));
+        }
+        if (!image.normal.empty()) {
+            const char* nn[3] = {"N.X", "N.Y", "N.Z"};
+            for (int c = 0; c < 3; ++c) {
+                header.channels().insert(nn[c], Imf::Channel(Imf::FLOAT));
+                fb.insert(nn[c], Imf::Slice(Imf::FLOAT,
+                                            const_cast<char*>(reinterpret_cast<const char*>(image.normal.data() + c)),
+                                            sizeof(float) * 3, sizeof(float) * 3 * std::size_t(w)));
+            }
+        }
+        for (const auto& [key, value] : image.metadata) header.insert(key, Imf::StringAttribute(value));
+        Imf::OutputFile out(file.temporaryPath().c_str(), header);
+        out.setFrameBuffer(fb);
+        out.writePixels(h);
+    } catch (const std::exception& e) {
+        // A full disk shows up here as an exception from OpenEXR's stream.
+        return makeError(ErrorCode::IoError, std::string("OpenEXR could not write the file: ") + e.what(),
+                         {}, path.string());
+    }
+    if (options.clampedCount) *options.clampedCount = clamped;
+    return file.commit();
+}
+
+Result<Image> readExr(const std::filesystem::path& path) {
+    try {
+        Imf::InputFile in(path.c_str());
+        const Imath::Box2i dw = in.header().dataWindow();
+        const long long w = (long long)dw.max.x - dw.min.x + 1, h = (long long)dw.max.y - dw.min.y + 1;
+        if (w <= 0 || h <= 0 || w * h > (1LL << 31))
+            return makeError(ErrorCode::InvalidInput, "unsupported data window", {}, path.string());
+        Image img{int(w), int(h)};
+        const std::size_t n = img.pixelCount();
+        Imf::FrameBuffer fb;
+        const char* names[4] = {"R", "G", "B", "A"};
+        auto base = [&](float* p, std::size_t comps) {
+            // OpenEXR addresses pixel (x, y) at base + x * xStride + y * yStride.
+            return reinterpret_cast<char*>(p) -
+                   (std::ptrdiff_t(dw.min.x) + std::ptrdiff_t(dw.min.y) * w) * std::ptrdiff_t(comps * sizeof(float));
+        };
+        for (int c = 0; c < 4; ++c)
+            fb.insert(names[c], Imf::Slice(Imf::FLOAT, base(img.rgba.data() + c, 4), 16, 16 * std::size_t(w), 1, 1,
+                                           c == 3 ? 1.0 : 0.0));
+        const Imf::ChannelList& channels = in.header().channels();
+        if (channels.findChannel("Z")) {
+            img.depth.resize(n);
+            fb.insert("Z", Imf::Slice(Imf::FLOAT, base(img.depth.data(), 1), 4, 4 * std::size_t(w)));
+        }
+        if (channels.findChannel("N.X") && channels.findChannel("N.Y") && channels.findChannel("N.Z")) {
+            img.normal.resize(n * 3);
+            const char* nn[3] = {"N.X", "N.Y", "N.Z"};
+            for (int c = 0; c < 3; ++c)
+                fb.insert(nn[c], Imf::Slice(Imf::FLOAT, base(img.normal.data() + c, 3), 12, 12 * std::size_t(w)));
+        }
+        in.setFrameBuffer(fb);
+        in.readPixels(dw.min.y, dw.max.y);
+        for (auto it = in.header().begin(); it != in.header().end(); ++it)
+            if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+                img.metadata.emplace_back(it.name(), s->value());
+        return img;
+    } catch (const std::exception& e) {
+        return makeError(ErrorCode::InvalidInput, std::string("not a readable OpenEXR file: ") + e.what(),
+                         {}, path.string());
+    }
+}
+
+Result<void> writePng(const std::filesystem::path& path, const Image& image) {
+    LANTERN_TRY(checkImage(image, path));
+    io::AtomicFile file(path);
+    LANTERN_TRY(file.checkWritable());
+    const std::size_t n = image.pixelCount();
+    std::vector<unsigned char> pixels(n * 4);
+    for (std::size_t i = 0; i < n; ++i) {
+        const float* p = image.rgba.data() + i * 4;
+        const float a = std::clamp(std::isfinite(p[3]) ? p[3] : 0.0f, 0.0f, 1.0f);
+        for (int c = 0; c < 3; ++c) {
+            // PNG stores straight alpha: undo the premultiplication first.
+            float v = std::isfinite(p[c]) ? p[c] : 0.0f;
+            if (a > 0.0f && a < 1.0f) v /= a;
+            pixels[i * 4 + c] = static_cast<unsigned char>(std::lround(srgbEncode(v) * 255.0f));
+        }
+        pixels[i * 4 + 3] = static_cast<unsigned char>(std::lround(a * 255.0f));
+    }
+    std::vector<unsigned char> encoded;
+    auto sink = [](void* ctx, void* data, int size) {
+        auto* out = static_cast<std::vector<unsigned char>*>(ctx);
+        out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
+    };
+    if (!stbi_write_png_to_func(sink, &encoded, image.width, image.height, 4, pixels.data(),
+                                image.width * 4))
+        return makeError(ErrorCode::IoError, "PNG encoding failed", {}, path.string());
+    LANTERN_TRY(file.writeAll(encoded.data(), encoded.size()));
+    return file.commit();
+}
+
+Result<void> writeImage(const std::filesystem::path& path, const Image& image,
+                        const ExrOptions& exrOptions) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (ext == ".exr") return writeExr(path, image, exrOptions);
+    if (ext == ".png") return writePng(path, image);
+    return makeError(ErrorCode::InvalidInput,
+                     "unknown image type \"" + ext + "\" (use .exr or .png)", "--output", path.string());
+}
+
+} // namespace lantern

@@ -1,0 +1,176 @@
+// The lighting equation in double precision: lighting.glsl's twin, function for function.
+#include "reference/Lighting.h"
+
+#include "lantern_shared.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace lantern::ref {
+
+glm::dvec3 safeNormalize(const glm::dvec3& v) {
+    const double m = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    if (!(m > 0.0) || std::isinf(m)) return glm::dvec3(0.0);
+    const glm::dvec3 u = v / m;
+    return u / std::sqrt(glm::dot(u, u));
+}
+
+double safeLength(const glm::dvec3& v) {
+    const double m = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    if (!(m > 0.0) || std::isinf(m)) return m;
+    return m * glm::length(v / m);
+}
+
+double powSafe(double x, double e) { return e == 0.0 ? 1.0 : std::pow(std::max(x, 0.0), e); }
+
+double lobe(const glm::dvec3& a, const glm::dvec3& b, double s) {
+    if (s == 0.0) return 1.0;
+    const glm::dvec3 d = a - b;
+    const double y = 0.5 * glm::dot(d, d);
+    if (y >= 1.0) return 0.0;
+    return std::exp(s * std::log1p(-y));
+}
+
+double specularTerm(const glm::dvec3& n, const glm::dvec3& l, const glm::dvec3& v,
+                    double shininess, SpecularModel model) {
+    if (model == SpecularModel::Phong) {
+        const glm::dvec3 r = 2.0 * glm::dot(n, l) * n - l;
+        return lobe(r, v, shininess);
+    }
+    const glm::dvec3 h = safeNormalize(l + v);
+    if (h == glm::dvec3(0.0)) return 0.0;
+    return lobe(n, h, shininess);
+}
+
+glm::dvec3 viewVector(const glm::dvec3& V, bool localViewer) {
+    if (!localViewer) return {0.0, 0.0, 1.0};
+    const glm::dvec3 v = safeNormalize(-V);
+    return v == glm::dvec3(0.0) ? glm::dvec3(0.0, 0.0, 1.0) : v;
+}
+
+LightSums evaluateLighting(const glm::dvec3& V, const glm::dvec3& n, const MaterialSide& m,
+                           const std::vector<EyeLight>& lights, const Settings& st,
+                           std::vector<LightContribution>* contributions) {
+    LightSums s;
+    if (st.unlit) {
+        s.diffuse = glm::dvec3(1.0);
+        return s;
+    }
+    s.emissiveSpecular = m.emission;
+    s.ambient = st.globalAmbient;
+    const glm::dvec3 v = viewVector(V, st.localViewer);
+    for (const EyeLight& L : lights) {
+        LightContribution c;
+        glm::dvec3 l;
+        if (L.type == LightType::Directional) {
+            l = L.toLight;
+        } else {
+            const glm::dvec3 toLight = L.position - V;
+            const double d = safeLength(toLight);
+            l = d > 0.0 ? safeNormalize(toLight) : n;
+            if (L.falloff == LightFalloff::Gl) {
+                const double denominator =
+                    L.attenuation.x + L.attenuation.y * d + (L.attenuation.z * d) * d;
+                c.attenuation = 1.0 / std::max(denominator, LANTERN_MIN_ATTENUATION_DENOMINATOR);
+            } else {
+                double window = 1.0;
+                if (L.invRange > 0.0) {
+                    double q = d * L.invRange;
+                    q = q * q;
+                    window = std::clamp(1.0 - q * q, 0.0, 1.0);
+                }
+                c.attenuation = window / std::max(d * d, LANTERN_MIN_GLTF_DISTANCE_SQUARED);
+            }
+            if (L.type == LightType::Spot) {
+                const double cd = glm::dot(-l, L.spotAxis);
+                if (L.falloff == LightFalloff::Gl) {
+                    const double x = std::max(cd, 0.0);
+                    c.spot = x >= L.cosCutoff ? powSafe(x, L.exponent) : 0.0;
+                } else {
+                    const double t = std::clamp((cd - L.cosOuter) * L.coneScale, 0.0, 1.0);
+                    c.spot = t * t;
+                }
+            }
+        }
+        const double k = c.attenuation * c.spot;
+        c.nDotL = glm::dot(n, l);
+        s.ambient += k * L.ambient;
+        s.diffuse += (k * std::max(c.nDotL, 0.0)) * L.diffuse;
+        c.ambient = k * L.ambient * m.ambient;
+        c.diffuse = (k * std::max(c.nDotL, 0.0)) * L.diffuse * glm::dvec3(m.diffuse);
+        if (st.specularOn && c.nDotL > 0.0) {
+            c.specularTerm = specularTerm(n, l, v, m.shininess, st.specular);
+            c.specular = (k * c.specularTerm) * (m.specular * L.specular);
+            s.emissiveSpecular += c.specular;
+        }
+        if (contributions) contributions->push_back(c);
+    }
+    return s;
+}
+
+SplitColour splitColour(const LightSums& s, const glm::dvec3& ambientM, const glm::dvec3& diffuseM,
+                        bool ambientFollowsDiffuse, bool glClamp) {
+    SplitColour r;
+    if (ambientFollowsDiffuse) {
+        r.base = s.emissiveSpecular;
+        r.textured = ambientM * s.ambient + diffuseM * s.diffuse;
+    } else {
+        r.base = s.emissiveSpecular + ambientM * s.ambient;
+        r.textured = diffuseM * s.diffuse;
+    }
+    if (glClamp) {
+        r.textured = glm::clamp(r.base + r.textured, 0.0, 1.0);
+        r.base = glm::dvec3(0.0);
+    }
+    return r;
+}
+
+glm::dvec3 shade(const glm::dvec3& V, const glm::dvec3& n, const MaterialSide& m,
+                 const std::vector<EyeLight>& lights, const Settings& settings) {
+    const LightSums s = evaluateLighting(V, n, m, lights, settings);
+    const SplitColour c = splitColour(s, m.ambient, glm::dvec3(m.diffuse), false, false);
+    return c.base + c.textured;
+}
+
+std::vector<EyeLight> eyeLights(const Scene& scene, const Pose& pose, const glm::dmat4& viewFromWorld,
+                                bool glCompat) {
+    std::vector<EyeLight> out;
+    auto place = [&](const Light& l, const glm::dmat4& viewFromLight) {
+        EyeLight e;
+        e.name = l.name;
+        e.falloff = l.falloff;
+        e.type = l.type;
+        if (l.type == LightType::Spot && l.falloff == LightFalloff::Gl && l.spotCutoffDeg == 180.0)
+            e.type = LightType::Point;
+        e.position = glm::dvec3(viewFromLight[3]);
+        glm::dvec3 axis = glm::dmat3(viewFromLight) * glm::dvec3(0, 0, -1);
+        const double len = glm::length(axis);
+        axis = (len > 0.0 && std::isfinite(len)) ? axis / len : glm::dvec3(0, 0, -1);
+        e.spotAxis = axis;
+        e.toLight = -axis;
+        e.ambient = l.ambient;
+        e.diffuse = l.diffuse;
+        e.specular = l.specular;
+        e.attenuation = l.attenuation;
+        e.invRange = std::isinf(l.range) ? 0.0 : 1.0 / l.range;
+        e.cosCutoff = std::cos(std::min(l.spotCutoffDeg, 90.0) * 3.14159265358979323846 / 180.0);
+        e.exponent = glCompat ? std::min(l.spotExponent, 128.0) : l.spotExponent;
+        e.cosOuter = std::cos(l.outerConeAngle);
+        e.coneScale = 1.0 / std::max(std::cos(l.innerConeAngle) - e.cosOuter, 1e-6);
+        out.push_back(e);
+    };
+    for (std::size_t i = 0; i < scene.nodes.size(); ++i)
+        if (pose.visible[i] && scene.nodes[i].light >= 0)
+            place(scene.lights[scene.nodes[i].light], viewFromWorld * pose.worldFromNode[i]);
+    if (out.empty()) {
+        Light l;
+        l.name = "GL default light 0";
+        l.type = LightType::Directional;
+        place(l, glm::dmat4(1.0));
+    }
+    return out;
+}
+
+} // namespace lantern::ref

@@ -1,0 +1,140 @@
+// Built-in scenes, generated in code (no files needed at run time).
+#include "scene/Builtins.h"
+
+#include <lantern/Io.h>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace lantern {
+namespace scene {
+
+Scene makeSpheresScene() {
+    Scene s;
+    s.sourcePath = "builtin:spheres";
+    auto material = [](const char* name, glm::dvec3 a, glm::dvec3 d, glm::dvec3 sp, double sh) {
+        Material m;
+        m.name = name;
+        m.front.ambient = a;
+        m.front.diffuse = glm::dvec4(d, 1.0);
+        m.front.specular = sp;
+        m.front.shininess = sh;
+        return m;
+    };
+    s.materials = {
+        material("red plastic", {0.0, 0.0, 0.0}, {0.5, 0.0, 0.0}, {0.7, 0.6, 0.6}, 32.0),
+        material("gold", {0.24725, 0.1995, 0.0745}, {0.75164, 0.60648, 0.22648},
+                 {0.628281, 0.555802, 0.366065}, 51.2),
+        material("jade", {0.135, 0.2225, 0.1575}, {0.54, 0.89, 0.63},
+                 {0.316228, 0.316228, 0.316228}, 12.8),
+        material("ground", {0.2, 0.2, 0.2}, {0.45, 0.45, 0.5}, {0.1, 0.1, 0.1}, 8.0),
+    };
+    // Meshes 0-2: a sphere in each material; mesh 3: the ground.
+    for (int i = 0; i < 3; ++i) {
+        Mesh m{"sphere " + std::to_string(i), {makeSphere(1.0, 64, 32)}};
+        m.primitives[0].material = i;
+        s.meshes.push_back(std::move(m));
+        Node n;
+        n.name = "sphere " + std::to_string(i);
+        n.mesh = i;
+        n.translation = {-2.4 + 2.4 * i, 0.0, 0.0};
+        s.nodes.push_back(n);
+    }
+    Mesh ground{"ground", {makePlane(12.0, 8)}};
+    ground.primitives[0].material = 3;
+    s.meshes.push_back(std::move(ground));
+    Node floor;
+    floor.name = "ground";
+    floor.mesh = 3;
+    floor.translation = {0.0, -1.0, 0.0};
+    floor.rotation = glm::angleAxis(-glm::pi<double>() / 2.0, glm::dvec3(1, 0, 0));
+    s.nodes.push_back(floor);
+
+    Light sun;
+    sun.name = "sun";
+    sun.type = LightType::Directional;
+    sun.diffuse = {0.8, 0.8, 0.8};
+    sun.specular = {1.0, 1.0, 1.0};
+    Node sunNode;
+    sunNode.name = "sun";
+    sunNode.light = 0;
+    // Shines down its local -Z: tilt it to come from the upper left, in front.
+    sunNode.rotation = glm::quatLookAtRH(glm::normalize(glm::dvec3(0.5, -1.0, -0.7)), glm::dvec3(0, 1, 0));
+    Light lamp;
+    lamp.name = "lamp";
+    lamp.type = LightType::Point;
+    lamp.diffuse = {0.6, 0.55, 0.5};
+    lamp.specular = {0.6, 0.55, 0.5};
+    lamp.attenuation = {1.0, 0.05, 0.01};
+    Node lampNode;
+    lampNode.name = "lamp";
+    lampNode.light = 1;
+    lampNode.translation = {3.0, 3.0, 4.0};
+    s.lights = {sun, lamp};
+    s.nodes.push_back(sunNode);
+    s.nodes.push_back(lampNode);
+
+    Camera cam;
+    cam.name = "main";
+    cam.projection = Projection::makePerspective(glm::radians(40.0), 0.0, 0.1, kInfinity);
+    s.cameras.push_back(cam);
+    Node camNode;
+    camNode.name = "camera";
+    camNode.camera = 0;
+    camNode.translation = {0.0, 2.2, 9.0};
+    camNode.rotation = glm::quatLookAtRH(glm::normalize(glm::dvec3(0.0, -2.2, -9.0)), glm::dvec3(0, 1, 0));
+    s.nodes.push_back(camNode);
+
+    SceneRoot root;
+    root.name = "spheres";
+    for (int i = 0; i < int(s.nodes.size()); ++i) root.nodes.push_back(i);
+    LightingModel lm;
+    lm.globalAmbient = {0.2, 0.2, 0.2};
+    root.lighting = lm;
+    s.roots = {root};
+    return s;
+}
+
+} // namespace scene
+
+namespace {
+struct Builtin {
+    const char* name;
+    std::function<Scene()> make;
+};
+const std::vector<Builtin>& registry() {
+    static const std::vector<Builtin> builtins = {
+        {"default", scene::makeSpheresScene},
+        {"spheres", scene::makeSpheresScene},
+    };
+    return builtins;
+}
+} // namespace
+
+std::vector<std::string> builtinSceneNames() {
+    std::vector<std::string> names;
+    for (const Builtin& b : registry()) names.push_back(b.name);
+    return names;
+}
+
+Result<Scene> builtinScene(std::string_view name) {
+    for (const Builtin& b : registry())
+        if (name == b.name) return b.make();
+    std::string known;
+    for (const Builtin& b : registry()) known += std::string(known.empty() ? "" : ", ") + b.name;
+    return makeError(ErrorCode::InvalidInput,
+                     "unknown built-in scene \"" + std::string(name) + "\" (built-ins: " + known + ")",
+                     {}, "builtin:" + std::string(name));
+}
+
+Result<Scene> loadScene(std::string_view pathOrBuiltin, const LoadOptions& options) {
+    constexpr std::string_view prefix = "builtin:";
+    if (pathOrBuiltin.substr(0, prefix.size()) == prefix)
+        return builtinScene(pathOrBuiltin.substr(prefix.size()));
+    return loadGltf(std::filesystem::path(std::string(pathOrBuiltin)), options);
+}
+
+} // namespace lantern

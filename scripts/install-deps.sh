@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# Installs, with apt-get, every Debian 12 package Lantern needs to build, run and test;
+# does nothing (and needs no root) when all of them are already installed.
+#
+# Usage: scripts/install-deps.sh [build|test|all]   (default: all)
+#   build  what `cmake --build` and `lantern render` need
+#   test   build + the tools the test suite drives (Xvfb, xdotool, oiiotool, valgrind, clang)
+set -euo pipefail
+
+what=${1:-all}
+
+build_pkgs=(
+    build-essential cmake ninja-build ccache pkg-config git
+    libvulkan-dev vulkan-validationlayers mesa-vulkan-drivers glslang-tools
+    libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenexr-dev
+    libcli11-dev libfmt-dev libglfw3-dev libimgui-dev
+    libgtest-dev libgmock-dev libbenchmark-dev
+)
+test_pkgs=(
+    xvfb xauth xdotool x11-utils openimageio-tools vulkan-tools
+    clang-14 libclang-rt-14-dev valgrind python3
+)
+
+case "$what" in
+build) pkgs=("${build_pkgs[@]}") ;;
+test | all) pkgs=("${build_pkgs[@]}" "${test_pkgs[@]}") ;;
+*)
+    echo "usage: $0 [build|test|all]" >&2
+    exit 2
+    ;;
+esac
+
+missing=()
+for p in "${pkgs[@]}"; do
+    # dpkg-query prints "install ok installed" only for a fully installed package.
+    if [ "$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null)" != "install ok installed" ]; then
+        missing+=("$p")
+    fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+    exit 0
+fi
+
+echo "install-deps: installing ${#missing[@]} missing package(s): ${missing[*]}" >&2
+sudo=()
+if [ "$(id -u)" != 0 ]; then
+    if command -v sudo >/dev/null 2>&1; then
+        sudo=(sudo)
+    else
+        echo "install-deps: not root and no sudo; install these packages: ${missing[*]}" >&2
+        exit 1
+    fi
+fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo[@]}" apt-get -o DPkg::Lock::Timeout=300 update -qq
+"${sudo[@]}" apt-get -o DPkg::Lock::Timeout=300 install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Quick start, first command: installs what is missing, builds, and renders the default scene
+# headless to out/default.exr plus a PNG preview, printing both paths.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+LANTERN_DEPS=build scripts/build.sh release >&2
+mkdir -p out
+exec build/release/apps/lantern/lantern render builtin:default -o out/default.exr -o out/default.png "$@"

@@ -1,0 +1,71 @@
+// lantern_shared.h: the facts shared by GLSL and C++ (binding numbers, attribute locations,
+// specialisation-constant ids, enum values, numeric guards). Only #defines, so it is valid in
+// both languages. Change a number here and nowhere else.
+#ifndef LANTERN_SHARED_H
+#define LANTERN_SHARED_H
+
+// Descriptor sets and bindings.
+#define LANTERN_SET_FRAME 0
+#define LANTERN_BINDING_FRAME 0      // uniform FrameBlock (dynamic offset, one per view)
+#define LANTERN_BINDING_LIGHTS 1     // buffer LightBlock (dynamic offset, one per view)
+#define LANTERN_BINDING_MATERIALS 2  // buffer MaterialBlock
+#define LANTERN_SET_TEXTURE 1
+#define LANTERN_BINDING_BASE_COLOR 0 // sampler2D, the material's base-colour texture
+
+// Vertex attribute locations; each attribute has its own vertex-buffer binding of the same
+// number (non-interleaved streams, so absent attributes can be bound to a stride-0 default).
+#define LANTERN_LOC_POSITION 0
+#define LANTERN_LOC_NORMAL 1
+#define LANTERN_LOC_COLOR 2
+#define LANTERN_LOC_TEXCOORD 3
+#define LANTERN_LOC_CENTROID 4       // flat shading only: the triangle's centroid
+#define LANTERN_VERTEX_BINDINGS 5
+
+// Specialisation constants: the features a pipeline variant compiles in.
+#define LANTERN_SC_LIGHT_TYPES 0     // bit mask of LANTERN_LIGHT_BIT_*
+#define LANTERN_SC_GL_ATTENUATION 1  // a GL light has attenuation other than (1,0,0)
+#define LANTERN_SC_GL_SPOT 2         // a GL spot light with a cone (cutoff != 180)
+#define LANTERN_SC_GLTF_FALLOFF 3    // a glTF-form point or spot light
+#define LANTERN_SC_SPECULAR 4        // LANTERN_SPECULAR_*
+#define LANTERN_SC_LOCAL_VIEWER 5
+#define LANTERN_SC_TWO_SIDED 6
+#define LANTERN_SC_VERTEX_COLOR 7
+#define LANTERN_SC_TEXTURE 8
+#define LANTERN_SC_ALPHA_MASK 9
+#define LANTERN_SC_CLAMP 10          // LANTERN_CLAMP_*
+#define LANTERN_SC_UNLIT 11
+#define LANTERN_SC_AMBIENT_FOLLOWS_DIFFUSE 12
+#define LANTERN_SC_OPAQUE 13         // write alpha 1 (glTF OPAQUE and MASK)
+#define LANTERN_SC_COUNT 14
+
+#define LANTERN_LIGHT_BIT_DIRECTIONAL 1
+#define LANTERN_LIGHT_BIT_POINT 2
+#define LANTERN_LIGHT_BIT_SPOT 4
+
+#define LANTERN_SPECULAR_NONE 0
+#define LANTERN_SPECULAR_BLINN 1
+#define LANTERN_SPECULAR_PHONG 2
+
+#define LANTERN_CLAMP_NONE 0
+#define LANTERN_CLAMP_FRAGMENT 1     // --clamp: the final colour
+#define LANTERN_CLAMP_GL 2           // --gl-compat: each lit colour where it is computed
+
+// LightData.info.x
+#define LANTERN_LIGHT_DIRECTIONAL 0
+#define LANTERN_LIGHT_POINT 1
+#define LANTERN_LIGHT_SPOT 2
+// LightData.info.y
+#define LANTERN_FALLOFF_GL 0
+#define LANTERN_FALLOFF_GLTF 1
+
+// Numeric guards, shared by the shaders and the CPU reference so both take the same branch.
+// GL attenuation 1/(kc + kl d + kq d^2) is evaluated as 1/max(denominator, this): a light on
+// the surface with kc = 0 gives 1e30, finite.
+#define LANTERN_MIN_ATTENUATION_DENOMINATOR 1e-30
+// glTF falloff 1/max(d^2, this) (scene-format.md section 1).
+#define LANTERN_MIN_GLTF_DISTANCE_SQUARED 1e-4
+
+// Limits.
+#define LANTERN_MAX_LIGHTS 65536
+
+#endif

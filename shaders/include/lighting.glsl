@@ -1,0 +1,191 @@
+// lighting.glsl: the only GLSL copy of Lantern's lighting equation (scene-format.md section 1),
+// used per fragment (phong), per vertex (gouraud) and per triangle (flat). Its C++ twin, with
+// the same function names and guards, is engine/src/reference/Lighting.cpp.
+//
+//   c = e_m + a_m A + sum_i att_i spot_i (a_m a_i + max(n.l_i, 0) d_m d_i + f_i spec_i s_m s_i)
+//
+// evaluateLighting() returns the three sums that multiply 1, a_m and d_m, so that a base-colour
+// texture or a vertex colour can scale a_m and d_m after the lights were summed (per fragment
+// in every mode).
+#ifndef LANTERN_LIGHTING_GLSL
+#define LANTERN_LIGHTING_GLSL
+
+#include "lantern_shared.h"
+#include "specialization.glsl"
+#include "uniforms.glsl"
+
+struct LightSums {
+    vec3 emissiveSpecular;  // e_m + sum att spot f spec s_m s_i
+    vec3 ambient;           // A + sum att spot a_i          (times a_m)
+    vec3 diffuse;           // sum att spot max(n.l, 0) d_i  (times d_m)
+};
+
+// The unit vector along v, computed without overflow or underflow (scaled by its largest
+// component first: normalize(1e20, 0, 0) is 0 on lavapipe). The zero vector maps to zero.
+vec3 safeNormalize(vec3 v) {
+    float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+    if (!(m > 0.0) || isinf(m)) return vec3(0.0);
+    vec3 u = v / m;
+    return u * inversesqrt(dot(u, u));
+}
+
+// |v| without overflow or underflow.
+float safeLength(vec3 v) {
+    float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+    if (!(m > 0.0) || isinf(m)) return m;
+    return m * length(v / m);
+}
+
+// x^e for x >= 0 with x^0 = 1 (GLSL leaves pow(0, 0) undefined; lavapipe returns 0).
+float powSafe(float x, float e) {
+    return e == 0.0 ? 1.0 : pow(max(x, 0.0), e);
+}
+
+// ln(1 - y) for y in [0, 1), accurate for tiny y (Kahan's log1p): ln(u) * y / (1 - u).
+float logOneMinus(float y) {
+    float u = 1.0 - y;
+    return u == 1.0 ? -y : log(u) * (y / (1.0 - u));
+}
+
+// max(a.b, 0)^s for unit vectors a and b, evaluated as exp(s ln(1 - y)) with
+// y = 1 - a.b = |a - b|^2 / 2: no cancellation near the peak, so the highlight stays within
+// 1e-6 of the exact value for any shininess (pow(dot(a, b), s) loses 3% at s = 1e6).
+float lobe(vec3 a, vec3 b, float s) {
+    if (s == 0.0) return 1.0;
+    vec3 d = a - b;
+    float y = 0.5 * dot(d, d);
+    if (y >= 1.0) return 0.0;
+    return exp(s * logOneMinus(y));
+}
+
+// spec_i: Blinn max(n.h, 0)^s with h = normalize(l + v), or Phong max(r.v, 0)^s with
+// r = 2(n.l)n - l. When l = -v there is no halfway vector and the term is 0.
+float specularTerm(vec3 n, vec3 l, vec3 v, float shininess) {
+    if (SC_SPECULAR == LANTERN_SPECULAR_PHONG) {
+        vec3 r = 2.0 * dot(n, l) * n - l;
+        return lobe(r, v, shininess);
+    }
+    vec3 h = safeNormalize(l + v);
+    if (h == vec3(0.0)) return 0.0;
+    return lobe(n, h, shininess);
+}
+
+// The view vector: towards the eye with a local viewer, else GL's (0, 0, 1).
+vec3 viewVector(vec3 V) {
+    if (!SC_LOCAL_VIEWER) return vec3(0.0, 0.0, 1.0);
+    vec3 v = safeNormalize(-V);
+    return v == vec3(0.0) ? vec3(0.0, 0.0, 1.0) : v;
+}
+
+// The sums of the equation at eye-space point V with unit normal n (zero normal: ambient and
+// emission only) for material side m (its specular, emission and shininess; ambient and
+// diffuse are applied by the caller).
+LightSums evaluateLighting(vec3 V, vec3 n, MaterialSideData m) {
+    LightSums s;
+    if (SC_UNLIT) {
+        s.emissiveSpecular = vec3(0.0);
+        s.ambient = vec3(0.0);
+        s.diffuse = vec3(1.0);
+        return s;
+    }
+    s.emissiveSpecular = m.emission.rgb;
+    s.ambient = frame.globalAmbient.rgb;
+    s.diffuse = vec3(0.0);
+    vec3 v = viewVector(V);
+    float shininess = m.specular.w;
+
+    for (uint i = 0u; i < frame.lightCount; ++i) {
+        uint type = lights[i].info.x;
+        uint falloff = lights[i].info.y;
+        vec3 l;
+        float att = 1.0;
+        float spot = 1.0;
+        if (type == LANTERN_LIGHT_DIRECTIONAL) {
+            if ((SC_LIGHT_TYPES & LANTERN_LIGHT_BIT_DIRECTIONAL) == 0u) continue;
+            l = lights[i].position.xyz;
+        } else {
+            if ((SC_LIGHT_TYPES & (LANTERN_LIGHT_BIT_POINT | LANTERN_LIGHT_BIT_SPOT)) == 0u) continue;
+            vec3 toLight = lights[i].position.xyz - V;
+            float d = safeLength(toLight);
+            // A light exactly at the point shines along the normal (finite, documented).
+            l = d > 0.0 ? safeNormalize(toLight) : n;
+            if (SC_GL_ATTENUATION && falloff == LANTERN_FALLOFF_GL) {
+                vec4 k = lights[i].attenuation;
+                // (kq d) d rather than kq (d d): kq = 0 with d^2 = inf must give 0, not NaN.
+                float denominator = k.x + k.y * d + (k.z * d) * d;
+                att = 1.0 / max(denominator, LANTERN_MIN_ATTENUATION_DENOMINATOR);
+            }
+            if (SC_GLTF_FALLOFF && falloff == LANTERN_FALLOFF_GLTF) {
+                float invRange = lights[i].attenuation.w;
+                float window = 1.0;
+                if (invRange > 0.0) {
+                    float q = d * invRange;
+                    q = q * q;
+                    window = clamp(1.0 - q * q, 0.0, 1.0);
+                }
+                att = window / max(d * d, LANTERN_MIN_GLTF_DISTANCE_SQUARED);
+            }
+            if (type == LANTERN_LIGHT_SPOT) {
+                if ((SC_LIGHT_TYPES & LANTERN_LIGHT_BIT_SPOT) == 0u) continue;
+                float cd = dot(-l, lights[i].spotDirection.xyz);
+                if (SC_GL_SPOT && falloff == LANTERN_FALLOFF_GL) {
+                    float x = max(cd, 0.0);
+                    spot = x >= lights[i].spotDirection.w ? powSafe(x, lights[i].spot.x) : 0.0;
+                }
+                if (SC_GLTF_FALLOFF && falloff == LANTERN_FALLOFF_GLTF) {
+                    float t = clamp((cd - lights[i].spot.y) * lights[i].spot.z, 0.0, 1.0);
+                    spot = t * t;
+                }
+            }
+        }
+        float k = att * spot;
+        float ndotl = dot(n, l);
+        s.ambient += k * lights[i].ambient.rgb;
+        s.diffuse += (k * max(ndotl, 0.0)) * lights[i].diffuse.rgb;
+        // f_i selects rather than multiplies, so a non-finite term on the dark side cannot leak.
+        if (SC_SPECULAR != LANTERN_SPECULAR_NONE && ndotl > 0.0) {
+            float spec = specularTerm(n, l, v, shininess);
+            s.emissiveSpecular += (k * spec) * (m.specular.rgb * lights[i].specular.rgb);
+        }
+    }
+    return s;
+}
+
+// The material's ambient and diffuse colours and alpha at a point: COLOR_0 replaces ambient
+// and diffuse (GL's colour-material tracking) and multiplies alpha.
+void materialColours(MaterialSideData m, vec4 vertexColor, out vec3 ambientM, out vec3 diffuseM,
+                     out float alpha) {
+    ambientM = m.ambient.rgb;
+    diffuseM = m.diffuse.rgb;
+    alpha = m.diffuse.a;
+    if (SC_VERTEX_COLOR && (draw.flags & 1u) != 0u) {
+        ambientM = vertexColor.rgb;
+        diffuseM = vertexColor.rgb;
+        alpha *= vertexColor.a;
+    }
+}
+
+// Splits the colour into `base` and `textured` so that colour = base + texel * textured: the
+// base-colour texture scales the diffuse term (and the ambient term when the material's
+// ambient follows its diffuse). With GL's clamp the lit colour is clamped where it is computed
+// and the texture modulates all of it (GL_MODULATE).
+void splitColour(LightSums s, vec3 ambientM, vec3 diffuseM, out vec3 base, out vec3 textured) {
+    if (SC_AMBIENT_FOLLOWS_DIFFUSE) {
+        base = s.emissiveSpecular;
+        textured = ambientM * s.ambient + diffuseM * s.diffuse;
+    } else {
+        base = s.emissiveSpecular + ambientM * s.ambient;
+        textured = diffuseM * s.diffuse;
+    }
+    if (SC_CLAMP == LANTERN_CLAMP_GL) {
+        textured = clamp(base + textured, 0.0, 1.0);
+        base = vec3(0.0);
+    }
+}
+
+// The normal matrix of this draw.
+mat3 drawNormalMatrix() {
+    return mat3(draw.normalMatrix[0].xyz, draw.normalMatrix[1].xyz, draw.normalMatrix[2].xyz);
+}
+
+#endif

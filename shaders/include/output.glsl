@@ -1,0 +1,29 @@
+// output.glsl: the fragment outputs shared by every fragment entry point: the colour and, in
+// the AOV variants, the eye-space normal and depth and the draw/primitive ids. AOVs are stored
+// as integer bits so that a multisampled target resolves them by taking sample 0, not by
+// averaging a surface with the background.
+#ifndef LANTERN_OUTPUT_GLSL
+#define LANTERN_OUTPUT_GLSL
+
+#include "lighting.glsl"
+
+layout(location = 0) out vec4 outColor;
+#ifdef LANTERN_AOV
+layout(location = 1) out uvec4 outNormalDepth;  // float bits: N.x, N.y, N.z, Z (= -z_eye)
+layout(location = 2) out uvec2 outId;           // draw index + 1, gl_PrimitiveID
+#endif
+
+// c: linear colour; alpha: opacity; n: the surface normal before any two-sided flip;
+// eyePosition: the eye-space point.
+void writeOutputs(vec3 c, float alpha, vec3 n, vec3 eyePosition) {
+    if (SC_CLAMP != LANTERN_CLAMP_NONE) c = clamp(c, 0.0, 1.0);
+    outColor = vec4(c, SC_OPAQUE ? 1.0 : alpha);
+#ifdef LANTERN_AOV
+    vec3 visible = safeNormalize(n);
+    if (!gl_FrontFacing) visible = -visible;
+    outNormalDepth = uvec4(floatBitsToUint(visible), floatBitsToUint(-eyePosition.z));
+    outId = uvec2(draw.drawIndex + 1u, uint(gl_PrimitiveID));
+#endif
+}
+
+#endif

@@ -1,0 +1,24 @@
+// mesh.vert: phong shading's vertex stage: transforms to eye and clip space and passes the
+// interpolants on; lighting happens per fragment (phong.frag).
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "lighting.glsl"
+
+layout(location = LANTERN_LOC_POSITION) in vec3 inPosition;
+layout(location = LANTERN_LOC_NORMAL) in vec3 inNormal;
+layout(location = LANTERN_LOC_COLOR) in vec4 inColor;
+layout(location = LANTERN_LOC_TEXCOORD) in vec2 inTexcoord;
+
+layout(location = 0) out vec3 vEyePosition;
+layout(location = 1) out vec3 vNormal;
+layout(location = 2) out vec4 vColor;
+layout(location = 3) out vec2 vTexcoord;
+
+void main() {
+    vec4 eye = draw.viewFromModel * vec4(inPosition, 1.0);
+    vEyePosition = eye.xyz;
+    vNormal = drawNormalMatrix() * inNormal;
+    vColor = inColor;
+    vTexcoord = inTexcoord;
+    gl_Position = frame.clipFromView * eye;
+}

@@ -1,0 +1,79 @@
+// TestSupport.h: what every Lantern test shares: paths (source tree, ../shared, build tree),
+// a renderer on the test machine's device with validation on (GPU tests skip without one and
+// fail on any validation message), running the `lantern` command, and image comparison that
+// writes actual/expected/diff images on failure.
+#pragma once
+
+#include <lantern/Lantern.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace lantern::test {
+
+std::filesystem::path sourceDir();   ///< the checkout
+std::filesystem::path sharedDir();   ///< ../shared beside the checkout (test assets)
+std::filesystem::path binaryDir();   ///< the build tree
+std::filesystem::path cliPath();     ///< the built `lantern` executable
+/// A fresh, empty folder for this test under the build tree (tests/output/<suite>.<test>).
+std::filesystem::path testOutputDir();
+
+/// The process-wide renderer for GPU tests (validation on), or nullptr when no Vulkan device
+/// exists (the reason is in noDeviceReason()).
+Renderer* sharedRenderer();
+std::string noDeviceReason();
+
+/// Base fixture for tests that render: skips (reported as skipped) without a device and
+/// fails the test if the validation layer reported anything during it.
+class GpuTest : public ::testing::Test {
+protected:
+    void SetUp() override;
+    void TearDown() override;
+    Renderer& renderer() { return *m_renderer; }
+
+private:
+    Renderer* m_renderer = nullptr;
+    std::uint64_t m_validationBefore = 0;
+};
+
+/// The result of running a command.
+struct ProcessResult {
+    int exitCode = -1;
+    std::string out, err;
+};
+/// Runs `args` (argv[0] is the program) with extra environment entries; never throws.
+ProcessResult runProcess(const std::vector<std::string>& args,
+                         const std::vector<std::string>& environment = {},
+                         double timeoutSeconds = 300.0);
+/// Runs the `lantern` command with `args`.
+ProcessResult runLantern(const std::vector<std::string>& args,
+                         const std::vector<std::string>& environment = {});
+
+/// Number of NaN/Inf values in the image's colour and AOV planes.
+std::size_t countNonFinite(const Image& image);
+/// Pixels whose alpha is above `threshold`.
+std::size_t countCovered(const Image& image, float threshold = 0.5f);
+
+/// Writes actual, expected and a per-pixel |difference| image as EXRs into testOutputDir()
+/// and returns a line naming them (for failure messages).
+std::string saveComparison(const Image& actual, const Image& expected, const std::string& name);
+
+/// A one-mesh scene: `primitive` with `material` at the origin, lit by `lights` (each placed
+/// by its own node with the given world transform), seen by `camera` through `viewFromWorld`.
+struct SimpleScene {
+    Primitive primitive;
+    Material material;
+    std::vector<std::pair<Light, glm::dmat4>> lights;
+    Projection projection = Projection::makePerspective(0.6981317007977318, 0.0, 0.1, kInfinity);
+    LookAt lookAt{{0, 0, 4}, {0, 0, 0}, {0, 1, 0}};
+    glm::dmat4 model{1.0};
+    LightingModel lighting;
+    Scene build() const;
+};
+
+} // namespace lantern::test

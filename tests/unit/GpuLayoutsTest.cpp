@@ -1,0 +1,115 @@
+// The C++ mirrors in render/GpuLayouts.h against the member offsets in the SPIR-V that ships
+// (the embedded blobs), so a change on either side without the other fails here.
+#include "render/GpuLayouts.h"
+
+#include "ShaderBlobs.h"
+
+#include <gtest/gtest.h>
+
+#include <cstddef>
+#include <map>
+#include <string>
+
+namespace {
+
+using lantern::shaders::allShaderBlobs;
+
+// Struct name -> member name -> byte offset, from OpName / OpMemberName / OpMemberDecorate.
+using Layouts = std::map<std::string, std::map<std::string, std::uint32_t>>;
+
+std::string readString(const std::uint32_t* words, std::size_t count) {
+    std::string s;
+    for (std::size_t i = 0; i < count; ++i)
+        for (int b = 0; b < 4; ++b) {
+            const char c = char((words[i] >> (8 * b)) & 0xFF);
+            if (c == 0) return s;
+            s += c;
+        }
+    return s;
+}
+
+Layouts parse(const std::uint32_t* code, std::size_t count) {
+    constexpr std::uint32_t kOpName = 5, kOpMemberName = 6, kOpMemberDecorate = 72, kOffset = 35;
+    std::map<std::uint32_t, std::string> names;
+    std::map<std::uint32_t, std::map<std::uint32_t, std::string>> memberNames;
+    std::map<std::uint32_t, std::map<std::uint32_t, std::uint32_t>> offsets;
+    for (std::size_t i = 5; i < count;) {
+        const std::uint32_t op = code[i] & 0xFFFF, len = code[i] >> 16;
+        if (len == 0) break;
+        if (op == kOpName) names[code[i + 1]] = readString(code + i + 2, len - 2);
+        if (op == kOpMemberName)
+            memberNames[code[i + 1]][code[i + 2]] = readString(code + i + 3, len - 3);
+        if (op == kOpMemberDecorate && code[i + 3] == kOffset) offsets[code[i + 1]][code[i + 2]] = code[i + 4];
+        i += len;
+    }
+    Layouts out;
+    for (const auto& [id, members] : offsets)
+        for (const auto& [index, offset] : members) out[names[id]][memberNames[id][index]] = offset;
+    return out;
+}
+
+Layouts allLayouts() {
+    Layouts merged;
+    for (const auto& blob : allShaderBlobs()) {
+        for (const auto& [type, members] : parse(blob.words, blob.wordCount))
+            for (const auto& [member, offset] : members) {
+                auto [it, inserted] = merged[type].emplace(member, offset);
+                EXPECT_EQ(it->second, offset) << type << "." << member << " differs between shaders ("
+                                              << blob.name << ")";
+                (void)inserted;
+            }
+    }
+    return merged;
+}
+
+struct Row {
+    const char* type;
+    const char* member;
+    std::size_t offset;  // offsetof in the C++ mirror
+};
+
+#define LANTERN_ROW(T, M) Row{#T, #M, offsetof(lantern::render::T, M)}
+
+TEST(GpuLayouts, MirrorsMatchTheShippedSpirv) {
+    const Layouts layouts = allLayouts();
+    const Row rows[] = {
+        LANTERN_ROW(FrameBlock, clipFromView),   LANTERN_ROW(FrameBlock, globalAmbient),
+        LANTERN_ROW(FrameBlock, lightCount),     LANTERN_ROW(FrameBlock, viewIndex),
+        LANTERN_ROW(LightData, position),        LANTERN_ROW(LightData, ambient),
+        LANTERN_ROW(LightData, diffuse),         LANTERN_ROW(LightData, specular),
+        LANTERN_ROW(LightData, spotDirection),   LANTERN_ROW(LightData, attenuation),
+        LANTERN_ROW(LightData, spot),            LANTERN_ROW(LightData, info),
+        LANTERN_ROW(MaterialSideData, ambient),  LANTERN_ROW(MaterialSideData, diffuse),
+        LANTERN_ROW(MaterialSideData, specular), LANTERN_ROW(MaterialSideData, emission),
+        LANTERN_ROW(MaterialData, front),        LANTERN_ROW(MaterialData, back),
+        LANTERN_ROW(MaterialData, params),       LANTERN_ROW(DrawBlock, viewFromModel),
+        LANTERN_ROW(DrawBlock, normalMatrix),    LANTERN_ROW(DrawBlock, materialIndex),
+        LANTERN_ROW(DrawBlock, drawIndex),       LANTERN_ROW(DrawBlock, flags),
+    };
+    for (const Row& r : rows) {
+        SCOPED_TRACE(std::string(r.type) + "." + r.member);
+        auto type = layouts.find(r.type);
+        ASSERT_NE(type, layouts.end()) << "struct not found in any shader";
+        auto member = type->second.find(r.member);
+        ASSERT_NE(member, type->second.end()) << "member not found";
+        EXPECT_EQ(member->second, r.offset);
+    }
+}
+
+TEST(GpuLayouts, EveryShaderMemberIsMirrored) {
+    // A member added to a shader block but not to the C++ mirror is caught here.
+    const std::map<std::string, std::size_t> expectedCounts = {
+        {"FrameBlock", 6}, {"LightData", 8}, {"MaterialSideData", 4}, {"MaterialData", 3}, {"DrawBlock", 5}};
+    const Layouts layouts = allLayouts();
+    for (const auto& [type, count] : expectedCounts) {
+        auto it = layouts.find(type);
+        ASSERT_NE(it, layouts.end()) << type;
+        EXPECT_EQ(it->second.size(), count) << type << " has members the C++ mirror does not list";
+    }
+}
+
+TEST(GpuLayouts, PushConstantsFitTheGuaranteedMinimum) {
+    EXPECT_LE(sizeof(lantern::render::DrawBlock), 128u);
+}
+
+} // namespace

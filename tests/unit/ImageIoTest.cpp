@@ -1,0 +1,141 @@
+// EXR and PNG output: exact float round trip, half precision and clamping, AOV channel names,
+// metadata, atomic writes (nothing left behind on failure), and other tools reading the files.
+#include "TestSupport.h"
+
+#include <lantern/Io.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <random>
+
+namespace {
+
+using namespace lantern;
+using lantern::test::runProcess;
+using lantern::test::testOutputDir;
+
+Image randomImage(int w, int h, bool aovs) {
+    std::mt19937 rng(42);
+    std::uniform_real_distribution<float> hdr(-4.0f, 1000.0f);
+    Image img(w, h);
+    for (float& v : img.rgba) v = hdr(rng);
+    img.rgba[0] = 1e30f;    // beyond half
+    img.rgba[1] = 1e-30f;   // below half
+    img.rgba[2] = -0.0f;
+    if (aovs) {
+        img.depth.resize(img.pixelCount());
+        img.normal.resize(img.pixelCount() * 3);
+        for (float& v : img.depth) v = hdr(rng) + 5.0f;
+        for (float& v : img.normal) v = hdr(rng) / 1000.0f;
+    }
+    img.metadata = {{"lantern:test", "hello"}, {"lantern:frame", "7"}};
+    return img;
+}
+
+std::size_t filesIn(const std::filesystem::path& dir) {
+    std::size_t n = 0;
+    for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++n;
+    return n;
+}
+
+TEST(ImageIo, ExrFloatRoundTripIsExact) {
+    const auto dir = testOutputDir();
+    const Image img = randomImage(37, 23, true);
+    for (ExrCompression c : {ExrCompression::None, ExrCompression::Zip, ExrCompression::Piz,
+                             ExrCompression::Rle, ExrCompression::Zips}) {
+        const auto path = dir / (std::string("float_") + toString(c) + ".exr");
+        ExrOptions o;
+        o.compression = c;
+        ASSERT_TRUE(writeExr(path, img, o)) << toString(c);
+        auto back = readExr(path);
+        ASSERT_TRUE(back) << back.error().describe();
+        ASSERT_EQ(back->width, 37);
+        ASSERT_EQ(back->height, 23);
+        EXPECT_EQ(back->rgba, img.rgba) << toString(c);
+        EXPECT_EQ(back->depth, img.depth) << toString(c);
+        EXPECT_EQ(back->normal, img.normal) << toString(c);
+        bool found = false;
+        for (const auto& [k, v] : back->metadata) found |= k == "lantern:test" && v == "hello";
+        EXPECT_TRUE(found);
+    }
+}
+
+TEST(ImageIo, ExrHalfIsWithinHalfPrecisionAndClampsInsteadOfInf) {
+    const auto path = testOutputDir() / "half.exr";
+    const Image img = randomImage(16, 16, false);
+    std::uint64_t clamped = 0;
+    ExrOptions o;
+    o.half = true;
+    o.clampedCount = &clamped;
+    ASSERT_TRUE(writeExr(path, img, o));
+    EXPECT_EQ(clamped, 1u);  // the 1e30
+    auto back = readExr(path);
+    ASSERT_TRUE(back);
+    EXPECT_EQ(back->rgba[0], 65504.0f);
+    for (std::size_t i = 3; i < img.rgba.size(); ++i) {
+        const float a = img.rgba[i], b = back->rgba[i];
+        ASSERT_TRUE(std::isfinite(b));
+        if (std::abs(a) >= 6.1e-5f) {
+            EXPECT_LE(std::abs(a - b) / std::abs(a), 4.9e-4f) << a;
+        }
+    }
+}
+
+TEST(ImageIo, UnwritableOutputLeavesNothingBehind) {
+    const auto dir = testOutputDir();
+    const Image img = randomImage(8, 8, false);
+    // A folder that does not exist, and a "folder" that is a file.
+    const auto missing = writeExr(dir / "no" / "such" / "dir" / "x.exr", img);
+    ASSERT_FALSE(missing);
+    EXPECT_EQ(missing.error().code, ErrorCode::IoError);
+    EXPECT_NE(missing.error().file.find("x.exr"), std::string::npos);
+    std::ofstream(dir / "plainfile") << "x";
+    EXPECT_FALSE(writePng(dir / "plainfile" / "x.png", img));
+    // procfs refuses new files even to root.
+    const auto proc = writeExr("/proc/lantern-test.exr", img);
+    EXPECT_FALSE(proc);
+    EXPECT_EQ(filesIn(dir), 1u);  // only "plainfile"
+}
+
+TEST(ImageIo, AFailedWriteKeepsTheOldFile) {
+    const auto dir = testOutputDir();
+    const auto path = dir / "keep.exr";
+    ASSERT_TRUE(writeExr(path, randomImage(8, 8, false)));
+    const auto before = std::filesystem::file_size(path);
+    Image bad;  // no pixels: refused before anything is written
+    EXPECT_FALSE(writeExr(path, bad));
+    EXPECT_EQ(std::filesystem::file_size(path), before);
+    EXPECT_EQ(filesIn(dir), 1u);
+}
+
+TEST(ImageIo, PngIsSrgbEncodedAndUnpremultiplied) {
+    const auto path = testOutputDir() / "p.png";
+    Image img(2, 1);
+    const float px[8] = {0.5f, 0.5f, 0.5f, 1.0f, 0.25f, 0.0f, 0.0f, 0.5f};
+    std::copy(px, px + 8, img.rgba.begin());
+    ASSERT_TRUE(writePng(path, img));
+    std::ifstream f(path, std::ios::binary);
+    char sig[8];
+    f.read(sig, 8);
+    EXPECT_EQ(std::string(sig + 1, 3), "PNG");
+    EXPECT_FALSE(writeImage(testOutputDir() / "x.tiff", img));
+}
+
+TEST(ImageIo, OpenImageIoReadsTheExr) {
+    if (std::system("command -v oiiotool >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "oiiotool (Debian package openimageio-tools) is not installed";
+    const auto path = testOutputDir() / "oiio.exr";
+    ASSERT_TRUE(writeExr(path, randomImage(64, 32, true)));
+    const auto r = runProcess({"oiiotool", "--info", "-v", path.string()});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("64 x   32, 8 channel, float openexr"), std::string::npos) << r.out;
+    // OIIO lists channels in canonical order: colour, then Z, then the rest.
+    EXPECT_NE(r.out.find("R, G, B, A, Z, N.X, N.Y, N.Z"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("compression: \"zip\""), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("lantern:test"), std::string::npos) << r.out;
+}
+
+} // namespace

@@ -1,0 +1,123 @@
+// The CPU reference of the lighting equation against hand-computed values and the numeric
+// traps of numerics.md section 3 (x^0 = 1, zero normals, zero halfway vector, attenuation at
+// d = 0, extreme shininess).
+#include "reference/Lighting.h"
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace {
+
+using namespace lantern;
+using namespace lantern::ref;
+
+EyeLight directional(glm::dvec3 toLight) {
+    EyeLight l;
+    l.type = LightType::Directional;
+    l.toLight = glm::normalize(toLight);
+    return l;
+}
+
+TEST(ReferenceLighting, HandComputedDiffuseAndBlinnSpecular) {
+    MaterialSide m;
+    m.ambient = {0.2, 0.2, 0.2};
+    m.diffuse = {0.8, 0.4, 0.2, 1.0};
+    m.specular = {1.0, 1.0, 1.0};
+    m.emission = {0.01, 0.02, 0.03};
+    m.shininess = 10.0;
+    Settings st;
+    st.globalAmbient = {0.1, 0.1, 0.1};
+    EyeLight l = directional({0, 1, 1});  // 45 degrees above the normal
+    l.ambient = {0.05, 0.05, 0.05};
+    const glm::dvec3 n(0, 0, 1);
+    const glm::dvec3 c = shade({0, 0, -3}, n, m, {l}, st);
+    const double ndotl = std::sqrt(0.5);
+    // Blinn: h = normalize(l + (0,0,1)), n.h = cos(22.5 deg).
+    const double spec = std::pow(std::cos(3.14159265358979323846 / 8), 10.0);
+    for (int i = 0; i < 3; ++i) {
+        const double expected = m.emission[i] + m.ambient[i] * 0.1 + m.ambient[i] * 0.05 +
+                                ndotl * m.diffuse[i] + spec;
+        EXPECT_NEAR(c[i], expected, 1e-14) << i;
+    }
+}
+
+TEST(ReferenceLighting, ZeroShininessIsOneWhereverTheSurfaceIsLit) {
+    // x^0 = 1 for every x >= 0, including n.h <= 0 (GLSL pow(0,0) is undefined).
+    EXPECT_EQ(lobe({0, 0, 1}, {1, 0, 0}, 0.0), 1.0);
+    EXPECT_EQ(lobe({0, 0, 1}, {0, 0, -1}, 0.0), 1.0);
+    EXPECT_EQ(powSafe(0.0, 0.0), 1.0);
+    EXPECT_EQ(powSafe(0.0, 2.0), 0.0);
+}
+
+TEST(ReferenceLighting, LobeIsExactForHugeShininess) {
+    for (double s : {1e3, 1e4, 1e5, 1e6, 1e7}) {
+        const double angle = 0.5 / std::sqrt(s);  // well inside the lobe
+        const glm::dvec3 a(0, 0, 1), b(std::sin(angle), 0, std::cos(angle));
+        const double exact = std::exp(s * std::log(std::cos(angle)));
+        EXPECT_NEAR(lobe(a, b, s) / exact, 1.0, 1e-9) << s;
+    }
+}
+
+TEST(ReferenceLighting, ZeroNormalGivesAmbientAndEmissionOnly) {
+    MaterialSide m;
+    m.specular = {1, 1, 1};
+    m.shininess = 0.0;
+    m.emission = {0.3, 0.0, 0.0};
+    const glm::dvec3 c = shade({0, 0, -1}, {0, 0, 0}, m, {directional({0, 0, 1})}, Settings{});
+    EXPECT_NEAR(c.x, 0.3 + 0.2 * 0.2, 1e-15);
+    EXPECT_NEAR(c.y, 0.2 * 0.2, 1e-15);
+}
+
+TEST(ReferenceLighting, NoHalfwayVectorMeansNoSpecular) {
+    // Distant viewer v = (0,0,1), light from behind: l = -v. On a surface facing away,
+    // n.l > 0 but h does not exist: the term is 0, not NaN.
+    MaterialSide m;
+    m.specular = {1, 1, 1};
+    m.shininess = 5.0;
+    m.diffuse = {0, 0, 0, 1};
+    m.ambient = {0, 0, 0};
+    const glm::dvec3 c = shade({0, 0, -1}, {0, 0, -1}, m, {directional({0, 0, -1})}, Settings{});
+    EXPECT_EQ(c, glm::dvec3(0.0));
+}
+
+TEST(ReferenceLighting, LightOnTheSurfaceIsFinite) {
+    EyeLight l;
+    l.type = LightType::Point;
+    l.position = {0, 0, -2};
+    l.attenuation = {0, 0, 1};
+    MaterialSide m;
+    const glm::dvec3 c = shade({0, 0, -2}, {0, 0, 1}, m, {l}, Settings{});
+    EXPECT_TRUE(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z));
+    EXPECT_NEAR(c.x, 0.2 * 0.2 + 1e30 * 0.8, 1e16);  // att = 1 / max(0, 1e-30)
+    // Huge coefficients make the light vanish, never NaN.
+    l.attenuation = {0, 0, 1e30};
+    l.position = {0, 0, 1e5};
+    const glm::dvec3 far = shade({0, 0, 0}, {0, 0, 1}, m, {l}, Settings{});
+    EXPECT_NEAR(far.x, 0.04, 1e-12);
+}
+
+TEST(ReferenceLighting, GlSpotCutoffAndExponent) {
+    EyeLight l;
+    l.type = LightType::Spot;
+    l.position = {0, 0, 0};
+    l.spotAxis = {0, 0, -1};
+    l.cosCutoff = std::cos(30.0 * 3.14159265358979323846 / 180.0);
+    l.exponent = 2.0;
+    MaterialSide m;
+    m.ambient = {0, 0, 0};
+    Settings st;
+    st.globalAmbient = {0, 0, 0};
+    // On the axis: full; at 20 degrees: cos^2; at 40 degrees: outside the cone.
+    auto at = [&](double degrees) {
+        const double a = degrees * 3.14159265358979323846 / 180.0;
+        const glm::dvec3 p(std::sin(a) * 5, 0, -std::cos(a) * 5);
+        return shade(p, glm::normalize(-p), m, {l}, st).x;
+    };
+    EXPECT_NEAR(at(0), 0.8, 1e-14);
+    EXPECT_NEAR(at(20), 0.8 * std::pow(std::cos(20 * 3.14159265358979323846 / 180), 2), 1e-14);
+    EXPECT_EQ(at(40), 0.0);
+}
+
+} // namespace
