@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 preset=${1:-dev}
 scripts/install-deps.sh "${LANTERN_DEPS:-all}"
 export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD}
-if [ ! -f "build/$preset/CMakeCache.txt" ]; then
+if [ ! -f "build/$preset/build.ninja" ]; then
     cmake --preset "$preset" >/dev/null
 fi
 cmake --build "build/$preset" -j "$(nproc)"
