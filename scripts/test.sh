@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
-# Quick start, second command: installs what is missing, builds with warnings as errors, and
-# runs the whole test suite (CTest; GPU tests run on lavapipe, window tests under Xvfb).
+# Quick start, second command: installs what is missing, builds with warnings as errors, runs
+# the whole test suite (GPU tests on lavapipe), then rebuilds with AddressSanitizer and
+# UndefinedBehaviorSanitizer and runs the CPU-side suites (unit, loader) under them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh ci
 ctest --preset ci "$@"
+scripts/build.sh asan
+ctest --preset asan

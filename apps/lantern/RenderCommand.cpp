@@ -2,8 +2,14 @@
 #include "CliSupport.h"
 #include "Commands.h"
 
+#include <algorithm>
+#include <atomic>
+#include <csignal>
+#include <cstdio>
 #include <iostream>
 #include <memory>
+#include <thread>
+#include <unistd.h>
 
 namespace lantern::cli {
 namespace {
@@ -14,15 +20,111 @@ struct RenderArgs {
     int width = 1280, height = 720;
     int sceneIndex = -1;
     double time = 0.0;
+    bool timeGiven = false;
     std::string aov;
     bool half = false;
     bool explain = false;
     std::string compression = "zip";
     std::uint64_t maxSize = std::uint64_t(1) << 30;
+    std::string frames;
+    double fps = 24.0;
+    std::string shard;
+    int encoderThreads = 0;
     CameraOptions camera;
     ShadingOptions shading;
     DeviceOptions device;
 };
+
+// The signal that asked a sequence to stop (0: none). The first SIGINT/SIGTERM stops cleanly;
+// the handler then resets itself, so a second one ends the process at once.
+std::atomic<int> g_stopSignal{0};
+
+extern "C" void onStopSignal(int signal) { g_stopSignal.store(signal); }
+
+void installStopHandlers() {
+    struct sigaction sa {};
+    sa.sa_handler = onStopSignal;
+    sa.sa_flags = SA_RESETHAND;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, nullptr);
+    sigaction(SIGTERM, &sa, nullptr);
+}
+
+std::string clock(double seconds) {
+    const long s = long(seconds + 0.5);
+    char b[32];
+    std::snprintf(b, sizeof b, "%ld:%02ld", s / 60, s % 60);
+    return b;
+}
+
+// A progress bar on a terminal, one plain line per frame otherwise.
+void showProgress(const SequenceProgress& p, bool terminal) {
+    if (terminal) {
+        const int width = 30;
+        const int filled = p.total > 0 ? width * p.written / p.total : width;
+        std::string bar(std::size_t(filled), '=');
+        if (filled < width) bar += '>' + std::string(std::size_t(width - filled - 1), ' ');
+        std::fprintf(stderr, "\r%5d/%d [%s] %.2f fps, %s left   ", p.written, p.total, bar.c_str(),
+                     p.framesPerSecond, clock(p.secondsLeft).c_str());
+        if (p.written == p.total) std::fputc('\n', stderr);
+    } else {
+        std::fprintf(stderr, "lantern: frame %d written (%d/%d, %.2f fps, %s left)\n", p.lastFrame,
+                     p.written, p.total, p.framesPerSecond, clock(p.secondsLeft).c_str());
+    }
+    std::fflush(stderr);
+}
+
+double medianOf(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+int runSequence(const RenderArgs& a, Renderer& renderer, const PreparedScene& prepared,
+                const RenderOptions& options, const ExrOptions& exr, const std::vector<std::string>& outputs) {
+    SequenceOptions seq;
+    auto range = parseFrameRange(a.frames);
+    if (!range) return report(range.error());
+    seq.frames = *range;
+    if (!a.shard.empty()) {
+        auto shard = parseShard(a.shard);
+        if (!shard) return report(shard.error());
+        seq.shard = *shard;
+    }
+    seq.fps = a.fps;
+    seq.outputs = outputs;
+    seq.exr = exr;
+    seq.encoderThreads = a.encoderThreads;
+    const bool terminal = ::isatty(2);
+    seq.progress = [terminal](const SequenceProgress& p) { showProgress(p, terminal); };
+    installStopHandlers();
+    seq.shouldStop = [] { return g_stopSignal.load() != 0; };
+    auto result = renderer.renderSequence(prepared, options, seq);
+    if (!result) return report(result.error());
+    const SequenceReport& r = *result;
+    for (int frame : r.framesWritten)
+        for (const std::string& out : outputs) std::cout << expandFramePattern(out, frame) << "\n";
+    const std::size_t total = shardFrames(seq.frames, seq.shard).size();
+    std::fprintf(stderr,
+                 "lantern: %zu of %zu frames written in %.2f s (%.2f fps); per frame (median): render "
+                 "%.1f ms (GPU %.1f ms), encode %.1f ms on %d threads; CPU %.1f s; at most %zu frames "
+                 "waiting\n",
+                 r.framesWritten.size(), total, r.wallSeconds,
+                 r.wallSeconds > 0 ? double(r.framesWritten.size()) / r.wallSeconds : 0.0,
+                 medianOf(r.renderMs), medianOf(r.gpuMs), medianOf(r.encodeMs),
+                 a.encoderThreads > 0 ? a.encoderThreads : int(std::thread::hardware_concurrency()),
+                 r.cpuSeconds, r.peakQueuedFrames);
+    if (r.clampedValues > 0)
+        std::fprintf(stderr, "lantern: warning: %llu values exceeded the half range and were clamped to 65504\n",
+                     (unsigned long long)r.clampedValues);
+    if (r.stopped) {
+        const int sig = g_stopSignal.load();
+        std::fprintf(stderr, "lantern: stopped by %s; the frames written are complete\n",
+                     sig == SIGTERM ? "SIGTERM" : "SIGINT");
+        return 128 + (sig ? sig : SIGINT);
+    }
+    return kOk;
+}
 
 int run(const RenderArgs& a) {
     RenderOptions options;
@@ -50,7 +152,9 @@ int run(const RenderArgs& a) {
                                 "--compression"));
     exr.compression = *compression;
     std::vector<std::string> outputs = a.outputs;
-    if (outputs.empty()) outputs.push_back("out/render.exr");
+    if (outputs.empty()) outputs.push_back(a.frames.empty() ? "out/render.exr" : "out/frame_####.exr");
+    if (!a.frames.empty() && a.timeGiven)
+        return report(makeError(ErrorCode::Usage, "--time and --frames cannot be combined", "--time"));
     for (const std::string& out : outputs) {
         const std::string ext = std::filesystem::path(out).extension().string();
         if (ext != ".exr" && ext != ".png")
@@ -80,6 +184,9 @@ int run(const RenderArgs& a) {
     }
     auto prepared = renderer->prepare(shared);
     if (!prepared) return report(prepared.error());
+    if (!a.frames.empty()) return runSequence(a, *renderer, *prepared, options, exr, outputs);
+    if (!a.shard.empty())
+        return report(makeError(ErrorCode::Usage, "--shard needs --frames", "--shard"));
     auto image = renderer->render(*prepared, options, a.time);
     if (!image) return report(image.error());
     for (const std::string& out : outputs) {
@@ -105,7 +212,12 @@ Runner addRenderCommand(CLI::App& app) {
     cmd->add_option("--width", args->width, "Image width in pixels")->capture_default_str();
     cmd->add_option("--height", args->height, "Image height in pixels")->capture_default_str();
     cmd->add_option("--scene", args->sceneIndex, "glTF scene index (default: the file's default)");
-    cmd->add_option("--time", args->time, "Animation time in seconds")->capture_default_str();
+    cmd->add_option("--time", args->time, "Animation time in seconds (one frame)")->capture_default_str();
+    cmd->add_option("--frames", args->frames, "Render the sequence of frames A-B inclusive (frame k at time k/fps)");
+    cmd->add_option("--fps", args->fps, "Frames per second of the sequence")->capture_default_str()->check(CLI::PositiveNumber);
+    cmd->add_option("--shard", args->shard, "Render only frames k with k mod N == I (I/N)");
+    cmd->add_option("--encoder-threads", args->encoderThreads, "Threads encoding frames (0: one per core)")
+        ->capture_default_str()->check(CLI::NonNegativeNumber);
     cmd->add_option("--aov", args->aov, "Extra EXR channels: depth,normal");
     cmd->add_flag("--half", args->half, "Write 16-bit half channels instead of 32-bit float");
     cmd->add_option("--compression", args->compression,
@@ -117,7 +229,11 @@ Runner addRenderCommand(CLI::App& app) {
     args->camera.add(*cmd);
     args->shading.add(*cmd);
     args->device.add(*cmd);
-    return [args, cmd]() { return cmd->parsed() ? run(*args) : -1; };
+    return [args, cmd]() {
+        if (!cmd->parsed()) return -1;
+        args->timeGiven = cmd->count("--time") > 0;
+        return run(*args);
+    };
 }
 
 } // namespace lantern::cli

@@ -1,8 +1,11 @@
 // Image: a rendered picture in memory: linear RGBA float pixels plus optional AOV planes.
 #pragma once
 
+#include <glm/mat4x4.hpp>
+
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,6 +19,13 @@ struct AovSet {
     bool any() const { return depth || normal; }
 };
 
+/// The camera a picture was rendered with (double precision, Lantern's conventions): written to
+/// EXR as the standard worldToCamera and worldToNDC attributes (and exact text copies).
+struct CameraMetadata {
+    glm::dmat4 viewFromWorld{1.0};  ///< right-handed eye space, camera looking down -Z
+    glm::dmat4 clipFromView{1.0};   ///< Vulkan clip space (y down, depth 0..1)
+};
+
 /// A picture: width x height pixels, top row first, each pixel RGBA as 32-bit floats in
 /// linear light, colour premultiplied by alpha (the OpenEXR convention). Values are HDR:
 /// not clamped, but always finite (Lantern guarantees no NaN or Inf reaches an Image).
@@ -27,6 +37,8 @@ struct Image {
     std::vector<float> normal;  ///< 3 * width * height floats when the normal AOV was asked for
     /// Key/value metadata written as EXR string attributes (camera matrices, frame, time...).
     std::vector<std::pair<std::string, std::string>> metadata;
+    std::optional<CameraMetadata> camera;  ///< the first view's camera, when rendered
+    double framesPerSecond = 0.0;          ///< > 0: written as EXR's framesPerSecond
 
     Image() = default;
     Image(int w, int h) : width(w), height(h), rgba(std::size_t(w) * std::size_t(h) * 4, 0.0f) {}

@@ -7,6 +7,7 @@
 #include <lantern/Log.h>
 #include <lantern/Result.h>
 #include <lantern/Scene.h>
+#include <lantern/Sequence.h>
 
 #include <glm/vec4.hpp>
 
@@ -152,6 +153,16 @@ public:
     /// Convenience: validates, uploads and renders `scene` in one call (the upload is not
     /// kept; prepare() once to render many frames).
     Result<Image> render(const Scene& scene, const RenderOptions& options, double timeSeconds);
+
+    /// Renders the frames of `sequence` (frame k at time k / fps, only the shard's frames) and
+    /// writes each to the output patterns. Frames are double buffered (frame k+1 renders while
+    /// frame k is read back) and encoded on worker threads through a bounded queue, so memory
+    /// stays flat. Output is deterministic: the same scene, frame and options give the same
+    /// bytes whatever the shard layout. Stops early when shouldStop() says so (report.stopped)
+    /// or at the first error (IoError when a file cannot be written); frames already written
+    /// stay, and no file is left half-written.
+    Result<SequenceReport> renderSequence(const PreparedScene& scene, const RenderOptions& options,
+                                          const SequenceOptions& sequence);
 
     /// The features the scene needs under these options and the pipeline variants chosen.
     Result<FeatureReport> explain(const Scene& scene, const RenderOptions& options,

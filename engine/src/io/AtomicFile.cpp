@@ -84,21 +84,35 @@ Result<void> AtomicFile::commit() {
     return {};
 }
 
-std::size_t removeStaleTemporaries(const std::filesystem::path& destination) {
+namespace {
+
+// Removes ".NAME.tmp-PID-N" files in `dir` whose NAME starts with `namePrefix` (all when
+// empty) and whose writer process no longer runs.
+std::size_t removeStale(const std::filesystem::path& folder, const std::string& name) {
     std::size_t removed = 0;
     std::error_code ec;
-    std::filesystem::path dir = destination.parent_path();
-    if (dir.empty()) dir = ".";
-    const std::string prefix = "." + destination.filename().string() + kTmpMarker;
+    const std::filesystem::path dir = folder.empty() ? std::filesystem::path(".") : folder;
     for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
-        const std::string name = entry.path().filename().string();
-        if (name.rfind(prefix, 0) != 0) continue;
-        const std::string rest = name.substr(prefix.size());
+        const std::string file = entry.path().filename().string();
+        const std::size_t marker = file.rfind(kTmpMarker);
+        if (file.empty() || file[0] != '.' || marker == std::string::npos) continue;
+        if (!name.empty() && file.substr(1, marker - 1) != name) continue;
+        const std::string rest = file.substr(marker + kTmpMarker.size());
         const long pid = std::strtol(rest.c_str(), nullptr, 10);
         if (pid > 0 && ::kill(pid_t(pid), 0) == 0) continue;  // its writer still runs
         if (std::filesystem::remove(entry.path(), ec)) ++removed;
     }
     return removed;
+}
+
+} // namespace
+
+std::size_t removeStaleTemporaries(const std::filesystem::path& destination) {
+    return removeStale(destination.parent_path(), destination.filename().string());
+}
+
+std::size_t removeStaleTemporariesIn(const std::filesystem::path& folder) {
+    return removeStale(folder, {});
 }
 
 } // namespace lantern::io

@@ -38,4 +38,7 @@ private:
 /// pattern, owned by processes that no longer run). Returns how many were removed.
 std::size_t removeStaleTemporaries(const std::filesystem::path& destination);
 
+/// The same for every temporary file in `folder`, whatever its destination name.
+std::size_t removeStaleTemporariesIn(const std::filesystem::path& folder);
+
 } // namespace lantern::io

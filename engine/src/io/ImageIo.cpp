@@ -5,9 +5,13 @@
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
+#include <ImfFramesPerSecond.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfMatrixAttribute.h>
+#include <ImfRationalAttribute.h>
+#include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
 #include <half.h>
 
@@ -138,6 +142,30 @@ Result<void> writeExr(const std::filesystem::path& path, const Image& image,
             }
         }
         for (const auto& [key, value] : image.metadata) header.insert(key, Imf::StringAttribute(value));
+        if (image.camera) {
+            // OpenEXR's camera space is left-handed, looking down +Z: flip z. Imath's matrices
+            // transform row vectors, which makes their element [i][j] GLM's [i][j].
+            glm::dmat4 flipZ(1.0);
+            flipZ[2][2] = -1.0;
+            const glm::dmat4 worldToCamera = flipZ * image.camera->viewFromWorld;
+            // NDC: (0,0) top-left to (1,1) bottom-right of the display window; Vulkan's clip
+            // space already has y down.
+            glm::dmat4 ndcFromClip(1.0);
+            ndcFromClip[0][0] = 0.5, ndcFromClip[1][1] = 0.5;
+            ndcFromClip[3][0] = 0.5, ndcFromClip[3][1] = 0.5;
+            const glm::dmat4 worldToNdc =
+                ndcFromClip * image.camera->clipFromView * image.camera->viewFromWorld;
+            auto toImath = [](const glm::dmat4& m) {
+                Imath::M44f r;
+                for (int i = 0; i < 4; ++i)
+                    for (int j = 0; j < 4; ++j) r[i][j] = float(m[i][j]);
+                return r;
+            };
+            Imf::addWorldToCamera(header, toImath(worldToCamera));
+            Imf::addWorldToNDC(header, toImath(worldToNdc));
+        }
+        if (image.framesPerSecond > 0.0)
+            Imf::addFramesPerSecond(header, Imf::guessExactFps(image.framesPerSecond));
         Imf::OutputFile out(file.temporaryPath().c_str(), header);
         out.setFrameBuffer(fb);
         out.writePixels(h);

@@ -2,10 +2,7 @@
 #include <lantern/Renderer.h>
 #include <lantern/Version.h>
 
-#include "gpu/Context.h"
-#include "render/Engine.h"
-#include "render/FramePlan.h"
-#include "render/GpuScene.h"
+#include "render/RendererImpl.h"
 
 #include <chrono>
 #include <cstdio>
@@ -30,6 +27,12 @@ std::string matrixText(const glm::dmat4& m) {
     return s.str();
 }
 
+std::string numberText(double v) {
+    char b[64];
+    std::snprintf(b, sizeof b, "%.17g", v);
+    return b;
+}
+
 // A shared_ptr that does not own: for rendering a caller's Scene synchronously.
 std::shared_ptr<const Scene> borrow(const Scene& scene) {
     return std::shared_ptr<const Scene>(std::shared_ptr<const Scene>(), &scene);
@@ -37,12 +40,22 @@ std::shared_ptr<const Scene> borrow(const Scene& scene) {
 
 } // namespace
 
-struct Renderer::Impl {
-    std::shared_ptr<gpu::Context> ctx;
-    std::unique_ptr<render::Engine> engine;
-    DeviceInfo info;
-    FrameStats stats;
-};
+void attachMetadata(Image& image, const render::FramePlan& p, const DeviceInfo& device,
+                    double time) {
+    auto& md = image.metadata;
+    md.emplace_back("lantern:version", versionString());
+    md.emplace_back("lantern:device", device.name);
+    md.emplace_back("lantern:time", numberText(time));
+    md.emplace_back("lantern:shading", toString(p.lighting.model.shading));
+    md.emplace_back("lantern:specular", toString(p.lighting.model.specular));
+    md.emplace_back("lantern:glCompat", p.lighting.glCompat ? "true" : "false");
+    if (!p.views.empty()) {
+        md.emplace_back("lantern:camera", p.views[0].camera.description);
+        md.emplace_back("lantern:viewFromWorld", matrixText(p.views[0].camera.viewFromWorld));
+        md.emplace_back("lantern:clipFromView", matrixText(p.views[0].camera.clipFromView));
+        image.camera = CameraMetadata{p.views[0].camera.viewFromWorld, p.views[0].camera.clipFromView};
+    }
+}
 
 const Scene& PreparedScene::scene() const { return m_gpu->scene(); }
 
@@ -135,23 +148,7 @@ Result<Image> Renderer::render(const PreparedScene& prepared, const RenderOption
     m_impl->stats = stats;
 
     Image image = std::move(frame->image);
-    const render::FramePlan& p = *plan;
-    auto& md = image.metadata;
-    md.emplace_back("lantern:version", versionString());
-    md.emplace_back("lantern:device", m_impl->info.name);
-    md.emplace_back("lantern:time", [&] {
-        char b[64];
-        std::snprintf(b, sizeof b, "%.17g", time);
-        return std::string(b);
-    }());
-    md.emplace_back("lantern:shading", toString(p.lighting.model.shading));
-    md.emplace_back("lantern:specular", toString(p.lighting.model.specular));
-    md.emplace_back("lantern:glCompat", p.lighting.glCompat ? "true" : "false");
-    if (!p.views.empty()) {
-        md.emplace_back("lantern:camera", p.views[0].camera.description);
-        md.emplace_back("lantern:viewFromWorld", matrixText(p.views[0].camera.viewFromWorld));
-        md.emplace_back("lantern:clipFromView", matrixText(p.views[0].camera.clipFromView));
-    }
+    attachMetadata(image, *plan, m_impl->info, time);
     return image;
 }
 

@@ -5,6 +5,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -98,6 +99,32 @@ Scene makeSpheresScene() {
     return s;
 }
 
+Scene makeAnimatedSpheresScene() {
+    Scene s = makeSpheresScene();
+    s.sourcePath = "builtin:spheres-animated";
+    // The lamp (node 5) circles above the spheres in 4 seconds; the middle sphere (node 1)
+    // bounces with a cubic spline.
+    Animation a;
+    a.name = "orbit and bounce";
+    AnimationSampler orbit;
+    orbit.interpolation = Interpolation::Linear;
+    for (int k = 0; k <= 16; ++k) {
+        const double t = 0.25 * k, angle = 2.0 * glm::pi<double>() * t / 4.0;
+        orbit.times.push_back(t);
+        orbit.values.emplace_back(4.0 * std::sin(angle), 3.0, 4.0 * std::cos(angle), 0.0);
+    }
+    AnimationSampler bounce;
+    bounce.interpolation = Interpolation::CubicSpline;
+    bounce.times = {0.0, 1.0, 2.0};
+    // in-tangent, value, out-tangent per key
+    bounce.values = {{0, 0, 0, 0}, {0, 0, 0, 0}, {0, 3, 0, 0},   {0, 0, 0, 0}, {0, 1.2, 0, 0},
+                     {0, 0, 0, 0}, {0, -3, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}};
+    a.samplers = {orbit, bounce};
+    a.channels = {{5, AnimationPath::Translation, 0}, {1, AnimationPath::Translation, 1}};
+    s.animations.push_back(a);
+    return s;
+}
+
 } // namespace scene
 
 namespace {
@@ -109,6 +136,7 @@ const std::vector<Builtin>& registry() {
     static const std::vector<Builtin> builtins = {
         {"default", scene::makeSpheresScene},
         {"spheres", scene::makeSpheresScene},
+        {"spheres-animated", scene::makeAnimatedSpheresScene},
     };
     return builtins;
 }

@@ -1,0 +1,86 @@
+// Sequence.h: rendering an animation to numbered image files: frame ranges, shards for
+// spreading a sequence over machines, file-name patterns, and the options and report of
+// Renderer::renderSequence (the headless double buffer with parallel encoding).
+#pragma once
+
+#include <lantern/Io.h>
+#include <lantern/Result.h>
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace lantern {
+
+/// Frames first..last inclusive.
+struct FrameRange {
+    int first = 0;
+    int last = 0;
+    int count() const { return last - first + 1; }
+};
+
+/// Parses "A-B" (or a single "A"); frames are >= 0 and first <= last.
+Result<FrameRange> parseFrameRange(std::string_view text);
+
+/// A shard: frames k with k mod count == index.
+struct Shard {
+    int index = 0;
+    int count = 1;
+    bool contains(int frame) const { return frame % count == index; }
+};
+
+/// Parses "I/N" with 0 <= I < N.
+Result<Shard> parseShard(std::string_view text);
+
+/// The frames of `range` that `shard` renders, in order.
+std::vector<int> shardFrames(const FrameRange& range, const Shard& shard);
+
+/// Replaces each run of '#' in `pattern` by `frame` zero-padded to the run's length
+/// ("out/f_####.exr", 7 -> "out/f_0007.exr"); frames wider than the run are written in full.
+std::string expandFramePattern(std::string_view pattern, int frame);
+/// True when `pattern` contains at least one '#'.
+bool hasFramePattern(std::string_view pattern);
+
+/// Progress of a sequence, reported after each frame is written.
+struct SequenceProgress {
+    int written = 0;          ///< frames written so far
+    int total = 0;            ///< frames this run writes
+    int lastFrame = -1;       ///< the frame number just written
+    double elapsedSeconds = 0.0;
+    double framesPerSecond = 0.0;
+    double secondsLeft = 0.0;
+};
+
+struct SequenceOptions {
+    FrameRange frames;
+    double fps = 24.0;  ///< frame k is rendered at time k / fps seconds
+    Shard shard;
+    /// Output patterns (.exr or .png, with '#' runs for the frame number); every frame is
+    /// written to each.
+    std::vector<std::string> outputs;
+    ExrOptions exr;
+    /// Encoder threads (0: one per core). Encoding is the expensive stage on a CPU renderer.
+    int encoderThreads = 0;
+    /// Polled between frames: return true to stop (frames already being written finish,
+    /// nothing half-written remains). Called on the rendering thread.
+    std::function<bool()> shouldStop;
+    /// Called on the rendering thread after frames are written.
+    std::function<void(const SequenceProgress&)> progress;
+};
+
+/// What a sequence did and how long each stage took.
+struct SequenceReport {
+    std::vector<int> framesWritten;  ///< in order
+    bool stopped = false;            ///< shouldStop() asked to stop
+    double wallSeconds = 0.0;
+    double cpuSeconds = 0.0;         ///< process CPU time over the sequence (all threads)
+    std::vector<double> renderMs;    ///< per frame: plan + record + submit + wait + readback
+    std::vector<double> gpuMs;       ///< per frame: GPU render pass (-1 when unavailable)
+    std::vector<double> encodeMs;    ///< per frame: encoding and writing all its outputs
+    std::uint64_t clampedValues = 0; ///< values clamped to the half range (--half)
+    std::size_t peakQueuedFrames = 0;  ///< the most decoded frames waiting at once (memory bound)
+};
+
+} // namespace lantern
