@@ -10,4 +10,11 @@ namespace lantern::scene {
 /// Three spheres of different materials on a plane, lit by a directional and a point light.
 Scene makeSpheresScene();
 
+/// The OpenGL Red Book's teapots example: 24 teapots in a 4 x 6 grid, one per classic
+/// material, one directional light, orthographic view (builtin:teapots and builtin:default).
+Scene makeTeapotsScene();
+
+/// One gold teapot lit as in the Red Book example, seen in perspective (builtin:teapot).
+Scene makeTeapotScene();
+
 } // namespace lantern::scene
