@@ -1,7 +1,7 @@
 // The Red Book teapot grid (builtin:teapots, the default scene) rendered small: a teapot in
 // each of the 24 cells and nothing elsewhere, each lit with its own material (the CPU
 // reference, fed the rendered normals, explains every cell by its own material and by no
-// other), and no NaN or Inf.
+// other), and no NaN or Inf in any shading mode.
 #include "TestSupport.h"
 
 #include "reference/Lighting.h"
@@ -123,6 +123,30 @@ TEST_F(TeapotGrid, TwentyFourTeapotsEachInItsOwnMaterial) {
             EXPECT_GT(other, 10.0 * own + 1e-3)
                 << "cell " << i << " is explained almost as well by " << materials[m].name;
         }
+    }
+}
+
+TEST_F(TeapotGrid, EveryShadingModeIsFiniteWithTheSameCoverage) {
+    auto scene = loadScene("builtin:default");
+    ASSERT_TRUE(scene) << scene.error().describe();
+    RenderOptions o;
+    o.width = 320;
+    o.height = 180;
+    std::vector<float> phongAlpha;
+    for (ShadingMode mode : {ShadingMode::Phong, ShadingMode::Gouraud, ShadingMode::Flat}) {
+        SCOPED_TRACE(toString(mode));
+        o.shading = mode;
+        auto img = renderer().render(*scene, o, 0.0);
+        ASSERT_TRUE(img) << img.error().describe();
+        EXPECT_EQ(test::countNonFinite(*img), 0u);
+        std::vector<float> alpha;
+        for (std::size_t i = 3; i < img->rgba.size(); i += 4) alpha.push_back(img->rgba[i]);
+        // The same triangles rasterise to the same pixels whatever the shading.
+        if (phongAlpha.empty())
+            phongAlpha = alpha;
+        else
+            EXPECT_EQ(alpha, phongAlpha);
+        EXPECT_GT(test::countCovered(*img), 24u * 200u);
     }
 }
 
