@@ -1,10 +1,13 @@
 // Built-in scenes, generated in code (no files needed at run time).
 #include "scene/Builtins.h"
 
+#include "scene/Teapot.h"
+
 #include <lantern/Io.h>
 
 #include <glm/gtc/quaternion.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <string>
@@ -125,6 +128,125 @@ Scene makeAnimatedSpheresScene() {
     return s;
 }
 
+namespace {
+
+// glutSolidTeapot(size), as the Red Book's GLUT drew it: Newell's teapot turned from z up to
+// y up, scaled by size/2 and centred on Newell's z = 1.5 (glRotated(270, 1, 0, 0);
+// glScaled(0.5 size); glTranslated(0, 0, -1.5)). The embedded teaset coordinates are Newell's
+// divided by 3.525 and lowered by 0.15 (teapotControlPoints()), hence this scale and offset.
+constexpr double kNewellPerTeasetUnit = 3.525;
+constexpr double kNewellBase = 0.15;
+constexpr double kGlutTeapotCentre = 1.5;
+
+Material glMaterial(const ClassicMaterial& m) {
+    Material out;
+    out.name = std::string(m.name);
+    out.front.ambient = {m.ambient[0], m.ambient[1], m.ambient[2]};
+    out.front.diffuse = {m.diffuse[0], m.diffuse[1], m.diffuse[2], 1.0};
+    out.front.specular = {m.specular[0], m.specular[1], m.specular[2]};
+    out.front.emission = {0.0, 0.0, 0.0};
+    out.front.shininess = m.shininess;
+    return out;
+}
+
+// The example's light and lighting model: GL_LIGHT0 at (0, 3, 3, 0), a directional light
+// given while the modelview was the identity (so in eye space), ambient 0, diffuse and
+// specular 1 (specular is GL_LIGHT0's default); global ambient 0.2, distant viewer.
+void addRedbookLighting(Scene& s, SceneRoot& root) {
+    Light light;
+    light.name = "GL_LIGHT0";
+    light.type = LightType::Directional;
+    light.ambient = {0.0, 0.0, 0.0};
+    light.diffuse = {1.0, 1.0, 1.0};
+    light.specular = {1.0, 1.0, 1.0};
+    s.lights.push_back(light);
+    Node n;
+    n.name = "GL_LIGHT0";
+    n.light = int(s.lights.size()) - 1;
+    // A directional light shines down its node's -Z: away from (0, 3, 3).
+    n.rotation =
+        glm::quatLookAtRH(glm::normalize(glm::dvec3(0.0, -3.0, -3.0)), glm::dvec3(0, 1, 0));
+    s.nodes.push_back(n);
+    root.nodes.push_back(int(s.nodes.size()) - 1);
+    LightingModel lm;
+    lm.globalAmbient = {0.2, 0.2, 0.2};
+    lm.localViewer = false;
+    root.lighting = lm;
+}
+
+// glutSolidTeapot(1.0) at `at` in material `m`: a material, a mesh (a primitive carries its
+// material, so each teapot has its own copy of `teapot`) and a node that places it.
+void addGlutTeapot(Scene& s, SceneRoot& root, const Primitive& teapot, const ClassicMaterial& m,
+                   glm::dvec3 at) {
+    const int index = int(s.materials.size());
+    s.materials.push_back(glMaterial(m));
+    Mesh mesh{s.materials.back().name + " teapot", {teapot}};
+    mesh.primitives[0].material = index;
+    s.meshes.push_back(std::move(mesh));
+    Node n;
+    n.name = s.meshes.back().name;
+    n.mesh = int(s.meshes.size()) - 1;
+    n.scale = glm::dvec3(0.5 * kNewellPerTeasetUnit);
+    n.translation = at + glm::dvec3(0.0, 0.5 * (kNewellBase - kGlutTeapotCentre), 0.0);
+    s.nodes.push_back(n);
+    root.nodes.push_back(int(s.nodes.size()) - 1);
+}
+
+} // namespace
+
+Scene makeTeapotsScene() {
+    Scene s;
+    s.sourcePath = "builtin:teapots";
+    SceneRoot root;
+    root.name = "teapots";
+    const Primitive teapot = makeTeapot();
+    const auto materials = redbookMaterials();
+    for (std::size_t i = 0; i < materials.size(); ++i) {
+        // renderTeapot(x, y, ...): columns at x = 2, 6, 10, 14 (gems, metals, plastics,
+        // rubbers), each from y = 17 at the top down to y = 2.
+        const glm::dvec3 at(2.0 + 4.0 * double(i / 6), 17.0 - 3.0 * double(i % 6), 0.0);
+        addGlutTeapot(s, root, teapot, materials[i], at);
+    }
+    addRedbookLighting(s, root);
+
+    // The example's reshape for its 500 x 600 window is glOrtho(0, 16, 0, 19.2, -10, 10) with
+    // an identity view. The same 19.2 units of height, widened about x = 8 to 16:9, frame the
+    // classic picture in a 1280 x 720 image (other aspects stretch it: glOrtho is fixed).
+    const double height = 16.0 * 600.0 / 500.0;
+    const double halfWidth = 0.5 * height * 16.0 / 9.0;
+    Camera camera;
+    camera.name = "glOrtho";
+    camera.projection =
+        Projection::makeOrtho(8.0 - halfWidth, 8.0 + halfWidth, 0.0, height, -10.0, 10.0);
+    camera.lookAt = LookAt{{0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, {0.0, 1.0, 0.0}};
+    s.cameras.push_back(camera);
+    s.roots = {root};
+    return s;
+}
+
+Scene makeTeapotScene() {
+    Scene s;
+    s.sourcePath = "builtin:teapot";
+    SceneRoot root;
+    root.name = "teapot";
+    const auto materials = redbookMaterials();
+    const auto gold = std::find_if(materials.begin(), materials.end(),
+                                   [](const ClassicMaterial& m) { return m.name == "gold"; });
+    addGlutTeapot(s, root, makeTeapot(), gold != materials.end() ? *gold : materials.front(),
+                  glm::dvec3(0.0));
+    // Seen from above, the open spout shows its inside: back faces, drawn (as GL draws them
+    // without GL_CULL_FACE) rather than culled to the background.
+    s.materials[0].doubleSided = true;
+    addRedbookLighting(s, root);
+    Camera camera;
+    camera.name = "main";
+    camera.projection = Projection::makePerspective(glm::radians(30.0), 0.0, 0.1, kInfinity);
+    camera.lookAt = LookAt{{1.5, 2.0, 5.5}, {0.1, 0.0, 0.0}, {0.0, 1.0, 0.0}};
+    s.cameras.push_back(camera);
+    s.roots = {root};
+    return s;
+}
+
 } // namespace scene
 
 namespace {
@@ -134,7 +256,9 @@ struct Builtin {
 };
 const std::vector<Builtin>& registry() {
     static const std::vector<Builtin> builtins = {
-        {"default", scene::makeSpheresScene},
+        {"default", scene::makeTeapotsScene},
+        {"teapots", scene::makeTeapotsScene},
+        {"teapot", scene::makeTeapotScene},
         {"spheres", scene::makeSpheresScene},
         {"spheres-animated", scene::makeAnimatedSpheresScene},
     };

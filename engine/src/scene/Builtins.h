@@ -13,4 +13,11 @@ Scene makeSpheresScene();
 /// The spheres with an animation: the lamp orbits, the middle sphere bounces (4 s loop).
 Scene makeAnimatedSpheresScene();
 
+/// The OpenGL Red Book's teapots example: 24 teapots in a 4 x 6 grid, one per classic
+/// material, one directional light, orthographic view (builtin:teapots and builtin:default).
+Scene makeTeapotsScene();
+
+/// One gold teapot lit as in the Red Book example, seen in perspective (builtin:teapot).
+Scene makeTeapotScene();
+
 } // namespace lantern::scene
