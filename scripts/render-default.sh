@@ -5,4 +5,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 LANTERN_DEPS=build scripts/build.sh release >&2
 mkdir -p out
-exec build/release/apps/lantern/lantern render builtin:default -o out/default.exr -o out/default.png "$@"
+# The Red Book example drew its teapots on black.
+exec build/release/apps/lantern/lantern render builtin:default --background 0,0,0 -o out/default.exr -o out/default.png "$@"

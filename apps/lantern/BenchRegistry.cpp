@@ -4,8 +4,10 @@
 
 namespace lantern::cli {
 
-std::vector<Runner> addMoreBenchCommands(CLI::App& /*bench*/) {
-    return {};
+Runner addSequenceBench(CLI::App& bench);
+
+std::vector<Runner> addMoreBenchCommands(CLI::App& bench) {
+    return {addSequenceBench(bench)};
 }
 
 } // namespace lantern::cli

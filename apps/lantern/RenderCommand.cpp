@@ -26,6 +26,7 @@ struct RenderArgs {
     bool explain = false;
     std::string compression = "zip";
     std::uint64_t maxSize = std::uint64_t(1) << 30;
+    std::string background;
     std::string frames;
     double fps = 24.0;
     std::string shard;
@@ -133,6 +134,16 @@ int run(const RenderArgs& a) {
     options.root = a.sceneIndex;
     if (auto r = a.shading.apply(options); !r) return report(r.error());
     if (auto r = a.camera.apply(options); !r) return report(r.error());
+    if (!a.background.empty()) {
+        const bool rgba = std::count(a.background.begin(), a.background.end(), ',') == 3;
+        auto v = parseNumbers(a.background, rgba ? 4 : 3, "--background");
+        if (!v) return report(v.error());
+        // Premultiplied: an opaque background is (r, g, b, 1); a translucent one scales rgb.
+        const double alpha = rgba ? (*v)[3] : 1.0;
+        if (alpha < 0.0 || alpha > 1.0)
+            return report(makeError(ErrorCode::InvalidInput, "alpha must be in [0, 1]", "--background"));
+        options.background = glm::vec4(float((*v)[0] * alpha), float((*v)[1] * alpha), float((*v)[2] * alpha), float(alpha));
+    }
     if (!a.aov.empty()) {
         std::stringstream ss(a.aov);
         std::string item;
@@ -213,6 +224,8 @@ Runner addRenderCommand(CLI::App& app) {
     cmd->add_option("--height", args->height, "Image height in pixels")->capture_default_str();
     cmd->add_option("--scene", args->sceneIndex, "glTF scene index (default: the file's default)");
     cmd->add_option("--time", args->time, "Animation time in seconds (one frame)")->capture_default_str();
+    cmd->add_option("--background", args->background,
+                    "Background colour R,G,B (opaque) or R,G,B,A, linear (default: transparent)");
     cmd->add_option("--frames", args->frames, "Render the sequence of frames A-B inclusive (frame k at time k/fps)");
     cmd->add_option("--fps", args->fps, "Frames per second of the sequence")->capture_default_str()->check(CLI::PositiveNumber);
     cmd->add_option("--shard", args->shard, "Render only frames k with k mod N == I (I/N)");
