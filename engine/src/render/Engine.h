@@ -63,7 +63,8 @@ private:
     struct Target {
         std::uint32_t width = 0, height = 0, samples = 0;
         bool aov = false;
-        gpu::Image color, colorMsaa, depth, normalDepth, normalDepthMsaa, ids, idsMsaa;
+        gpu::Image color, colorMsaa, depth, normalDepth, ids;
+        gpu::Image aovColor, aovDepth;  ///< the single-sampled AOV pass, with MSAA
         gpu::Buffer readColor, readNormalDepth, readIds;
     };
     struct Slot {
@@ -88,7 +89,7 @@ private:
     void record(Slot& slot, GpuScene& scene, const FramePlan& plan,
                 const std::vector<VkDeviceSize>& frameOffsets,
                 const std::vector<VkDeviceSize>& lightOffsets,
-                const std::vector<VkPipeline>& pipelines);
+                const std::vector<VkPipeline>& pipelines, const std::vector<VkPipeline>& aovPipelines);
 
     std::shared_ptr<gpu::Context> m_ctx;
     gpu::UniqueDescriptorSetLayout m_frameLayout, m_textureLayout;
