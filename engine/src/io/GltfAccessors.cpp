@@ -70,9 +70,18 @@ Result<const tinygltf::BufferView*> bufferView(const tinygltf::Model& model, int
                                     std::to_string(bv.byteLength) + " exceeds the " +
                                     std::to_string(size) + " bytes of " +
                                     at("buffers", std::size_t(bv.buffer)));
-    if (bv.byteStride != 0 && (bv.byteStride < 4 || bv.byteStride > 252 || bv.byteStride % 4 != 0))
-        return diag.error(name + ".byteStride", std::to_string(bv.byteStride) +
-                                                    " is not a multiple of 4 in [4, 252]");
+    if (bv.byteStride != 0) {
+        if (bv.byteStride < 4 || bv.byteStride > 252 || bv.byteStride % 4 != 0)
+            return diag.error(name + ".byteStride", std::to_string(bv.byteStride) +
+                                                        " is not a multiple of 4 in [4, 252]");
+        if (bv.byteStride > bv.byteLength)
+            return diag.error(name + ".byteStride", std::to_string(bv.byteStride) +
+                                                        " is larger than the byteLength " +
+                                                        std::to_string(bv.byteLength));
+        if (bv.target == TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER)
+            return diag.error(name + ".byteStride",
+                              "index data (target ELEMENT_ARRAY_BUFFER) must be tightly packed");
+    }
     return &bv;
 }
 
@@ -236,8 +245,8 @@ Result<std::vector<T>> readNumbers(const tinygltf::Model& model, int index,
             if (!std::isfinite(v))
                 return diag.error(name, "element " + std::to_string(k) + " component " +
                                             std::to_string(c) + " is not a finite number (" +
-                                            (std::isnan(v) ? "NaN" : "infinite") + "; read as " +
-                                            object + ")");
+                                            (std::isnan(v) ? "NaN" : "infinite") +
+                                            (object == name ? ")" : "; read as " + object + ")"));
             out[k * nc + c] = T(v);
         }
         return {};
@@ -393,12 +402,22 @@ Result<std::vector<std::uint32_t>> readIndices(const tinygltf::Model& model, int
             for (std::size_t k = 0; k < l.count; ++k)
                 out[k] = decodeIndex(l.data + k * l.stride, l.componentType);
     }
-    for (std::size_t k = 0; k < out.size(); ++k)
+    // glTF forbids the primitive-restart value (all bits set) in index data.
+    const std::uint32_t restart = l.componentType == kUnsignedByte    ? 0xFFu
+                                  : l.componentType == kUnsignedShort ? 0xFFFFu
+                                                                      : 0xFFFFFFFFu;
+    for (std::size_t k = 0; k < out.size(); ++k) {
+        if (out[k] == restart)
+            return diag.error(object, "index " + std::to_string(out[k]) + " (at position " +
+                                          std::to_string(k) + ") is the primitive-restart value of " +
+                                          componentTypeName(l.componentType) +
+                                          ", which glTF forbids");
         if (out[k] >= vertexCount)
             return diag.error(object, "index " + std::to_string(out[k]) +
                                           " is out of range (vertex count " +
                                           std::to_string(vertexCount) + "; at position " +
                                           std::to_string(k) + ")");
+    }
     return out;
 }
 

@@ -316,8 +316,15 @@ Result<void> validateModel(const tinygltf::Model& model, const RawFacts& raw,
 
     for (std::size_t i = 0; i < model.bufferViews.size(); ++i)
         LANTERN_TRY(checkBufferView(model, int(i), diag));
-    for (std::size_t i = 0; i < model.accessors.size(); ++i)
+    for (std::size_t i = 0; i < model.accessors.size(); ++i) {
         LANTERN_TRY(checkAccessor(model, int(i), options, diag));
+        // Non-finite floats are refused wherever they are, used or not: it costs one read of
+        // the float data and gives the accessor's own path in the message.
+        if (model.accessors[i].componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) {
+            auto values = readFloats(model, int(i), at("accessors", i), diag);
+            if (!values) return std::move(values).error();
+        }
+    }
     LANTERN_TRY(validateMeshes(model, raw, diag));
     LANTERN_TRY(validateMaterialsAndTextures(model, diag));
     LANTERN_TRY(validateNodes(model, diag));
