@@ -101,6 +101,9 @@ TEST_F(GltfInvalid, TheCommandExitsWith1AndNamesTheFileOrLoads) {
         const auto path = invalidDir() / c.file;
         const auto r = lantern::test::runProcess({lantern::test::cliPath().string(), "info", path.string()}, {}, 60.0);
         SCOPED_TRACE(c.file);
+        // Under the sanitizers a report also exits with 1: look for one explicitly.
+        EXPECT_EQ(r.err.find("Sanitizer"), std::string::npos) << r.err;
+        EXPECT_EQ(r.err.find("runtime error"), std::string::npos) << r.err;
         if (c.refused) {
             EXPECT_EQ(r.exitCode, 1) << r.err;
             const std::string line = "lantern: error: " + path.string() + ": ";

@@ -21,16 +21,20 @@ constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT;
 
 int matrixRows(int type) {
     switch (type) {
-    case TINYGLTF_TYPE_MAT2: return 2;
-    case TINYGLTF_TYPE_MAT3: return 3;
-    case TINYGLTF_TYPE_MAT4: return 4;
-    default: return 0;
+    case TINYGLTF_TYPE_MAT2:
+        return 2;
+    case TINYGLTF_TYPE_MAT3:
+        return 3;
+    case TINYGLTF_TYPE_MAT4:
+        return 4;
+    default:
+        return 0;
     }
 }
 
 /// Where an accessor's elements lie, after every check.
 struct Layout {
-    const unsigned char* data = nullptr;  ///< first element; null: all zeros (no bufferView)
+    const unsigned char* data = nullptr; ///< first element; null: all zeros (no bufferView)
     std::size_t count = 0, stride = 0, elementBytes = 0;
     int componentType = 0, components = 0, componentBytes = 0, rows = 0;
     bool normalized = false;
@@ -54,15 +58,16 @@ bool fits(std::size_t offset, std::size_t count, std::size_t stride, std::size_t
 
 /// Checks buffer view `v` itself (buffer in range, inside the buffer).
 Result<const tinygltf::BufferView*> bufferView(const tinygltf::Model& model, int v,
-                                               const std::string& object,
-                                               const Diagnostics& diag) {
+                                               const std::string& object, const Diagnostics& diag) {
     if (v < 0 || std::size_t(v) >= model.bufferViews.size())
-        return diag.error(object, "bufferView " + std::to_string(v) + " does not exist (the file has " +
+        return diag.error(object, "bufferView " + std::to_string(v) +
+                                      " does not exist (the file has " +
                                       std::to_string(model.bufferViews.size()) + ")");
     const tinygltf::BufferView& bv = model.bufferViews[std::size_t(v)];
     const std::string name = at("bufferViews", std::size_t(v));
     if (bv.buffer < 0 || std::size_t(bv.buffer) >= model.buffers.size())
-        return diag.error(name + ".buffer", "buffer " + std::to_string(bv.buffer) + " does not exist");
+        return diag.error(name + ".buffer",
+                          "buffer " + std::to_string(bv.buffer) + " does not exist");
     const std::size_t size = model.buffers[std::size_t(bv.buffer)].data.size();
     if (bv.byteLength == 0) return diag.error(name + ".byteLength", "must be >= 1");
     if (!fits(bv.byteOffset, 1, 0, bv.byteLength, size))
@@ -105,7 +110,8 @@ Result<Layout> locate(const tinygltf::Model& model, int index, const Diagnostics
     if (a.normalized && (a.componentType == kFloat || a.componentType == kUnsignedInt))
         return diag.error(name + ".normalized",
                           "only BYTE, UNSIGNED_BYTE, SHORT and UNSIGNED_SHORT may be normalized, "
-                          "not " + componentTypeName(a.componentType));
+                          "not " +
+                              componentTypeName(a.componentType));
     if (a.count == 0) return diag.error(name + ".count", "must be >= 1");
     l.elementBytes = elementSize(a.type, a.componentType);
     l.stride = l.elementBytes;
@@ -136,12 +142,11 @@ Result<Layout> locate(const tinygltf::Model& model, int index, const Diagnostics
                               "-byte components (byteOffset " + std::to_string(a.byteOffset) +
                               ", bufferView byteOffset " + std::to_string(view.byteOffset) + ")");
     if (!fits(a.byteOffset, a.count, l.stride, l.elementBytes, view.byteLength))
-        return diag.error(name, std::to_string(a.count) + " elements of " +
-                                    std::to_string(l.elementBytes) + " bytes (stride " +
-                                    std::to_string(l.stride) + ") from byteOffset " +
-                                    std::to_string(a.byteOffset) + " run past the end of " +
-                                    viewName + " (byteLength " + std::to_string(view.byteLength) +
-                                    ")");
+        return diag.error(
+            name, std::to_string(a.count) + " elements of " + std::to_string(l.elementBytes) +
+                      " bytes (stride " + std::to_string(l.stride) + ") from byteOffset " +
+                      std::to_string(a.byteOffset) + " run past the end of " + viewName +
+                      " (byteLength " + std::to_string(view.byteLength) + ")");
     l.data = model.buffers[std::size_t(view.buffer)].data.data() + view.byteOffset + a.byteOffset;
     return l;
 }
@@ -164,7 +169,8 @@ Result<SparseLayout> locateSparse(const tinygltf::Model& model, int index, const
                                                std::to_string(a.count) + "]");
     s.count = std::size_t(a.sparse.count);
     s.indexType = a.sparse.indices.componentType;
-    if (s.indexType != kUnsignedByte && s.indexType != kUnsignedShort && s.indexType != kUnsignedInt)
+    if (s.indexType != kUnsignedByte && s.indexType != kUnsignedShort &&
+        s.indexType != kUnsignedInt)
         return diag.error(name + ".indices.componentType",
                           "must be UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT, not " +
                               componentTypeName(s.indexType));
@@ -201,7 +207,8 @@ double decode(const unsigned char* p, int type, bool normalized) {
         std::memcpy(&f, p, 4);
         return f;
     }
-    case kUnsignedByte: return normalized ? p[0] / 255.0 : p[0];
+    case kUnsignedByte:
+        return normalized ? p[0] / 255.0 : p[0];
     case kByte: {
         const auto v = std::int8_t(p[0]);
         return normalized ? std::max(v / 127.0, -1.0) : v;
@@ -221,7 +228,8 @@ double decode(const unsigned char* p, int type, bool normalized) {
         std::memcpy(&v, p, 4);
         return v;
     }
-    default: return 0.0;
+    default:
+        return 0.0;
     }
 }
 
@@ -240,8 +248,8 @@ Result<std::vector<T>> readNumbers(const tinygltf::Model& model, int index,
     std::vector<T> out(l.count * nc, T(0));
     auto readElement = [&](const unsigned char* element, std::size_t k) -> Result<void> {
         for (std::size_t c = 0; c < nc; ++c) {
-            const double v = decode(element + l.componentOffset(int(c)), l.componentType,
-                                    l.normalized);
+            const double v =
+                decode(element + l.componentOffset(int(c)), l.componentType, l.normalized);
             if (!std::isfinite(v))
                 return diag.error(name, "element " + std::to_string(k) + " component " +
                                             std::to_string(c) + " is not a finite number (" +
@@ -252,7 +260,8 @@ Result<std::vector<T>> readNumbers(const tinygltf::Model& model, int index,
         return {};
     };
     if (l.data)
-        for (std::size_t k = 0; k < l.count; ++k) LANTERN_TRY(readElement(l.data + k * l.stride, k));
+        for (std::size_t k = 0; k < l.count; ++k)
+            LANTERN_TRY(readElement(l.data + k * l.stride, k));
     if (model.accessors[std::size_t(index)].sparse.isSparse) {
         auto sparse = locateSparse(model, index, l, diag);
         if (!sparse) return std::move(sparse).error();
@@ -262,10 +271,10 @@ Result<std::vector<T>> readNumbers(const tinygltf::Model& model, int index,
             const std::uint32_t target =
                 decodeIndex(s.indices + i * std::size_t(s.indexBytes), s.indexType);
             if (target >= l.count)
-                return diag.error(name + ".sparse.indices",
-                                  "index " + std::to_string(target) + " (entry " +
-                                      std::to_string(i) + ") is out of range (count " +
-                                      std::to_string(l.count) + ")");
+                return diag.error(name + ".sparse.indices", "index " + std::to_string(target) +
+                                                                " (entry " + std::to_string(i) +
+                                                                ") is out of range (count " +
+                                                                std::to_string(l.count) + ")");
             if (i > 0 && target <= previous)
                 return diag.error(name + ".sparse.indices",
                                   "indices are not strictly increasing at entry " +
@@ -282,25 +291,37 @@ Result<std::vector<T>> readNumbers(const tinygltf::Model& model, int index,
 int componentSize(int componentType) {
     switch (componentType) {
     case kByte:
-    case kUnsignedByte: return 1;
+    case kUnsignedByte:
+        return 1;
     case kShort:
-    case kUnsignedShort: return 2;
+    case kUnsignedShort:
+        return 2;
     case kUnsignedInt:
-    case kFloat: return 4;
-    default: return 0;  // INT (5124) and DOUBLE (5130) are not glTF 2.0 accessor types
+    case kFloat:
+        return 4;
+    default:
+        return 0; // INT (5124) and DOUBLE (5130) are not glTF 2.0 accessor types
     }
 }
 
 int componentCount(int type) {
     switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return 1;
-    case TINYGLTF_TYPE_VEC2: return 2;
-    case TINYGLTF_TYPE_VEC3: return 3;
-    case TINYGLTF_TYPE_VEC4: return 4;
-    case TINYGLTF_TYPE_MAT2: return 4;
-    case TINYGLTF_TYPE_MAT3: return 9;
-    case TINYGLTF_TYPE_MAT4: return 16;
-    default: return 0;
+    case TINYGLTF_TYPE_SCALAR:
+        return 1;
+    case TINYGLTF_TYPE_VEC2:
+        return 2;
+    case TINYGLTF_TYPE_VEC3:
+        return 3;
+    case TINYGLTF_TYPE_VEC4:
+        return 4;
+    case TINYGLTF_TYPE_MAT2:
+        return 4;
+    case TINYGLTF_TYPE_MAT3:
+        return 9;
+    case TINYGLTF_TYPE_MAT4:
+        return 16;
+    default:
+        return 0;
     }
 }
 
@@ -315,27 +336,43 @@ std::size_t elementSize(int type, int componentType) {
 
 std::string componentTypeName(int componentType) {
     switch (componentType) {
-    case kByte: return "BYTE";
-    case kUnsignedByte: return "UNSIGNED_BYTE";
-    case kShort: return "SHORT";
-    case kUnsignedShort: return "UNSIGNED_SHORT";
-    case TINYGLTF_COMPONENT_TYPE_INT: return "INT";
-    case kUnsignedInt: return "UNSIGNED_INT";
-    case kFloat: return "FLOAT";
-    default: return "componentType " + std::to_string(componentType);
+    case kByte:
+        return "BYTE";
+    case kUnsignedByte:
+        return "UNSIGNED_BYTE";
+    case kShort:
+        return "SHORT";
+    case kUnsignedShort:
+        return "UNSIGNED_SHORT";
+    case TINYGLTF_COMPONENT_TYPE_INT:
+        return "INT";
+    case kUnsignedInt:
+        return "UNSIGNED_INT";
+    case kFloat:
+        return "FLOAT";
+    default:
+        return "componentType " + std::to_string(componentType);
     }
 }
 
 std::string typeName(int type) {
     switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
-    case TINYGLTF_TYPE_VEC2: return "VEC2";
-    case TINYGLTF_TYPE_VEC3: return "VEC3";
-    case TINYGLTF_TYPE_VEC4: return "VEC4";
-    case TINYGLTF_TYPE_MAT2: return "MAT2";
-    case TINYGLTF_TYPE_MAT3: return "MAT3";
-    case TINYGLTF_TYPE_MAT4: return "MAT4";
-    default: return "type " + std::to_string(type);
+    case TINYGLTF_TYPE_SCALAR:
+        return "SCALAR";
+    case TINYGLTF_TYPE_VEC2:
+        return "VEC2";
+    case TINYGLTF_TYPE_VEC3:
+        return "VEC3";
+    case TINYGLTF_TYPE_VEC4:
+        return "VEC4";
+    case TINYGLTF_TYPE_MAT2:
+        return "MAT2";
+    case TINYGLTF_TYPE_MAT3:
+        return "MAT3";
+    case TINYGLTF_TYPE_MAT4:
+        return "MAT4";
+    default:
+        return "type " + std::to_string(type);
     }
 }
 
@@ -395,7 +432,8 @@ Result<std::vector<std::uint32_t>> readIndices(const tinygltf::Model& model, int
         auto values = readNumbers<double>(model, index, object, diag);
         if (!values) return std::move(values).error();
         out.reserve(values->size());
-        for (double v : *values) out.push_back(std::uint32_t(v));
+        for (double v : *values)
+            out.push_back(std::uint32_t(v));
     } else {
         out.resize(l.count, 0);
         if (l.data)
@@ -408,10 +446,10 @@ Result<std::vector<std::uint32_t>> readIndices(const tinygltf::Model& model, int
                                                                       : 0xFFFFFFFFu;
     for (std::size_t k = 0; k < out.size(); ++k) {
         if (out[k] == restart)
-            return diag.error(object, "index " + std::to_string(out[k]) + " (at position " +
-                                          std::to_string(k) + ") is the primitive-restart value of " +
-                                          componentTypeName(l.componentType) +
-                                          ", which glTF forbids");
+            return diag.error(object,
+                              "index " + std::to_string(out[k]) + " (at position " +
+                                  std::to_string(k) + ") is the primitive-restart value of " +
+                                  componentTypeName(l.componentType) + ", which glTF forbids");
         if (out[k] >= vertexCount)
             return diag.error(object, "index " + std::to_string(out[k]) +
                                           " is out of range (vertex count " +

@@ -3,9 +3,8 @@
 // the facts tinygltf discards (optional numbers' presence, primitives it would drop).
 #include "io/GltfInternal.h"
 
-#include <nlohmann/json.hpp>
-
 #include <cstring>
+#include <nlohmann/json.hpp>
 
 namespace lantern::gltf {
 namespace {
@@ -36,7 +35,9 @@ int hexValue(char c) {
     return -1;
 }
 
-bool isDataUri(std::string_view uri) { return uri.substr(0, 5) == "data:"; }
+bool isDataUri(std::string_view uri) {
+    return uri.substr(0, 5) == "data:";
+}
 
 } // namespace
 
@@ -128,12 +129,16 @@ Result<void> checkJsonNesting(std::string_view json, const Diagnostics& diag) {
     for (std::size_t i = 0; i < json.size(); ++i) {
         const char c = json[i];
         if (inString) {
-            if (escaped) escaped = false;
-            else if (c == '\\') escaped = true;
-            else if (c == '"') inString = false;
+            if (escaped)
+                escaped = false;
+            else if (c == '\\')
+                escaped = true;
+            else if (c == '"')
+                inString = false;
             continue;
         }
-        if (c == '"') inString = true;
+        if (c == '"')
+            inString = true;
         else if (c == '{' || c == '[') {
             if (++depth > kMaxJsonDepth)
                 return diag.error("JSON", "nested more than " + std::to_string(kMaxJsonDepth) +
@@ -261,7 +266,7 @@ Result<RawFacts> inspectJson(std::string_view text, const Source& source, const 
             if (problem.empty()) continue;
             if (buffers || problem.find("--max-size") != std::string::npos)
                 return diag.error(object + ".uri", problem);
-            facts.imageProblems[int(i)] = problem;  // an error only if a material uses it
+            facts.imageProblems[int(i)] = problem; // an error only if a material uses it
         }
     }
     if (const json* cameras = array("cameras")) {

@@ -5,20 +5,21 @@
 // is checked where it is read; messages carry the glTF object path.
 #include "io/GltfInternal.h"
 
-#include <glm/gtc/quaternion.hpp>
-#include <stb_image.h>
-
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <glm/gtc/quaternion.hpp>
 #include <set>
+#include <stb_image.h>
 
 namespace lantern::gltf {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-glm::dvec3 vec3(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
+glm::dvec3 vec3(const std::vector<double>& v) {
+    return {v[0], v[1], v[2]};
+}
 glm::dvec4 vec4(const std::vector<double>& v) {
     return {v[0], v[1], v[2], v.size() > 3 ? v[3] : 1.0};
 }
@@ -136,8 +137,7 @@ private:
                                                   ? problem->second
                                                   : "\"" + image.uri + "\" could not be read");
         }
-        if (size > std::size_t(INT_MAX))
-            return m_diag.error(obj, "encoded image is too large");
+        if (size > std::size_t(INT_MAX)) return m_diag.error(obj, "encoded image is too large");
         int w = 0, h = 0, channels = 0;
         if (!stbi_info_from_memory(bytes, int(size), &w, &h, &channels))
             return m_diag.error(obj, std::string("cannot be decoded: ") + stbi_failure_reason());
@@ -147,10 +147,9 @@ private:
                                          std::to_string(kMaxTextureSide) + " per side)");
         const std::uint64_t rgbaBytes = std::uint64_t(w) * std::uint64_t(h) * 4;
         if (rgbaBytes > m_options.maxBytes)
-            return m_diag.error(obj,
-                                "decoded image (" + std::to_string(rgbaBytes) +
-                                    " bytes) exceeds --max-size (" +
-                                    std::to_string(m_options.maxBytes) + " bytes)");
+            return m_diag.error(obj, "decoded image (" + std::to_string(rgbaBytes) +
+                                         " bytes) exceeds --max-size (" +
+                                         std::to_string(m_options.maxBytes) + " bytes)");
         stbi_uc* pixels = stbi_load_from_memory(bytes, int(size), &w, &h, &channels, 4);
         if (!pixels)
             return m_diag.error(obj, std::string("cannot be decoded: ") + stbi_failure_reason());
@@ -203,8 +202,7 @@ Result<Material> convertMaterial(const tinygltf::Model& model, std::size_t index
         ExtensionReader r(*e, obj + ".extensions.KHR_materials_emissive_strength", diag);
         auto strength = r.number("emissiveStrength", 1.0);
         if (!strength) return std::move(strength).error();
-        if (*strength < 0.0)
-            return diag.error(r.object() + ".emissiveStrength", "must be >= 0");
+        if (*strength < 0.0) return diag.error(r.object() + ".emissiveStrength", "must be >= 0");
         emissiveStrength = *strength;
     }
 
@@ -246,7 +244,8 @@ Result<Material> convertMaterial(const tinygltf::Model& model, std::size_t index
         m.front.diffuse = glm::dvec4(base * (1.0 - metallic), baseColor.a);
         m.front.specular = glm::mix(glm::dvec3(0.04), base, metallic);
         const double r4 = roughness * roughness * roughness * roughness;
-        m.front.shininess = r4 > 0.0 ? std::min(2.0 / r4 - 2.0, kMaxPbrShininess) : kMaxPbrShininess;
+        m.front.shininess =
+            r4 > 0.0 ? std::min(2.0 / r4 - 2.0, kMaxPbrShininess) : kMaxPbrShininess;
         m.front.ambient = glm::dvec3(m.front.diffuse);
         m.front.emission = vec3(src.emissiveFactor) * emissiveStrength;
         m.ambientFollowsDiffuse = true;
@@ -265,18 +264,21 @@ Result<Light> convertLight(const tinygltf::Light& src, std::size_t index, const 
     const std::string obj = "extensions.KHR_lights_punctual." + at("lights", index);
     Light l;
     l.name = src.name;
-    if (src.type == "directional") l.type = LightType::Directional;
-    else if (src.type == "point") l.type = LightType::Point;
-    else if (src.type == "spot") l.type = LightType::Spot;
-    else return diag.error(obj + ".type", "\"" + src.type + "\" is not directional, point or spot");
+    if (src.type == "directional")
+        l.type = LightType::Directional;
+    else if (src.type == "point")
+        l.type = LightType::Point;
+    else if (src.type == "spot")
+        l.type = LightType::Spot;
+    else
+        return diag.error(obj + ".type", "\"" + src.type + "\" is not directional, point or spot");
     std::vector<double> color = src.color.empty() ? std::vector<double>{1, 1, 1} : src.color;
     if (color.size() != 3 || !allFinite(color))
         return diag.error(obj + ".color", "must be 3 finite numbers");
     if (!std::isfinite(src.intensity) || src.intensity < 0.0)
         return diag.error(obj + ".intensity", "must be a finite number >= 0");
     // tinygltf reads an absent range as 0: both mean "unlimited".
-    if (std::isnan(src.range) || src.range < 0.0)
-        return diag.error(obj + ".range", "must be > 0");
+    if (std::isnan(src.range) || src.range < 0.0) return diag.error(obj + ".range", "must be > 0");
     l.range = src.range > 0.0 && std::isfinite(src.range) ? src.range : kInfinity;
     if (l.type == LightType::Spot) {
         const double inner = src.spot.innerConeAngle, outer = src.spot.outerConeAngle;
@@ -289,8 +291,8 @@ Result<Light> convertLight(const tinygltf::Light& src, std::size_t index, const 
     }
     if (const tinygltf::Value* e = extension(src.extensions, "LANTERN_lights_phong")) {
         ExtensionReader r(*e, obj + ".extensions.LANTERN_lights_phong", diag);
-        r.warnUnknown({"ambient", "diffuse", "specular", "attenuation", "spotExponent",
-                       "spotCutoffDeg"});
+        r.warnUnknown(
+            {"ambient", "diffuse", "specular", "attenuation", "spotExponent", "spotCutoffDeg"});
         auto ambient = r.numbers("ambient", 3, {0, 0, 0});
         if (!ambient) return std::move(ambient).error();
         auto diffuse = r.numbers("diffuse", 3, {1, 1, 1});
@@ -355,13 +357,13 @@ Result<Camera> convertCamera(const tinygltf::Camera& src, std::size_t index, boo
         const tinygltf::PerspectiveCamera& p = src.perspective;
         const std::string pobj = obj + ".perspective";
         if (!(std::isfinite(p.yfov) && p.yfov > 0.0 && p.yfov < kPi))
-            return diag.error(pobj + ".yfov", "must be in (0, pi) radians, got " +
-                                                  std::to_string(p.yfov));
+            return diag.error(pobj + ".yfov",
+                              "must be in (0, pi) radians, got " + std::to_string(p.yfov));
         if (!(std::isfinite(p.znear) && p.znear > 0.0))
             return diag.error(pobj + ".znear", "must be a finite number > 0");
         if (!(std::isfinite(p.aspectRatio) && p.aspectRatio >= 0.0))
             return diag.error(pobj + ".aspectRatio", "must be a finite number > 0");
-        double zfar = kInfinity;  // glTF: no zfar is an infinite projection
+        double zfar = kInfinity; // glTF: no zfar is an infinite projection
         if (hasZfar) {
             if (!(std::isfinite(p.zfar) && p.zfar > p.znear))
                 return diag.error(pobj + ".zfar", "must be a finite number > znear (" +
@@ -446,15 +448,16 @@ Result<Node> convertNode(const tinygltf::Node& src, std::size_t index, const Dia
     if (auto it = src.extensions.find("KHR_lights_punctual"); it != src.extensions.end())
         n.light = it->second.Get("light").GetNumberAsInt();
     if (src.skin >= 0) diag.warn(obj + ".skin", "skinning is not supported; ignored");
-    for (auto [name, values] : {std::pair{"matrix", &src.matrix},
-                                std::pair{"translation", &src.translation},
-                                std::pair{"rotation", &src.rotation}, std::pair{"scale", &src.scale}})
+    for (auto [name, values] :
+         {std::pair{"matrix", &src.matrix}, std::pair{"translation", &src.translation},
+          std::pair{"rotation", &src.rotation}, std::pair{"scale", &src.scale}})
         if (!allFinite(*values))
             return diag.error(obj + "." + name, "contains a non-finite number");
     if (!src.matrix.empty()) {
         glm::dmat4 m;
         for (int c = 0; c < 4; ++c)
-            for (int r = 0; r < 4; ++r) m[c][r] = src.matrix[std::size_t(c * 4 + r)];
+            for (int r = 0; r < 4; ++r)
+                m[c][r] = src.matrix[std::size_t(c * 4 + r)];
         if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0)
             return diag.error(obj + ".matrix", "last row must be 0, 0, 0, 1 (a projective "
                                                "matrix is not a node transform)");
@@ -468,8 +471,8 @@ Result<Node> convertNode(const tinygltf::Node& src, std::size_t index, const Dia
         const double len = glm::length(q);
         if (!(len > 0.0)) return diag.error(obj + ".rotation", "quaternion has zero length");
         if (std::abs(len - 1.0) > 1e-3)
-            diag.warn(obj + ".rotation", "quaternion length " + std::to_string(len) +
-                                             " is not 1; normalised");
+            diag.warn(obj + ".rotation",
+                      "quaternion length " + std::to_string(len) + " is not 1; normalised");
         n.rotation = q / len;
     }
     return n;
@@ -552,11 +555,14 @@ Result<Animation> convertAnimation(const tinygltf::Model& model, std::size_t ind
     for (std::size_t c = 0; c < src.channels.size(); ++c) {
         const tinygltf::AnimationChannel& ch = src.channels[c];
         const std::string cobj = obj + "." + at("channels", c);
-        if (ch.target_node < 0) continue;  // glTF: a channel without a node is ignored
+        if (ch.target_node < 0) continue; // glTF: a channel without a node is ignored
         AnimationPath path;
-        if (ch.target_path == "translation") path = AnimationPath::Translation;
-        else if (ch.target_path == "rotation") path = AnimationPath::Rotation;
-        else if (ch.target_path == "scale") path = AnimationPath::Scale;
+        if (ch.target_path == "translation")
+            path = AnimationPath::Translation;
+        else if (ch.target_path == "rotation")
+            path = AnimationPath::Rotation;
+        else if (ch.target_path == "scale")
+            path = AnimationPath::Scale;
         else {
             diag.warn(cobj, "morph-target weights are not animated (not supported); channel "
                             "skipped");
@@ -601,16 +607,16 @@ Result<std::vector<double>> ExtensionReader::numbers(const std::string& key, std
     const tinygltf::Value& v = m_value.Get(key);
     const std::size_t len = v.IsArray() ? v.ArrayLen() : 0;
     if (!v.IsArray() || !(len == n || (alsoNMinus1 && len == n - 1)))
-        return m_diag.error(path(key), "must be an array of " + std::to_string(n) +
-                                           (alsoNMinus1 ? " (or " + std::to_string(n - 1) + ")"
-                                                        : std::string()) +
-                                           " numbers");
+        return m_diag.error(
+            path(key), "must be an array of " + std::to_string(n) +
+                           (alsoNMinus1 ? " (or " + std::to_string(n - 1) + ")" : std::string()) +
+                           " numbers");
     std::vector<double> out;
     for (std::size_t i = 0; i < len; ++i) {
         const tinygltf::Value& e = v.Get(int(i));
         if (!e.IsNumber() || !std::isfinite(e.GetNumberAsDouble()))
-            return m_diag.error(path(key), "element " + std::to_string(i) +
-                                               " is not a finite number");
+            return m_diag.error(path(key),
+                                "element " + std::to_string(i) + " is not a finite number");
         out.push_back(e.GetNumberAsDouble());
     }
     if (len == n - 1) out.push_back(1.0);
@@ -693,7 +699,8 @@ Result<Scene> convertModel(const tinygltf::Model& model, const RawFacts& raw,
         // glTF lets a file have nodes but no scene; draw every node that has no parent.
         std::vector<bool> isChild(scene.nodes.size(), false);
         for (const Node& n : scene.nodes)
-            for (int c : n.children) isChild[std::size_t(c)] = true;
+            for (int c : n.children)
+                isChild[std::size_t(c)] = true;
         SceneRoot root;
         root.name = "all root nodes";
         for (std::size_t i = 0; i < scene.nodes.size(); ++i)

@@ -9,14 +9,22 @@ namespace {
 
 const char* modeName(int mode) {
     switch (mode) {
-    case TINYGLTF_MODE_POINTS: return "POINTS";
-    case TINYGLTF_MODE_LINE: return "LINES";
-    case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
-    case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
-    case TINYGLTF_MODE_TRIANGLES: return "TRIANGLES";
-    case TINYGLTF_MODE_TRIANGLE_STRIP: return "TRIANGLE_STRIP";
-    case TINYGLTF_MODE_TRIANGLE_FAN: return "TRIANGLE_FAN";
-    default: return "?";
+    case TINYGLTF_MODE_POINTS:
+        return "POINTS";
+    case TINYGLTF_MODE_LINE:
+        return "LINES";
+    case TINYGLTF_MODE_LINE_LOOP:
+        return "LINE_LOOP";
+    case TINYGLTF_MODE_LINE_STRIP:
+        return "LINE_STRIP";
+    case TINYGLTF_MODE_TRIANGLES:
+        return "TRIANGLES";
+    case TINYGLTF_MODE_TRIANGLE_STRIP:
+        return "TRIANGLE_STRIP";
+    case TINYGLTF_MODE_TRIANGLE_FAN:
+        return "TRIANGLE_FAN";
+    default:
+        return "?";
     }
 }
 
@@ -119,7 +127,8 @@ Result<Mesh> convertMesh(const tinygltf::Model& model, std::size_t meshIndex,
             const std::size_t n = std::size_t(componentCount(model.accessors[std::size_t(a)].type));
             out.colors = toVectors<glm::vec4>(*colors, n);
             if (n == 3)
-                for (glm::vec4& c : out.colors) c.w = 1.0f;
+                for (glm::vec4& c : out.colors)
+                    c.w = 1.0f;
         }
         const int set = texcoordSet(model, prim.material);
         const std::string texcoordName = "TEXCOORD_" + std::to_string(set);
@@ -142,13 +151,15 @@ Result<Mesh> convertMesh(const tinygltf::Model& model, std::size_t meshIndex,
             sequence = std::move(*indices);
         } else {
             sequence.resize(vertexCount);
-            for (std::size_t i = 0; i < vertexCount; ++i) sequence[i] = std::uint32_t(i);
+            for (std::size_t i = 0; i < vertexCount; ++i)
+                sequence[i] = std::uint32_t(i);
         }
         const std::size_t given = sequence.size();
         out.indices = triangleList(prim.mode, sequence);
         if (prim.mode == TINYGLTF_MODE_TRIANGLES && given % 3 != 0)
-            diag.warn(obj, std::to_string(given) + " vertices for TRIANGLES is not a multiple "
-                                                   "of 3; the last " +
+            diag.warn(obj, std::to_string(given) +
+                               " vertices for TRIANGLES is not a multiple "
+                               "of 3; the last " +
                                std::to_string(given % 3) + " are ignored");
         if (out.indices.empty()) {
             diag.warn(obj, std::string(modeName(prim.mode)) + " with " + std::to_string(given) +

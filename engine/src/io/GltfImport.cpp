@@ -16,7 +16,7 @@ namespace {
 /// What the file-system callbacks need: the only folder they may read from, the size bound,
 /// and the first reason a read was refused (reported instead of tinygltf's "file not found").
 struct FsContext {
-    std::string folder;  ///< absolute, without a trailing separator
+    std::string folder; ///< absolute, without a trailing separator
     std::uint64_t maxBytes = 0;
     std::string refusal;
 };
@@ -40,7 +40,9 @@ bool fileExists(const std::string& path, void* user) {
     return std::filesystem::is_regular_file(path, ec);
 }
 
-std::string expandFilePath(const std::string& path, void*) { return path; }
+std::string expandFilePath(const std::string& path, void*) {
+    return path;
+}
 
 Result<std::vector<unsigned char>> readBounded(const std::filesystem::path& path,
                                                std::uint64_t maxBytes, const std::string& object,
@@ -105,7 +107,8 @@ std::string oneLine(const std::string& text) {
     std::istringstream lines(text);
     std::string line;
     while (std::getline(lines, line)) {
-        while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+        while (!line.empty() && (line.back() == '\r' || line.back() == ' '))
+            line.pop_back();
         if (line.empty()) continue;
         out += (out.empty() ? "" : "; ") + line;
     }
@@ -128,7 +131,8 @@ Result<Scene> load(const std::filesystem::path& path, const LoadOptions& options
     source.maxBytes = options.maxBytes;
 
     std::string extension = path.extension().string();
-    for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+    for (char& c : extension)
+        c = char(std::tolower(static_cast<unsigned char>(c)));
     std::string_view json;
     std::optional<GlbLayout> glb;
     if (isGlb(*bytes) || extension == ".glb") {
@@ -141,7 +145,8 @@ Result<Scene> load(const std::filesystem::path& path, const LoadOptions& options
                                 glb->jsonLength);
         // Unknown chunks after the ones tinygltf reads are dropped by shortening the length.
         const std::uint32_t length = std::uint32_t(glb->tinygltfLength);
-        for (int i = 0; i < 4; ++i) (*bytes)[8 + std::size_t(i)] = (length >> (8 * i)) & 0xFF;
+        for (int i = 0; i < 4; ++i)
+            (*bytes)[8 + std::size_t(i)] = (length >> (8 * i)) & 0xFF;
     } else {
         json = std::string_view(reinterpret_cast<const char*>(bytes->data()), bytes->size());
     }
@@ -160,11 +165,10 @@ Result<Scene> load(const std::filesystem::path& path, const LoadOptions& options
     parser.SetImageLoader(&keepImage, &images);
     tinygltf::Model model;
     std::string err, warn;
-    const bool parsed =
-        glb ? parser.LoadBinaryFromMemory(&model, &err, &warn, bytes->data(),
-                                          unsigned(glb->tinygltfLength), fs.folder)
-            : parser.LoadASCIIFromString(&model, &err, &warn, json.data(), unsigned(json.size()),
-                                         fs.folder);
+    const bool parsed = glb ? parser.LoadBinaryFromMemory(&model, &err, &warn, bytes->data(),
+                                                          unsigned(glb->tinygltfLength), fs.folder)
+                            : parser.LoadASCIIFromString(&model, &err, &warn, json.data(),
+                                                         unsigned(json.size()), fs.folder);
     if (!parsed) {
         std::string message = oneLine(err);
         if (!fs.refusal.empty()) message += " (" + fs.refusal + ")";

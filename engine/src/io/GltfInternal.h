@@ -13,17 +13,15 @@
 //   5. Scene::validate()  the scene model's own checks, as a final net.
 #pragma once
 
-#include <lantern/Io.h>
-#include <lantern/Scene.h>
-
-#include <tiny_gltf.h>
-
 #include <cstdint>
 #include <filesystem>
+#include <lantern/Io.h>
+#include <lantern/Scene.h>
 #include <map>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <tiny_gltf.h>
 #include <vector>
 
 namespace lantern::gltf {
@@ -105,14 +103,14 @@ Result<std::string> checkRelativeUri(std::string_view uri, const std::string& ob
 /// of primitives written (tinygltf silently drops malformed ones), and why an external image
 /// cannot be read (tinygltf only warns; it is an error once a material uses the image).
 struct RawFacts {
-    std::vector<bool> perspectiveHasZfar;      ///< per camera
-    std::vector<std::size_t> primitiveCounts;  ///< per mesh, as written
-    std::map<int, std::string> imageProblems;  ///< per image index
+    std::vector<bool> perspectiveHasZfar;     ///< per camera
+    std::vector<std::size_t> primitiveCounts; ///< per mesh, as written
+    std::map<int, std::string> imageProblems; ///< per image index
 };
 
 /// Where the JSON came from, for the checks on buffers and external files.
 struct Source {
-    std::filesystem::path folder;  ///< the scene's folder (absolute)
+    std::filesystem::path folder; ///< the scene's folder (absolute)
     bool glb = false;
     bool glbHasBin = false;
     std::uint64_t maxBytes = 0;
@@ -196,7 +194,8 @@ public:
     /// An array of exactly n finite numbers (or, with `alsoN1`, n-1 numbers: an RGB given for
     /// an RGBA with alpha 1); `fallback` when absent.
     Result<std::vector<double>> numbers(const std::string& key, std::size_t n,
-                                        std::vector<double> fallback, bool alsoNMinus1 = false) const;
+                                        std::vector<double> fallback,
+                                        bool alsoNMinus1 = false) const;
     Result<bool> boolean(const std::string& key, bool fallback) const;
     Result<std::string> string(const std::string& key, std::string fallback) const;
     /// A member object (for nested blocks like "back" or "lookAt").

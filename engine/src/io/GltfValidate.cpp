@@ -30,8 +30,8 @@ std::optional<std::pair<int, int>> parseVersion(const std::string& v) {
     return std::pair{std::stoi(v.substr(0, dot)), std::stoi(v.substr(dot + 1))};
 }
 
-Result<void> checkIndex(int index, std::size_t size, const std::string& object,
-                        const char* what, const Diagnostics& diag) {
+Result<void> checkIndex(int index, std::size_t size, const std::string& object, const char* what,
+                        const Diagnostics& diag) {
     if (index < 0 || std::size_t(index) >= size)
         return diag.error(object, std::string(what) + " " + std::to_string(index) +
                                       " does not exist (the file has " + std::to_string(size) +
@@ -42,28 +42,28 @@ Result<void> checkIndex(int index, std::size_t size, const std::string& object,
 /// An accessor used for a purpose: its type and component types must be among those allowed.
 struct Format {
     std::vector<int> types;
-    std::vector<int> componentTypes;  ///< FLOAT, or normalized integer types
-    bool allowNormalizedOnly = true;  ///< integer types must be normalized
+    std::vector<int> componentTypes; ///< FLOAT, or normalized integer types
+    bool allowNormalizedOnly = true; ///< integer types must be normalized
 };
 
 Result<void> checkFormat(const tinygltf::Model& model, int accessor, const Format& format,
                          const std::string& object, const Diagnostics& diag) {
     const tinygltf::Accessor& a = model.accessors[std::size_t(accessor)];
-    const bool typeOk = std::find(format.types.begin(), format.types.end(), a.type) !=
-                        format.types.end();
+    const bool typeOk =
+        std::find(format.types.begin(), format.types.end(), a.type) != format.types.end();
     const bool componentOk =
         std::find(format.componentTypes.begin(), format.componentTypes.end(), a.componentType) !=
             format.componentTypes.end() &&
         (a.componentType == kFloat || !format.allowNormalizedOnly || a.normalized);
     if (typeOk && componentOk) return {};
     std::string allowed;
-    for (int t : format.types) allowed += (allowed.empty() ? "" : "/") + typeName(t);
+    for (int t : format.types)
+        allowed += (allowed.empty() ? "" : "/") + typeName(t);
     allowed += " of ";
     bool first = true;
     for (int c : format.componentTypes) {
-        allowed += (first ? "" : ", ") + std::string(c != kFloat && format.allowNormalizedOnly
-                                                         ? "normalized "
-                                                         : "") +
+        allowed += (first ? "" : ", ") +
+                   std::string(c != kFloat && format.allowNormalizedOnly ? "normalized " : "") +
                    componentTypeName(c);
         first = false;
     }
@@ -79,9 +79,8 @@ Result<void> validateMeshes(const tinygltf::Model& model, const RawFacts& raw,
     const Format color{{TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4},
                        {kFloat, kUnsignedByte, kUnsignedShort}};
     const Format texcoord{{TINYGLTF_TYPE_VEC2}, {kFloat, kUnsignedByte, kUnsignedShort}};
-    const Format indices{{TINYGLTF_TYPE_SCALAR},
-                         {kUnsignedByte, kUnsignedShort, kUnsignedInt},
-                         false};
+    const Format indices{
+        {TINYGLTF_TYPE_SCALAR}, {kUnsignedByte, kUnsignedShort, kUnsignedInt}, false};
     for (std::size_t m = 0; m < model.meshes.size(); ++m) {
         const tinygltf::Mesh& mesh = model.meshes[m];
         if (m < raw.primitiveCounts.size() && raw.primitiveCounts[m] != mesh.primitives.size())
@@ -93,8 +92,8 @@ Result<void> validateMeshes(const tinygltf::Model& model, const RawFacts& raw,
             const tinygltf::Primitive& prim = mesh.primitives[p];
             const std::string obj = at("meshes", m) + "." + at("primitives", p);
             if (prim.mode < TINYGLTF_MODE_POINTS || prim.mode > TINYGLTF_MODE_TRIANGLE_FAN)
-                return diag.error(obj + ".mode",
-                                  std::to_string(prim.mode) + " is not a glTF primitive mode (0-6)");
+                return diag.error(obj + ".mode", std::to_string(prim.mode) +
+                                                     " is not a glTF primitive mode (0-6)");
             if (prim.material != -1)
                 LANTERN_TRY(checkIndex(prim.material, model.materials.size(), obj + ".material",
                                        "material", diag));
@@ -104,10 +103,14 @@ Result<void> validateMeshes(const tinygltf::Model& model, const RawFacts& raw,
                 const std::string aobj = obj + ".attributes." + name;
                 LANTERN_TRY(checkIndex(accessor, model.accessors.size(), aobj, "accessor", diag));
                 const Format* format = nullptr;
-                if (name == "POSITION") format = &position;
-                else if (name == "NORMAL") format = &normal;
-                else if (name == "COLOR_0") format = &color;
-                else if (name.rfind("TEXCOORD_", 0) == 0) format = &texcoord;
+                if (name == "POSITION")
+                    format = &position;
+                else if (name == "NORMAL")
+                    format = &normal;
+                else if (name == "COLOR_0")
+                    format = &color;
+                else if (name.rfind("TEXCOORD_", 0) == 0)
+                    format = &texcoord;
                 if (format) LANTERN_TRY(checkFormat(model, accessor, *format, aobj, diag));
                 const std::size_t n = model.accessors[std::size_t(accessor)].count;
                 if (count && *count != n)
@@ -122,7 +125,8 @@ Result<void> validateMeshes(const tinygltf::Model& model, const RawFacts& raw,
                                        "accessor", diag));
                 LANTERN_TRY(checkFormat(model, prim.indices, indices, obj + ".indices", diag));
                 const tinygltf::Accessor& a = model.accessors[std::size_t(prim.indices)];
-                if (a.bufferView >= 0 && model.bufferViews[std::size_t(a.bufferView)].byteStride != 0)
+                if (a.bufferView >= 0 &&
+                    model.bufferViews[std::size_t(a.bufferView)].byteStride != 0)
                     return diag.error(obj + ".indices",
                                       "index data must be tightly packed (" +
                                           at("bufferViews", std::size_t(a.bufferView)) +
@@ -138,7 +142,8 @@ Result<void> validateMaterialsAndTextures(const tinygltf::Model& model, const Di
         const tinygltf::Material& m = model.materials[i];
         const std::string obj = at("materials", i);
         const std::pair<const char*, int> refs[] = {
-            {"pbrMetallicRoughness.baseColorTexture", m.pbrMetallicRoughness.baseColorTexture.index},
+            {"pbrMetallicRoughness.baseColorTexture",
+             m.pbrMetallicRoughness.baseColorTexture.index},
             {"pbrMetallicRoughness.metallicRoughnessTexture",
              m.pbrMetallicRoughness.metallicRoughnessTexture.index},
             {"normalTexture", m.normalTexture.index},
@@ -147,11 +152,11 @@ Result<void> validateMaterialsAndTextures(const tinygltf::Model& model, const Di
         };
         for (const auto& [name, index] : refs)
             if (index != -1)
-                LANTERN_TRY(checkIndex(index, model.textures.size(),
-                                       obj + "." + name + ".index", "texture", diag));
+                LANTERN_TRY(checkIndex(index, model.textures.size(), obj + "." + name + ".index",
+                                       "texture", diag));
         if (m.alphaMode != "OPAQUE" && m.alphaMode != "MASK" && m.alphaMode != "BLEND")
-            return diag.error(obj + ".alphaMode", "\"" + m.alphaMode +
-                                                      "\" is not OPAQUE, MASK or BLEND");
+            return diag.error(obj + ".alphaMode",
+                              "\"" + m.alphaMode + "\" is not OPAQUE, MASK or BLEND");
     }
     for (std::size_t i = 0; i < model.textures.size(); ++i) {
         const tinygltf::Texture& t = model.textures[i];
@@ -159,8 +164,8 @@ Result<void> validateMaterialsAndTextures(const tinygltf::Model& model, const Di
             LANTERN_TRY(checkIndex(t.source, model.images.size(), at("textures", i) + ".source",
                                    "image", diag));
         if (t.sampler != -1)
-            LANTERN_TRY(checkIndex(t.sampler, model.samplers.size(),
-                                   at("textures", i) + ".sampler", "sampler", diag));
+            LANTERN_TRY(checkIndex(t.sampler, model.samplers.size(), at("textures", i) + ".sampler",
+                                   "sampler", diag));
     }
     for (std::size_t i = 0; i < model.images.size(); ++i)
         if (model.images[i].bufferView != -1)
@@ -176,10 +181,11 @@ Result<void> validateNodes(const tinygltf::Model& model, const Diagnostics& diag
         if (n.mesh != -1)
             LANTERN_TRY(checkIndex(n.mesh, model.meshes.size(), obj + ".mesh", "mesh", diag));
         if (n.camera != -1)
-            LANTERN_TRY(checkIndex(n.camera, model.cameras.size(), obj + ".camera", "camera", diag));
+            LANTERN_TRY(
+                checkIndex(n.camera, model.cameras.size(), obj + ".camera", "camera", diag));
         for (std::size_t c = 0; c < n.children.size(); ++c)
-            LANTERN_TRY(checkIndex(n.children[c], model.nodes.size(),
-                                   obj + "." + at("children", c), "node", diag));
+            LANTERN_TRY(checkIndex(n.children[c], model.nodes.size(), obj + "." + at("children", c),
+                                   "node", diag));
         const struct {
             const char* name;
             const std::vector<double>& values;
@@ -198,8 +204,8 @@ Result<void> validateNodes(const tinygltf::Model& model, const Diagnostics& diag
             const std::string lobj = obj + ".extensions.KHR_lights_punctual.light";
             const tinygltf::Value& light = ext->second.Get("light");
             if (!light.IsInt()) return diag.error(lobj, "is missing or not an integer");
-            LANTERN_TRY(checkIndex(light.GetNumberAsInt(), model.lights.size(), lobj,
-                                   "light", diag));
+            LANTERN_TRY(
+                checkIndex(light.GetNumberAsInt(), model.lights.size(), lobj, "light", diag));
         }
     }
     for (std::size_t s = 0; s < model.scenes.size(); ++s)
@@ -229,17 +235,18 @@ Result<void> validateAnimations(const tinygltf::Model& model, const Diagnostics&
             if (smp.interpolation != "LINEAR" && smp.interpolation != "STEP" &&
                 smp.interpolation != "CUBICSPLINE")
                 return diag.error(sobj + ".interpolation",
-                                  "\"" + smp.interpolation + "\" is not LINEAR, STEP or CUBICSPLINE");
-            LANTERN_TRY(checkIndex(smp.input, model.accessors.size(), sobj + ".input", "accessor",
-                                   diag));
-            LANTERN_TRY(checkIndex(smp.output, model.accessors.size(), sobj + ".output",
-                                   "accessor", diag));
+                                  "\"" + smp.interpolation +
+                                      "\" is not LINEAR, STEP or CUBICSPLINE");
+            LANTERN_TRY(
+                checkIndex(smp.input, model.accessors.size(), sobj + ".input", "accessor", diag));
+            LANTERN_TRY(
+                checkIndex(smp.output, model.accessors.size(), sobj + ".output", "accessor", diag));
             LANTERN_TRY(checkFormat(model, smp.input, input, sobj + ".input", diag));
             const std::size_t keys = model.accessors[std::size_t(smp.input)].count;
             const std::size_t per = smp.interpolation == "CUBICSPLINE" ? 3 : 1;
             if (per == 3 && keys < 2)
-                return diag.error(sobj + ".input", "CUBICSPLINE needs at least 2 keys, got " +
-                                                       std::to_string(keys));
+                return diag.error(sobj + ".input",
+                                  "CUBICSPLINE needs at least 2 keys, got " + std::to_string(keys));
             const std::size_t values = model.accessors[std::size_t(smp.output)].count;
             // Morph-weight outputs hold several values per key; checked when a channel uses them.
             bool weightsOnly = !anim.channels.empty();
@@ -255,8 +262,8 @@ Result<void> validateAnimations(const tinygltf::Model& model, const Diagnostics&
         for (std::size_t c = 0; c < anim.channels.size(); ++c) {
             const tinygltf::AnimationChannel& ch = anim.channels[c];
             const std::string cobj = obj + "." + at("channels", c);
-            LANTERN_TRY(checkIndex(ch.sampler, anim.samplers.size(), cobj + ".sampler",
-                                   "sampler", diag));
+            LANTERN_TRY(
+                checkIndex(ch.sampler, anim.samplers.size(), cobj + ".sampler", "sampler", diag));
             if (ch.target_node != -1)
                 LANTERN_TRY(checkIndex(ch.target_node, model.nodes.size(), cobj + ".target.node",
                                        "node", diag));
@@ -285,23 +292,22 @@ Result<void> validateModel(const tinygltf::Model& model, const RawFacts& raw,
                            const LoadOptions& options, const Diagnostics& diag) {
     const auto version = parseVersion(model.asset.version);
     if (!version)
-        return diag.error("asset.version", "\"" + model.asset.version +
-                                               "\" is not a MAJOR.MINOR version");
+        return diag.error("asset.version",
+                          "\"" + model.asset.version + "\" is not a MAJOR.MINOR version");
     if (version->first != 2)
-        return diag.error("asset.version", "glTF " + model.asset.version +
-                                               " is not supported (only 2.x)");
+        return diag.error("asset.version",
+                          "glTF " + model.asset.version + " is not supported (only 2.x)");
     if (!model.asset.minVersion.empty()) {
         const auto minVersion = parseVersion(model.asset.minVersion);
         if (!minVersion)
-            return diag.error("asset.minVersion", "\"" + model.asset.minVersion +
-                                                      "\" is not a MAJOR.MINOR version");
+            return diag.error("asset.minVersion",
+                              "\"" + model.asset.minVersion + "\" is not a MAJOR.MINOR version");
         if (*minVersion > *version)
             return diag.error("asset.minVersion", model.asset.minVersion +
                                                       " is greater than the version " +
                                                       model.asset.version);
         if (*minVersion > std::pair{2, 0})
-            return diag.error("asset.minVersion", "the file needs glTF " +
-                                                      model.asset.minVersion +
+            return diag.error("asset.minVersion", "the file needs glTF " + model.asset.minVersion +
                                                       "; this loader reads 2.0");
     }
     for (std::size_t i = 0; i < model.extensionsRequired.size(); ++i)
