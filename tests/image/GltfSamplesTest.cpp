@@ -63,7 +63,8 @@ std::filesystem::path samplesDir() { return sharedDir() / "assets" / "gltf-sampl
 /// The file's own JSON (a .glb's JSON chunk), parsed independently of the loader.
 nlohmann::json fileJson(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
-    std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    std::string bytes(std::filesystem::file_size(path), '\0');
+    in.read(bytes.data(), std::streamsize(bytes.size()));
     if (path.extension() == ".glb") {
         std::uint32_t length = 0;
         std::memcpy(&length, bytes.data() + 12, 4);

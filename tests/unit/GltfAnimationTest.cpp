@@ -39,6 +39,30 @@ double scaleOf(const glm::dmat4& m) { return glm::length(glm::dvec3(m[0])); }
 /// The angle (radians, counter-clockwise about +Z) that the transform turns +X to.
 double zAngleOf(const glm::dmat4& m) { return std::atan2(m[0][1], m[0][0]); }
 
+/// One expected pose value: a node's translation, its angle about +Z, or its scale, at a time.
+enum class Kind { Translation, Angle, Scale };
+struct Row {
+    int node;
+    Kind kind;
+    double time;
+    glm::dvec3 expected;  ///< the translation, or (angle, 0, 0), or (scale, 0, 0)
+    const char* why;
+};
+
+void checkRows(const Scene& s, const std::vector<Row>& rows, double tolerance) {
+    for (const Row& r : rows) {
+        const Pose pose = evaluatePose(s, -1, r.time);
+        const glm::dmat4& m = pose.worldFromNode[std::size_t(r.node)];
+        const std::string where = std::string(r.why) + " (node " + std::to_string(r.node) +
+                                  ", t=" + std::to_string(r.time) + ")";
+        switch (r.kind) {
+        case Kind::Translation: EXPECT_LT(glm::length(translationOf(m) - r.expected), tolerance) << where; break;
+        case Kind::Angle: EXPECT_NEAR(zAngleOf(m), r.expected.x, tolerance) << where; break;
+        case Kind::Scale: EXPECT_NEAR(scaleOf(m), r.expected.x, tolerance) << where; break;
+        }
+    }
+}
+
 TEST(GltfAnimation, HandComputedValuesAtAndBetweenKeys) {
     GltfBuilder b;
     b.addTriangle();  // node 0 carries mesh 0; the animated nodes reuse it
@@ -64,48 +88,30 @@ TEST(GltfAnimation, HandComputedValuesAtAndBetweenKeys) {
     EXPECT_DOUBLE_EQ(s.animations[0].startTime(), 1.0);
     EXPECT_DOUBLE_EQ(s.animations[0].endTime(), 4.0);
 
-    enum Kind { Translation, Angle, Scale };
-    struct Row {
-        int node;
-        Kind kind;
-        double time;
-        glm::dvec3 expected;  ///< translation, (angle, 0, 0) or (scale, 0, 0)
-        const char* why;
-    };
     const double deg = kPi / 180.0;
-    const Row rows[] = {
-        {linearT, Translation, 0.0, {0, 0, 0}, "before the first key: clamps to key 0"},
-        {linearT, Translation, 1.0, {0, 0, 0}, "at key 0"},
-        {linearT, Translation, 1.5, {1, 2, 0}, "halfway between keys 0 and 1"},
-        {linearT, Translation, 2.0, {2, 4, 0}, "at key 1"},
-        {linearT, Translation, 3.0, {2, 4, 4}, "halfway in the 2-second interval"},
-        {linearT, Translation, 10.0, {2, 4, 8}, "after the last key: clamps"},
-        {linearR, Angle, 1.5, {45 * deg, 0, 0}, "shortest arc from identity to -q(90)"},
-        {linearR, Angle, 2.0, {90 * deg, 0, 0}, "at key 1"},
-        {linearR, Angle, 3.0, {145 * deg, 0, 0}, "slerp 90 -> 200 degrees, halfway"},
-        {linearR, Angle, 3.5, {172.5 * deg, 0, 0}, "three quarters"},
-        {stepS, Scale, 0.5, {1, 0, 0}, "before the first key"},
-        {stepS, Scale, 1.99, {1, 0, 0}, "STEP holds key 0 until key 1"},
-        {stepS, Scale, 2.0, {2, 0, 0}, "at key 1"},
-        {stepS, Scale, 3.9, {2, 0, 0}, "holds key 1"},
-        {stepS, Scale, 4.0, {3, 0, 0}, "at the last key"},
+    const std::vector<Row> rows = {
+        {linearT, Kind::Translation, 0.0, {0, 0, 0}, "before the first key: clamps to key 0"},
+        {linearT, Kind::Translation, 1.0, {0, 0, 0}, "at key 0"},
+        {linearT, Kind::Translation, 1.5, {1, 2, 0}, "halfway between keys 0 and 1"},
+        {linearT, Kind::Translation, 2.0, {2, 4, 0}, "at key 1"},
+        {linearT, Kind::Translation, 3.0, {2, 4, 4}, "halfway in the 2-second interval"},
+        {linearT, Kind::Translation, 10.0, {2, 4, 8}, "after the last key: clamps"},
+        {linearR, Kind::Angle, 1.5, {45 * deg, 0, 0}, "shortest arc from identity to -q(90)"},
+        {linearR, Kind::Angle, 2.0, {90 * deg, 0, 0}, "at key 1"},
+        {linearR, Kind::Angle, 3.0, {145 * deg, 0, 0}, "slerp 90 -> 200 degrees, halfway"},
+        {linearR, Kind::Angle, 3.5, {172.5 * deg, 0, 0}, "three quarters"},
+        {stepS, Kind::Scale, 0.5, {1, 0, 0}, "before the first key"},
+        {stepS, Kind::Scale, 1.99, {1, 0, 0}, "STEP holds key 0 until key 1"},
+        {stepS, Kind::Scale, 2.0, {2, 0, 0}, "at key 1"},
+        {stepS, Kind::Scale, 3.9, {2, 0, 0}, "holds key 1"},
+        {stepS, Kind::Scale, 4.0, {3, 0, 0}, "at the last key"},
         // Hermite, s = 0.5: h00 = h01 = 0.5, h10 = 0.125, h11 = -0.125; tangents scale by dt.
-        {cubicT, Translation, 1.5, {0.625, 0.25, 0}, "0.125*(1,0,0) + 0.5*(1,1,0) - 0.125*(0,2,0)"},
-        {cubicT, Translation, 2.0, {1, 1, 0}, "at key 1"},
-        {cubicT, Translation, 3.0, {1.25, 0.5, 0}, "0.5*(1,1,0) + 0.125*2*(3,0,0)"},
-        {cubicT, Translation, 5.0, {0, 0, 0}, "clamps to the last value"},
+        {cubicT, Kind::Translation, 1.5, {0.625, 0.25, 0}, "0.125*(1,0,0) + 0.5*(1,1,0) - 0.125*(0,2,0)"},
+        {cubicT, Kind::Translation, 2.0, {1, 1, 0}, "at key 1"},
+        {cubicT, Kind::Translation, 3.0, {1.25, 0.5, 0}, "0.5*(1,1,0) + 0.125*2*(3,0,0)"},
+        {cubicT, Kind::Translation, 5.0, {0, 0, 0}, "clamps to the last value"},
     };
-    for (const Row& r : rows) {
-        const Pose pose = evaluatePose(s, -1, r.time);
-        const glm::dmat4& m = pose.worldFromNode[std::size_t(r.node)];
-        switch (r.kind) {
-        case Translation:
-            EXPECT_LT(glm::length(translationOf(m) - r.expected), 1e-6) << r.why << " t=" << r.time;
-            break;
-        case Angle: EXPECT_NEAR(zAngleOf(m), r.expected.x, 1e-6) << r.why << " t=" << r.time; break;
-        case Scale: EXPECT_NEAR(scaleOf(m), r.expected.x, 1e-6) << r.why << " t=" << r.time; break;
-        }
-    }
+    checkRows(s, rows, 1e-6);
 }
 
 TEST(GltfAnimation, BadSamplersAreRefusedWithTheirPath) {
@@ -149,46 +155,28 @@ TEST(GltfAnimation, InterpolationTestSample) {
     // about -Z by 0, 45, 90, 135, 180 degrees; translations alternate y = 6.8, 10.8 (x = 0,
     // 3.4, -3.4). Every cubic tangent pair cancels at s = 0.5 (zero tangents for scale and
     // translation, equal in/out tangents for rotation), so midpoints equal the linear ones.
-    enum Kind { Translation, Angle, Scale };
-    struct Row {
-        int node;
-        Kind kind;
-        double time;
-        glm::dvec3 expected;
-        const char* why;
-    };
     const double deg = kPi / 180.0;
     // Hermite with zero tangents at s = 0.25: h00 = 0.84375 (from 1 to 0 in a scale key).
-    const Row rows[] = {
-        {0, Scale, 0.25, {1, 0, 0}, "STEP holds 1"},
-        {0, Scale, 0.75, {0, 0, 0}, "STEP holds 0 after the key at 0.5"},
-        {1, Scale, 0.25, {0.5, 0, 0}, "LINEAR midpoint of 1 and 0"},
-        {1, Scale, 0.5, {0, 0, 0}, "at a key"},
-        {2, Scale, 0.125, {0.84375, 0, 0}, "CUBICSPLINE, s = 0.25, zero tangents (linear: 0.75)"},
-        {2, Scale, 0.25, {0.5, 0, 0}, "CUBICSPLINE midpoint"},
-        {3, Angle, 0.75, {-45 * deg, 0, 0}, "STEP holds the 45 degree key"},
-        {5, Angle, 0.25, {-22.5 * deg, 0, 0}, "slerp midpoint"},
-        {5, Angle, 1.75, {-157.5 * deg, 0, 0}, "slerp midpoint of 135 and 180"},
-        {4, Angle, 0.75, {-67.5 * deg, 0, 0}, "CUBICSPLINE midpoint, renormalised"},
-        {4, Angle, 1.0, {-90 * deg, 0, 0}, "at a key"},
-        {6, Translation, 0.25, {0, 6.8, 0}, "STEP"},
-        {6, Translation, 0.5, {0, 10.8, 0}, "STEP at the key"},
-        {7, Translation, 0.25, {3.4, 8.8, 0}, "CUBICSPLINE midpoint"},
-        {8, Translation, 0.25, {-3.4, 8.8, 0}, "LINEAR midpoint"},
-        {8, Translation, 5.0, {-3.4, 6.8, 0}, "after the last key: clamps"},
-        {8, Translation, -1.0, {-3.4, 6.8, 0}, "before the first key: clamps"},
+    const std::vector<Row> rows = {
+        {0, Kind::Scale, 0.25, {1, 0, 0}, "STEP holds 1"},
+        {0, Kind::Scale, 0.75, {0, 0, 0}, "STEP holds 0 after the key at 0.5"},
+        {1, Kind::Scale, 0.25, {0.5, 0, 0}, "LINEAR midpoint of 1 and 0"},
+        {1, Kind::Scale, 0.5, {0, 0, 0}, "at a key"},
+        {2, Kind::Scale, 0.125, {0.84375, 0, 0}, "CUBICSPLINE, s = 0.25, zero tangents (linear: 0.75)"},
+        {2, Kind::Scale, 0.25, {0.5, 0, 0}, "CUBICSPLINE midpoint"},
+        {3, Kind::Angle, 0.75, {-45 * deg, 0, 0}, "STEP holds the 45 degree key"},
+        {5, Kind::Angle, 0.25, {-22.5 * deg, 0, 0}, "slerp midpoint"},
+        {5, Kind::Angle, 1.75, {-157.5 * deg, 0, 0}, "slerp midpoint of 135 and 180"},
+        {4, Kind::Angle, 0.75, {-67.5 * deg, 0, 0}, "CUBICSPLINE midpoint, renormalised"},
+        {4, Kind::Angle, 1.0, {-90 * deg, 0, 0}, "at a key"},
+        {6, Kind::Translation, 0.25, {0, 6.8, 0}, "STEP"},
+        {6, Kind::Translation, 0.5, {0, 10.8, 0}, "STEP at the key"},
+        {7, Kind::Translation, 0.25, {3.4, 8.8, 0}, "CUBICSPLINE midpoint"},
+        {8, Kind::Translation, 0.25, {-3.4, 8.8, 0}, "LINEAR midpoint"},
+        {8, Kind::Translation, 5.0, {-3.4, 6.8, 0}, "after the last key: clamps"},
+        {8, Kind::Translation, -1.0, {-3.4, 6.8, 0}, "before the first key: clamps"},
     };
-    for (const Row& r : rows) {
-        const Pose pose = evaluatePose(s, -1, r.time);
-        const glm::dmat4& m = pose.worldFromNode[std::size_t(r.node)];
-        switch (r.kind) {
-        case Translation:
-            EXPECT_LT(glm::length(translationOf(m) - r.expected), 1e-5) << r.why << " node " << r.node;
-            break;
-        case Angle: EXPECT_NEAR(zAngleOf(m), r.expected.x, 1e-5) << r.why << " node " << r.node; break;
-        case Scale: EXPECT_NEAR(scaleOf(m), r.expected.x, 1e-5) << r.why << " node " << r.node; break;
-        }
-    }
+    checkRows(s, rows, 1e-5);
 }
 
 TEST(GltfAnimation, CamerasAndLightsMoveWithTheirAnimatedNodes) {

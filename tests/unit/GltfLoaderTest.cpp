@@ -112,7 +112,8 @@ TEST(GltfLoader, GlbUnknownChunksAfterTheBinChunkAreIgnored) {
     b.addTriangle();
     const auto path = b.write(dir, "tri", GltfBuilder::Storage::Glb);
     std::ifstream in(path, std::ios::binary);
-    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), {});
+    std::vector<unsigned char> bytes(std::filesystem::file_size(path));
+    in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size()));
     const unsigned char extra[] = {4, 0, 0, 0, 'X', 'T', 'R', 'A', 1, 2, 3, 4};
     bytes.insert(bytes.end(), std::begin(extra), std::end(extra));
     const std::uint32_t length = std::uint32_t(bytes.size());

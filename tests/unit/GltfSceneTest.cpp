@@ -128,7 +128,7 @@ TEST(GltfScene, BadMaterialValuesAreRefusedWithTheirPath) {
          "array of 3 numbers"},
         {{{"extensions", {{"LANTERN_materials_phong", {{"diffuse", "red"}}}}}}, ext + ".diffuse", "array of 4"},
         {{{"extensions", {{"LANTERN_materials_phong", {{"shininess", "shiny"}}}}}}, ext + ".shininess",
-         "must be a number"},
+         "must be a finite number"},
         {{{"pbrMetallicRoughness", {{"roughnessFactor", 1.5}}}}, "materials[0].pbrMetallicRoughness.roughnessFactor",
          "in [0, 1]"},
         {{{"alphaMode", "CUTOUT"}}, "materials[0].alphaMode", "not OPAQUE, MASK or BLEND"},

@@ -12,12 +12,6 @@
 namespace lantern::gltf {
 namespace {
 
-constexpr int kByte = TINYGLTF_COMPONENT_TYPE_BYTE;
-constexpr int kUnsignedByte = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-constexpr int kShort = TINYGLTF_COMPONENT_TYPE_SHORT;
-constexpr int kUnsignedShort = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
-constexpr int kUnsignedInt = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT;
 
 int matrixRows(int type) {
     switch (type) {

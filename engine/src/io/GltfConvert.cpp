@@ -41,27 +41,16 @@ const tinygltf::Value* extension(const tinygltf::ExtensionMap& map, const char* 
 
 // --- Materials and textures -----------------------------------------------------------------
 
-Result<MaterialSide> readPhongSide(const ExtensionReader& r) {
+/// One side of LANTERN_materials_phong; defaults are GL's (MaterialSide's).
+MaterialSide readPhongSide(const ExtensionReader& r) {
     r.warnUnknown({"ambient", "diffuse", "specular", "emission", "shininess", "back"});
     MaterialSide s;
-    auto ambient = r.numbers("ambient", 3, {0.2, 0.2, 0.2});
-    if (!ambient) return std::move(ambient).error();
-    auto diffuse = r.numbers("diffuse", 4, {0.8, 0.8, 0.8, 1.0}, true);
-    if (!diffuse) return std::move(diffuse).error();
-    auto specular = r.numbers("specular", 3, {0.0, 0.0, 0.0});
-    if (!specular) return std::move(specular).error();
-    auto emission = r.numbers("emission", 3, {0.0, 0.0, 0.0});
-    if (!emission) return std::move(emission).error();
-    auto shininess = r.number("shininess", 0.0);
-    if (!shininess) return std::move(shininess).error();
-    if (*shininess < 0.0)
-        return makeError(ErrorCode::InvalidInput, "must be >= 0, got " + std::to_string(*shininess),
-                         r.object() + ".shininess");
-    s.ambient = vec3(*ambient);
-    s.diffuse = vec4(*diffuse);
-    s.specular = vec3(*specular);
-    s.emission = vec3(*emission);
-    s.shininess = *shininess;
+    s.ambient = r.vec3("ambient", s.ambient);
+    s.diffuse = r.rgba("diffuse", s.diffuse);
+    s.specular = r.vec3("specular", s.specular);
+    s.emission = r.vec3("emission", s.emission);
+    s.shininess = r.number("shininess", s.shininess);
+    if (s.shininess < 0.0) r.fail("shininess", "must be >= 0, got " + std::to_string(s.shininess));
     return s;
 }
 
@@ -200,25 +189,20 @@ Result<Material> convertMaterial(const tinygltf::Model& model, std::size_t index
     double emissiveStrength = 1.0;
     if (const tinygltf::Value* e = extension(src.extensions, "KHR_materials_emissive_strength")) {
         ExtensionReader r(*e, obj + ".extensions.KHR_materials_emissive_strength", diag);
-        auto strength = r.number("emissiveStrength", 1.0);
-        if (!strength) return std::move(strength).error();
-        if (*strength < 0.0) return diag.error(r.object() + ".emissiveStrength", "must be >= 0");
-        emissiveStrength = *strength;
+        emissiveStrength = r.number("emissiveStrength", 1.0);
+        if (emissiveStrength < 0.0) r.fail("emissiveStrength", "must be >= 0");
+        LANTERN_TRY(r.status());
     }
 
     const glm::dvec4 baseColor = vec4(pbr.baseColorFactor);
     if (const tinygltf::Value* e = extension(src.extensions, "LANTERN_materials_phong")) {
         ExtensionReader r(*e, obj + ".extensions.LANTERN_materials_phong", diag);
-        auto front = readPhongSide(r);
-        if (!front) return inFile(std::move(front).error(), diag);
-        m.front = *front;
-        if (auto back = r.child("back")) {
-            auto side = readPhongSide(*back);
-            if (!side) return inFile(std::move(side).error(), diag);
-            m.back = *side;
-        } else if (r.has("back")) {
-            return diag.error(r.object() + ".back", "must be an object");
-        }
+        m.front = readPhongSide(r);
+        if (auto back = r.child("back"))
+            m.back = readPhongSide(*back);
+        else if (r.has("back"))
+            r.fail("back", "must be an object");
+        LANTERN_TRY(r.status());
     } else if (m.unlit) {
         // KHR_materials_unlit: the colour is the base colour; lighting terms are unused.
         m.front.diffuse = baseColor;
@@ -293,19 +277,13 @@ Result<Light> convertLight(const tinygltf::Light& src, std::size_t index, const 
         ExtensionReader r(*e, obj + ".extensions.LANTERN_lights_phong", diag);
         r.warnUnknown(
             {"ambient", "diffuse", "specular", "attenuation", "spotExponent", "spotCutoffDeg"});
-        auto ambient = r.numbers("ambient", 3, {0, 0, 0});
-        if (!ambient) return std::move(ambient).error();
-        auto diffuse = r.numbers("diffuse", 3, {1, 1, 1});
-        if (!diffuse) return std::move(diffuse).error();
-        auto specular = r.numbers("specular", 3, {1, 1, 1});
-        if (!specular) return std::move(specular).error();
-        auto attenuation = r.numbers("attenuation", 3, {1, 0, 0});
-        if (!attenuation) return std::move(attenuation).error();
-        auto exponent = r.number("spotExponent", 0.0);
-        if (!exponent) return std::move(exponent).error();
-        auto cutoff = r.number("spotCutoffDeg", 180.0);
-        if (!cutoff) return std::move(cutoff).error();
-        const glm::dvec3 att = vec3(*attenuation);
+        const glm::dvec3 att = r.vec3("attenuation", {1, 0, 0});
+        const double exponent = r.number("spotExponent", 0.0);
+        const double cutoff = r.number("spotCutoffDeg", 180.0);
+        l.ambient = r.vec3("ambient", {0, 0, 0});
+        l.diffuse = r.vec3("diffuse", {1, 1, 1});
+        l.specular = r.vec3("specular", {1, 1, 1});
+        LANTERN_TRY(r.status());
         if (att.x < 0 || att.y < 0 || att.z < 0)
             return diag.error(r.object() + ".attenuation",
                               "coefficients must be >= 0 (a negative one can make the light "
@@ -313,25 +291,22 @@ Result<Light> convertLight(const tinygltf::Light& src, std::size_t index, const 
         if (att == glm::dvec3(0.0))
             return diag.error(r.object() + ".attenuation",
                               "coefficients are all zero (1/0: an infinitely bright light)");
-        if (*exponent < 0.0) return diag.error(r.object() + ".spotExponent", "must be >= 0");
-        if (!((*cutoff >= 0.0 && *cutoff <= 90.0) || *cutoff == 180.0))
+        if (exponent < 0.0) return diag.error(r.object() + ".spotExponent", "must be >= 0");
+        if (!((cutoff >= 0.0 && cutoff <= 90.0) || cutoff == 180.0))
             return diag.error(r.object() + ".spotCutoffDeg",
-                              std::to_string(*cutoff) +
+                              std::to_string(cutoff) +
                                   " is outside [0, 90] and not 180 (GL's no-cone value): a cone "
                                   "wider than a half-space is not a spot light");
-        if (l.type != LightType::Spot && *cutoff != 180.0)
+        if (l.type != LightType::Spot && cutoff != 180.0)
             diag.warn(r.object() + ".spotCutoffDeg",
                       "ignored: the light's KHR_lights_punctual type is " + src.type);
-        if (l.type == LightType::Spot && *cutoff == 180.0)
+        if (l.type == LightType::Spot && cutoff == 180.0)
             diag.warn(r.object(), "spot light without spotCutoffDeg (default 180, no cone): it "
                                   "lights in every direction like GL's");
         l.falloff = LightFalloff::Gl;
-        l.ambient = vec3(*ambient);
-        l.diffuse = vec3(*diffuse);
-        l.specular = vec3(*specular);
         l.attenuation = att;
-        l.spotExponent = *exponent;
-        l.spotCutoffDeg = *cutoff;
+        l.spotExponent = exponent;
+        l.spotCutoffDeg = cutoff;
     } else {
         l.falloff = LightFalloff::Gltf;
         l.ambient = glm::dvec3(0.0);
@@ -406,10 +381,9 @@ Result<Camera> convertCamera(const tinygltf::Camera& src, std::size_t index, boo
                 const bool optional = i == 5 && std::string(kind) == "frustum";
                 if (!box->has(names[i]) && !optional)
                     return diag.error(box->object() + "." + names[i], "is missing");
-                auto n = box->number(names[i], kInfinity);
-                if (!n) return std::move(n).error();
-                v[i] = *n;
+                v[i] = box->number(names[i], kInfinity);
             }
+            LANTERN_TRY(box->status());
             c.projection = std::string(kind) == "frustum"
                                ? Projection::makeFrustum(v[0], v[1], v[2], v[3], v[4], v[5])
                                : Projection::makeOrtho(v[0], v[1], v[2], v[3], v[4], v[5]);
@@ -424,10 +398,9 @@ Result<Camera> convertCamera(const tinygltf::Camera& src, std::size_t index, boo
             for (auto [name, field] : {std::pair{"eye", &la.eye}, std::pair{"target", &la.target},
                                        std::pair{"up", &la.up}}) {
                 if (!look->has(name)) return diag.error(look->object() + "." + name, "is missing");
-                auto v = look->numbers(name, 3, {});
-                if (!v) return std::move(v).error();
-                *field = vec3(*v);
+                *field = look->vec3(name, {});
             }
+            LANTERN_TRY(look->status());
             if (auto ok = checkLookAt(la, look->object()); !ok)
                 return inFile(std::move(ok).error(), diag);
             c.lookAt = la;
@@ -485,27 +458,20 @@ Result<std::optional<LightingModel>> convertLighting(const tinygltf::Scene& src,
     ExtensionReader r(*e, at("scenes", index) + ".extensions.LANTERN_lighting", diag);
     r.warnUnknown({"globalAmbient", "localViewer", "twoSided", "shading", "specular"});
     LightingModel model;
-    auto ambient = r.numbers("globalAmbient", 3, {0.2, 0.2, 0.2});
-    if (!ambient) return std::move(ambient).error();
-    model.globalAmbient = vec3(*ambient);
-    auto local = r.boolean("localViewer", false);
-    if (!local) return std::move(local).error();
-    model.localViewer = *local;
-    auto twoSided = r.boolean("twoSided", false);
-    if (!twoSided) return std::move(twoSided).error();
-    model.twoSided = *twoSided;
-    auto shading = r.string("shading", "phong");
-    if (!shading) return std::move(shading).error();
-    const auto mode = parseShadingMode(*shading);
+    model.globalAmbient = r.vec3("globalAmbient", model.globalAmbient);
+    model.localViewer = r.boolean("localViewer", model.localViewer);
+    model.twoSided = r.boolean("twoSided", model.twoSided);
+    const std::string shading = r.string("shading", "phong");
+    const std::string specular = r.string("specular", "blinn");
+    LANTERN_TRY(r.status());
+    const auto mode = parseShadingMode(shading);
     if (!mode)
         return diag.error(r.object() + ".shading",
-                          "\"" + *shading + "\" is not flat, gouraud or phong");
+                          "\"" + shading + "\" is not flat, gouraud or phong");
     model.shading = *mode;
-    auto specular = r.string("specular", "blinn");
-    if (!specular) return std::move(specular).error();
-    const auto spec = parseSpecularModel(*specular);
+    const auto spec = parseSpecularModel(specular);
     if (!spec)
-        return diag.error(r.object() + ".specular", "\"" + *specular + "\" is not blinn or phong");
+        return diag.error(r.object() + ".specular", "\"" + specular + "\" is not blinn or phong");
     model.specular = *spec;
     return std::optional<LightingModel>(model);
 }
@@ -591,55 +557,82 @@ Result<Animation> convertAnimation(const tinygltf::Model& model, std::size_t ind
 
 // --- ExtensionReader ------------------------------------------------------------------------
 
-Result<double> ExtensionReader::number(const std::string& key, double fallback) const {
-    if (!m_value.Has(key)) return fallback;
-    const tinygltf::Value& v = m_value.Get(key);
-    if (!v.IsNumber()) return m_diag.error(path(key), "must be a number");
-    const double d = v.GetNumberAsDouble();
-    if (!std::isfinite(d)) return m_diag.error(path(key), "must be a finite number");
-    return d;
+void ExtensionReader::fail(const std::string& key, const std::string& message) const {
+    if (!*m_error) *m_error = m_diag.error(path(key), message);
 }
 
-Result<std::vector<double>> ExtensionReader::numbers(const std::string& key, std::size_t n,
-                                                     std::vector<double> fallback,
-                                                     bool alsoNMinus1) const {
+Result<void> ExtensionReader::status() const {
+    if (*m_error) return **m_error;
+    return {};
+}
+
+double ExtensionReader::number(const std::string& key, double fallback) const {
     if (!m_value.Has(key)) return fallback;
     const tinygltf::Value& v = m_value.Get(key);
+    if (!v.IsNumber() || !std::isfinite(v.GetNumberAsDouble())) {
+        fail(key, "must be a finite number");
+        return fallback;
+    }
+    return v.GetNumberAsDouble();
+}
+
+std::optional<std::vector<double>> ExtensionReader::numbers(const std::string& key, std::size_t n,
+                                                            std::size_t alsoN) const {
+    if (!m_value.Has(key)) return std::nullopt;
+    const tinygltf::Value& v = m_value.Get(key);
     const std::size_t len = v.IsArray() ? v.ArrayLen() : 0;
-    if (!v.IsArray() || !(len == n || (alsoNMinus1 && len == n - 1)))
-        return m_diag.error(
-            path(key), "must be an array of " + std::to_string(n) +
-                           (alsoNMinus1 ? " (or " + std::to_string(n - 1) + ")" : std::string()) +
-                           " numbers");
+    if (!v.IsArray() || !(len == n || (alsoN != 0 && len == alsoN))) {
+        fail(key, "must be an array of " + std::to_string(n) +
+                      (alsoN ? " (or " + std::to_string(alsoN) + ")" : std::string()) + " numbers");
+        return std::nullopt;
+    }
     std::vector<double> out;
     for (std::size_t i = 0; i < len; ++i) {
         const tinygltf::Value& e = v.Get(int(i));
-        if (!e.IsNumber() || !std::isfinite(e.GetNumberAsDouble()))
-            return m_diag.error(path(key),
-                                "element " + std::to_string(i) + " is not a finite number");
+        if (!e.IsNumber() || !std::isfinite(e.GetNumberAsDouble())) {
+            fail(key, "element " + std::to_string(i) + " is not a finite number");
+            return std::nullopt;
+        }
         out.push_back(e.GetNumberAsDouble());
     }
-    if (len == n - 1) out.push_back(1.0);
     return out;
 }
 
-Result<bool> ExtensionReader::boolean(const std::string& key, bool fallback) const {
+glm::dvec3 ExtensionReader::vec3(const std::string& key, const glm::dvec3& fallback) const {
+    const auto v = numbers(key, 3, 0);
+    return v ? glm::dvec3((*v)[0], (*v)[1], (*v)[2]) : fallback;
+}
+
+glm::dvec4 ExtensionReader::rgba(const std::string& key, const glm::dvec4& fallback) const {
+    const auto v = numbers(key, 4, 3);
+    return v ? glm::dvec4((*v)[0], (*v)[1], (*v)[2], v->size() > 3 ? (*v)[3] : 1.0) : fallback;
+}
+
+bool ExtensionReader::boolean(const std::string& key, bool fallback) const {
     if (!m_value.Has(key)) return fallback;
     const tinygltf::Value& v = m_value.Get(key);
-    if (!v.IsBool()) return m_diag.error(path(key), "must be true or false");
+    if (!v.IsBool()) {
+        fail(key, "must be true or false");
+        return fallback;
+    }
     return v.Get<bool>();
 }
 
-Result<std::string> ExtensionReader::string(const std::string& key, std::string fallback) const {
+std::string ExtensionReader::string(const std::string& key, const std::string& fallback) const {
     if (!m_value.Has(key)) return fallback;
     const tinygltf::Value& v = m_value.Get(key);
-    if (!v.IsString()) return m_diag.error(path(key), "must be a string");
+    if (!v.IsString()) {
+        fail(key, "must be a string");
+        return fallback;
+    }
     return v.Get<std::string>();
 }
 
 std::optional<ExtensionReader> ExtensionReader::child(const std::string& key) const {
     if (!m_value.Has(key) || !m_value.Get(key).IsObject()) return std::nullopt;
-    return ExtensionReader(m_value.Get(key), path(key), m_diag);
+    ExtensionReader c(m_value.Get(key), path(key), m_diag);
+    c.m_error = m_error;
+    return c;
 }
 
 void ExtensionReader::warnUnknown(std::initializer_list<const char*> known) const {

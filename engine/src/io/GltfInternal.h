@@ -18,6 +18,7 @@
 #include <lantern/Io.h>
 #include <lantern/Scene.h>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -25,6 +26,14 @@
 #include <vector>
 
 namespace lantern::gltf {
+
+/// glTF accessor component types by name (INT and DOUBLE are not glTF 2.0 accessor types).
+inline constexpr int kByte = TINYGLTF_COMPONENT_TYPE_BYTE;
+inline constexpr int kUnsignedByte = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+inline constexpr int kShort = TINYGLTF_COMPONENT_TYPE_SHORT;
+inline constexpr int kUnsignedShort = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+inline constexpr int kUnsignedInt = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+inline constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT;
 
 /// Deepest JSON nesting accepted. Real glTF files nest about 8 levels; tinygltf converts
 /// `extensions` and `extras` recursively, so a hostile file nested millions of levels deep
@@ -182,32 +191,45 @@ Result<Scene> convertModel(const tinygltf::Model& model, const RawFacts& raw,
                            const ImageStore& images, const LoadOptions& options,
                            const Diagnostics& diag);
 
-/// Reads an extension's members (tinygltf::Value) with checks and object paths.
+/// Reads an extension's members (tinygltf::Value) with checks and object paths. A member of the
+/// wrong type or length, or a non-finite number, is recorded (the first one counts) and its
+/// fallback returned, so a block of reads is checked once with status(); readers made by child()
+/// record into the same place.
 class ExtensionReader {
 public:
     ExtensionReader(const tinygltf::Value& value, std::string object, const Diagnostics& diag)
-        : m_value(value), m_object(std::move(object)), m_diag(diag) {}
+        : m_value(value), m_object(std::move(object)), m_diag(diag),
+          m_error(std::make_shared<std::optional<Error>>()) {}
     const std::string& object() const { return m_object; }
     bool has(const std::string& key) const { return m_value.Has(key); }
     /// A finite number; `fallback` when absent.
-    Result<double> number(const std::string& key, double fallback) const;
-    /// An array of exactly n finite numbers (or, with `alsoN1`, n-1 numbers: an RGB given for
-    /// an RGBA with alpha 1); `fallback` when absent.
-    Result<std::vector<double>> numbers(const std::string& key, std::size_t n,
-                                        std::vector<double> fallback,
-                                        bool alsoNMinus1 = false) const;
-    Result<bool> boolean(const std::string& key, bool fallback) const;
-    Result<std::string> string(const std::string& key, std::string fallback) const;
-    /// A member object (for nested blocks like "back" or "lookAt").
+    double number(const std::string& key, double fallback) const;
+    /// Three finite numbers.
+    glm::dvec3 vec3(const std::string& key, const glm::dvec3& fallback) const;
+    /// Four finite numbers, or three (an RGB colour given for an RGBA one: alpha 1).
+    glm::dvec4 rgba(const std::string& key, const glm::dvec4& fallback) const;
+    bool boolean(const std::string& key, bool fallback) const;
+    std::string string(const std::string& key, const std::string& fallback) const;
+    /// A member object (for nested blocks like "back" or "lookAt"); nothing when absent or not
+    /// an object.
     std::optional<ExtensionReader> child(const std::string& key) const;
+    /// Records an error about member `key` (unless one is recorded already).
+    void fail(const std::string& key, const std::string& message) const;
+    /// The first error recorded by this reader or its children.
+    Result<void> status() const;
     /// Warns about members the extension does not define (typos should not pass silently).
     void warnUnknown(std::initializer_list<const char*> known) const;
 
 private:
     std::string path(const std::string& key) const { return m_object + "." + key; }
+    /// The numbers of an array member of `n` (or `alsoN` when nonzero) elements, or nothing
+    /// (absent, or recorded as an error).
+    std::optional<std::vector<double>> numbers(const std::string& key, std::size_t n,
+                                               std::size_t alsoN) const;
     const tinygltf::Value& m_value;
     std::string m_object;
     const Diagnostics& m_diag;
+    std::shared_ptr<std::optional<Error>> m_error;
 };
 
 } // namespace lantern::gltf

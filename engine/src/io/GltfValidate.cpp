@@ -10,10 +10,6 @@
 namespace lantern::gltf {
 namespace {
 
-constexpr int kUnsignedByte = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-constexpr int kUnsignedShort = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
-constexpr int kUnsignedInt = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT;
 
 bool supported(const std::string& extension) {
     return std::any_of(std::begin(kSupportedExtensions), std::end(kSupportedExtensions),
@@ -221,11 +217,11 @@ Result<void> validateAnimations(const tinygltf::Model& model, const Diagnostics&
     const Format input{{TINYGLTF_TYPE_SCALAR}, {kFloat}};
     const Format vec3{{TINYGLTF_TYPE_VEC3}, {kFloat}};
     const Format rotation{{TINYGLTF_TYPE_VEC4},
-                          {kFloat, TINYGLTF_COMPONENT_TYPE_BYTE, kUnsignedByte,
-                           TINYGLTF_COMPONENT_TYPE_SHORT, kUnsignedShort}};
+                          {kFloat, kByte, kUnsignedByte,
+                           kShort, kUnsignedShort}};
     const Format weights{{TINYGLTF_TYPE_SCALAR},
-                         {kFloat, TINYGLTF_COMPONENT_TYPE_BYTE, kUnsignedByte,
-                          TINYGLTF_COMPONENT_TYPE_SHORT, kUnsignedShort}};
+                         {kFloat, kByte, kUnsignedByte,
+                          kShort, kUnsignedShort}};
     for (std::size_t a = 0; a < model.animations.size(); ++a) {
         const tinygltf::Animation& anim = model.animations[a];
         const std::string obj = at("animations", a);
