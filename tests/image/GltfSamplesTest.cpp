@@ -1,15 +1,13 @@
 // The Khronos sample models of ../shared/assets/gltf-samples through the `lantern` command:
 // each renders (64x64) with exit 0, no NaN/Inf and something drawn; `lantern info` reports the
 // node and primitive counts written in the file; the animated ones differ at three times.
-#include "TestSupport.h"
+#include "../unit/GltfTestSupport.h"
 
 #include <lantern/Io.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <cstring>
-#include <fstream>
 #include <regex>
 
 namespace {
@@ -60,19 +58,6 @@ const Sample kSamples[] = {
 
 std::filesystem::path samplesDir() { return sharedDir() / "assets" / "gltf-samples"; }
 
-/// The file's own JSON (a .glb's JSON chunk), parsed independently of the loader.
-nlohmann::json fileJson(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::string bytes(std::filesystem::file_size(path), '\0');
-    in.read(bytes.data(), std::streamsize(bytes.size()));
-    if (path.extension() == ".glb") {
-        std::uint32_t length = 0;
-        std::memcpy(&length, bytes.data() + 12, 4);
-        bytes = bytes.substr(20, length);
-    }
-    return nlohmann::json::parse(bytes);
-}
-
 std::size_t countAfter(const std::string& text, const std::string& label) {
     std::smatch m;
     if (!std::regex_search(text, m, std::regex(label + "(\\d+)"))) return std::size_t(-1);
@@ -94,9 +79,8 @@ TEST_F(GltfSamples, EachRendersAndReportsTheFilesCounts) {
     for (const Sample& s : kSamples) {
         SCOPED_TRACE(s.file);
         const auto path = samplesDir() / s.file;
-        const nlohmann::json doc = fileJson(path);
-        std::size_t primitives = 0;
-        for (const auto& mesh : doc.value("meshes", nlohmann::json::array())) primitives += mesh["primitives"].size();
+        const nlohmann::json doc = lantern::test::fileJson(path);
+        const std::size_t primitives = lantern::test::primitivesIn(doc);
 
         const auto info = runProcess({cliPath().string(), "info", path.string()});
         ASSERT_EQ(info.exitCode, 0) << info.err;

@@ -424,4 +424,28 @@ TEST(GltfLoader, UnsupportedPartsWarnAndAreSkipped) {
     for (const std::string& w : *o.warnings) EXPECT_EQ(w.find(o.scene->sourcePath + ": "), 0u) << w;
 }
 
+TEST(GltfLoader, EverySampleModelLoadsWithTheFilesCounts) {
+    // The device-free half of tests/image/GltfSamplesTest.cpp, so that the sanitizer run of the
+    // loader label reads every real asset too.
+    const auto dir = lantern::test::sharedDir() / "assets" / "gltf-samples";
+    if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "the shared assets are absent: " << dir;
+    std::size_t files = 0;
+    for (const auto& e : std::filesystem::recursive_directory_iterator(dir)) {
+        const std::string ext = e.path().extension().string();
+        if (ext != ".gltf" && ext != ".glb") continue;
+        ++files;
+        SCOPED_TRACE(e.path().string());
+        auto o = loadCapturing(e.path());
+        ASSERT_TRUE(o.scene) << o.scene.error().describe();
+        const json doc = lantern::test::fileJson(e.path());
+        const SceneSummary s = summarize(*o.scene);
+        EXPECT_EQ(s.nodes, doc.value("nodes", json::array()).size());
+        EXPECT_EQ(s.primitives, lantern::test::primitivesIn(doc));
+        EXPECT_EQ(s.animations, doc.value("animations", json::array()).size());
+        EXPECT_EQ(s.cameras, doc.value("cameras", json::array()).size());
+        EXPECT_EQ(s.materials, doc.value("materials", json::array()).size());
+    }
+    EXPECT_EQ(files, 24u);
+}
+
 } // namespace

@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -39,6 +41,26 @@ inline LoadOutcome loadCapturing(const std::filesystem::path& path, std::uint64_
     options.log = [sink](LogLevel, std::string_view message) { sink->emplace_back(message); };
     out.scene = loadGltf(path, options);
     return out;
+}
+
+/// A file's own JSON (a .glb's JSON chunk), parsed independently of the loader.
+inline nlohmann::json fileJson(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes(std::filesystem::file_size(path), '\0');
+    in.read(bytes.data(), std::streamsize(bytes.size()));
+    if (path.extension() == ".glb") {
+        std::uint32_t length = 0;
+        std::memcpy(&length, bytes.data() + 12, 4);
+        bytes = bytes.substr(20, length);
+    }
+    return nlohmann::json::parse(bytes);
+}
+
+/// The number of primitives the file's meshes list.
+inline std::size_t primitivesIn(const nlohmann::json& doc) {
+    std::size_t n = 0;
+    for (const auto& mesh : doc.value("meshes", nlohmann::json::array())) n += mesh["primitives"].size();
+    return n;
 }
 
 /// Asserts a refusal whose object is `object` and whose message contains `fragment`.
