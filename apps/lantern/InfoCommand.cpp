@@ -115,7 +115,7 @@ int run(const InfoArgs& a) {
               << breakdown(s.lights, {{"directional", directional},
                                       {"point", point},
                                       {"spot", spot},
-                                      {"LANTERN_lights_phong", glLights}})
+                                      {"GL falloff", glLights}})
               << "\n"
               << "cameras: "
               << breakdown(s.cameras, {{"perspective", perspective},
