@@ -130,6 +130,12 @@ struct FeatureReport {
     std::vector<std::string> variants;  ///< one line per pipeline variant
 };
 
+/// The features `scene` needs under `options` at `timeSeconds` and the pipeline variants a
+/// renderer would choose for them, computed on the CPU without any device (what `lantern info`
+/// and Renderer::explain print). InvalidInput when the scene or the options are refused.
+Result<FeatureReport> explainScene(const Scene& scene, const RenderOptions& options,
+                                   double timeSeconds = 0.0);
+
 /// The headless renderer. Move-only; one per thread (see docs/library.md for thread rules).
 class Renderer {
 public:

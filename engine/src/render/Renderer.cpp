@@ -161,6 +161,10 @@ Result<Image> Renderer::render(const Scene& scene, const RenderOptions& options,
 
 Result<FeatureReport> Renderer::explain(const Scene& scene, const RenderOptions& options,
                                         double time) {
+    return explainScene(scene, options, time);
+}
+
+Result<FeatureReport> explainScene(const Scene& scene, const RenderOptions& options, double time) {
     LANTERN_TRY(scene.validate());
     auto plan = render::buildFramePlan(scene, options, time);
     if (!plan) return std::move(plan).error();
