@@ -2,6 +2,8 @@
 // All composition is in double precision; only camera-relative results become float.
 #include "render/FramePlan.h"
 
+#include "math/Robust.h"
+
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_access.hpp>
 #include <glm/matrix.hpp>
@@ -438,7 +440,9 @@ Result<FramePlan> buildFramePlan(const Scene& scene, const RenderOptions& o, dou
             if (!plan.pose.visible[ni] || node.mesh < 0) continue;
             const glm::dmat4 viewFromModel = viewFromWorld * plan.pose.worldFromNode[ni];
             const glm::dmat3 normals = normalMatrix(viewFromModel);
-            const bool mirrored = glm::determinant(glm::dmat3(viewFromModel)) < 0.0;
+            // Accurate: glm::determinant gets the sign wrong for scales 1e-6 and 1e6 under a
+            // rotation, which would cull the visible faces.
+            const bool mirrored = math::accurateDeterminant(glm::dmat3(viewFromModel)) < 0.0;
             const Mesh& mesh = scene.meshes[node.mesh];
             for (std::size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
                 const Primitive& prim = mesh.primitives[pi];
