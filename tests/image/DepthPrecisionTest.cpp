@@ -90,16 +90,17 @@ Scene makeScene(double distance, const glm::dvec3& camera, bool backFirst) {
     return s;
 }
 
+// Vanishes: a pixel of the middle 6 x 6, which lie inside the near quad, shows neither quad
+// (the near quad's depth rounded to the clear value; the worse failure, so it is reported
+// first). Fights: any pixel of the tile shows the far quad.
 TileResult judgeTile(const Image& image, int k) {
     const int x0 = (k % kColumns) * kTile, y0 = (k / kColumns) * kTile;
+    for (int y = y0 + kTile / 2 - 3; y < y0 + kTile / 2 + 3; ++y)
+        for (int x = x0 + kTile / 2 - 3; x < x0 + kTile / 2 + 3; ++x)
+            if (!(image.pixel(x, y)[3] > 0.5f)) return TileResult::Vanishes;
     for (int y = y0; y < y0 + kTile; ++y)
         for (int x = x0; x < x0 + kTile; ++x)
             if (image.pixel(x, y)[3] > 0.5f && image.pixel(x, y)[0] > 0.5f) return TileResult::Fights;
-    // The middle 6 x 6 pixels lie inside the front quad: each must show it.
-    for (int y = y0 + kTile / 2 - 3; y < y0 + kTile / 2 + 3; ++y)
-        for (int x = x0 + kTile / 2 - 3; x < x0 + kTile / 2 + 3; ++x)
-            if (!(image.pixel(x, y)[3] > 0.5f && image.pixel(x, y)[1] > 0.5f))
-                return TileResult::Vanishes;
     return TileResult::Resolved;
 }
 
