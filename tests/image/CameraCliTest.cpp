@@ -5,9 +5,8 @@
 #include "CameraTestSupport.h"
 #include "TestSupport.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
+#include <gtest/gtest.h>
 
 namespace {
 
@@ -17,8 +16,10 @@ using lantern::test::runLantern;
 using lantern::test::testOutputDir;
 
 std::vector<std::string> spheres(std::vector<std::string> extra) {
-    std::vector<std::string> args{"render", "builtin:spheres", "--width", "32", "--height", "32",
-                                  "-o", (testOutputDir() / "refused.exr").string()};
+    std::vector<std::string> args{"render",   "builtin:spheres",
+                                  "--width",  "32",
+                                  "--height", "32",
+                                  "-o",       (testOutputDir() / "refused.exr").string()};
     args.insert(args.end(), extra.begin(), extra.end());
     return args;
 }
@@ -101,8 +102,8 @@ protected:
     // Renders with the command line and reads the EXR back.
     Image cli(const std::string& name, std::vector<std::string> extra, int w = 64, int h = 48) {
         const std::string out = (testOutputDir() / (name + ".exr")).string();
-        std::vector<std::string> args{"render", "builtin:spheres", "--width", std::to_string(w),
-                                      "--height", std::to_string(h), "-o", out};
+        std::vector<std::string> args{"render",   "builtin:spheres", "--width", std::to_string(w),
+                                      "--height", std::to_string(h), "-o",      out};
         args.insert(args.end(), extra.begin(), extra.end());
         const auto r = runLantern(args);
         EXPECT_EQ(r.exitCode, 0) << name << ": " << r.err;
@@ -130,7 +131,8 @@ float largestDifference(const Image& a, const test::PixelRect& r, const Image& b
     for (int y = 0; y < r.height; ++y)
         for (int x = 0; x < r.width; ++x)
             for (int c = 0; c < 4; ++c)
-                largest = std::max(largest, std::abs(a.pixel(r.x + x, r.y + y)[c] - b.pixel(x, y)[c]));
+                largest =
+                    std::max(largest, std::abs(a.pixel(r.x + x, r.y + y)[c] - b.pixel(x, y)[c]));
     return largest;
 }
 
@@ -161,9 +163,9 @@ TEST_F(CameraCliRender, DepthOptionSelectsTheScheme) {
     // picture away from silhouette edges.
     const auto d = test::compareAwayFromEdges(standard, reversed, 1.0f / 255.0f);
     EXPECT_EQ(d.differing, 0u) << "largest " << d.largest;
-    const auto explain = runLantern({"render", "builtin:spheres", "--width", "16", "--height",
-                                     "16", "--depth", "standard", "--explain", "-o",
-                                     (testOutputDir() / "explain.exr").string()});
+    const auto explain =
+        runLantern({"render", "builtin:spheres", "--width", "16", "--height", "16", "--depth",
+                    "standard", "--explain", "-o", (testOutputDir() / "explain.exr").string()});
     EXPECT_EQ(explain.exitCode, 0) << explain.err;
     EXPECT_NE(explain.out.find("standard-z"), std::string::npos) << explain.out;
 }
@@ -182,9 +184,10 @@ TEST_F(CameraCliRender, ViewportsEachWithItsOwnCamera) {
     // Two views of different sizes in a 96 x 64 image (GL's bottom-left origin), one --camera
     // each (the built-in scene has one camera; views with different cameras are covered by
     // CameraProjection): each must equal a whole-image render of its size.
-    const Image image = cli("viewports", {"--viewport", "0,0,48,64", "--viewport", "48,16,48,48",
-                                          "--camera", "0", "--camera", "0"},
-                            96, 64);
+    const Image image = cli(
+        "viewports",
+        {"--viewport", "0,0,48,64", "--viewport", "48,16,48,48", "--camera", "0", "--camera", "0"},
+        96, 64);
     RenderOptions o;
     o.camera.source = CameraSpec::Source::SceneCamera;
     o.camera.sceneCamera = 0;
@@ -194,7 +197,8 @@ TEST_F(CameraCliRender, ViewportsEachWithItsOwnCamera) {
     EXPECT_LT(largestDifference(image, {48, 0, 48, 48}, api(o)), kOffsetTolerance);
     // Below the second view (image rows 48..63 of the right half) nothing is drawn.
     for (int y = 48; y < 64; ++y)
-        for (int x = 48; x < 96; ++x) ASSERT_EQ(image.pixel(x, y)[3], 0.0f) << x << ", " << y;
+        for (int x = 48; x < 96; ++x)
+            ASSERT_EQ(image.pixel(x, y)[3], 0.0f) << x << ", " << y;
 }
 
 TEST_F(CameraCliRender, QuadLayoutIsTopFrontSideAndPerspective) {
@@ -209,7 +213,7 @@ TEST_F(CameraCliRender, QuadLayoutIsTopFrontSideAndPerspective) {
     };
     struct Quadrant {
         const char* name;
-        test::PixelRect rect;  ///< in the image (top-left origin)
+        test::PixelRect rect; ///< in the image (top-left origin)
         CameraSpec camera;
     };
     const Quadrant quadrants[] = {

@@ -8,10 +8,9 @@
 #include "CameraTestSupport.h"
 #include "TestSupport.h"
 
+#include <cstdio>
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
-
-#include <cstdio>
 
 namespace {
 
@@ -34,8 +33,8 @@ glm::dmat4 quadPlacement() {
 
 struct ViewCase {
     View view;
-    glm::dmat4 viewFromWorld;  ///< GL's, from lookAt (identity for the GL default camera)
-    Projection projection;     ///< what the view uses (for glClipFromView)
+    glm::dmat4 viewFromWorld; ///< GL's, from lookAt (identity for the GL default camera)
+    Projection projection;    ///< what the view uses (for glClipFromView)
 };
 
 struct CameraCase {
@@ -70,7 +69,8 @@ std::vector<CameraCase> cases() {
                        Projection::makeFrustum(-0.02, 0.05, -0.03, 0.015, 0.1, 60)));
     c.push_back(single("frustum off-axis, infinite far", 96, 64, kFront,
                        Projection::makeFrustum(-0.03, 0.02, -0.02, 0.03, 0.1, kInfinity)));
-    c.push_back(single("ortho off-axis, negative near", 96, 64, {{0.3, 0.2, 1.0}, {0.3, 0.2, 0.0}, {0, 1, 0}},
+    c.push_back(single("ortho off-axis, negative near", 96, 64,
+                       {{0.3, 0.2, 1.0}, {0.3, 0.2, 0.0}, {0, 1, 0}},
                        Projection::makeOrtho(-2.2, 1.8, -1.1, 1.6, -3, 3)));
     c.push_back(single("physical lens 35 mm on 36 x 24 mm film", 96, 64, kFront,
                        Projection::makeLens(35, 36, 24, 0.1, kInfinity)));
@@ -92,7 +92,9 @@ std::vector<CameraCase> cases() {
         gl.views.push_back({v, glm::dmat4(1.0), glDefaultCamera().projection});
         c.push_back(gl);
     }
-    c.push_back(CameraCase{"viewport offset inside a larger image", 96, 96,
+    c.push_back(CameraCase{"viewport offset inside a larger image",
+                           96,
+                           96,
                            {lookAtView(View{10, 20, 64, 48, {}}, kFront,
                                        Projection::makePerspective(40 * kDeg, 0.0, 0.1, 100))}});
     c.push_back(CameraCase{
@@ -128,7 +130,8 @@ TEST_F(CameraProjection, KnownPointsLandWhereTheGlMatricesPutThem) {
         o.width = cc.width;
         o.height = cc.height;
         o.depth = cc.depth;
-        for (const ViewCase& vc : cc.views) o.views.push_back(vc.view);
+        for (const ViewCase& vc : cc.views)
+            o.views.push_back(vc.view);
         auto image = renderer().render(scene, o, 0.0);
         ASSERT_TRUE(image) << cc.name << ": " << image.error().describe();
         ASSERT_EQ(test::countNonFinite(*image), 0u) << cc.name;
@@ -140,22 +143,23 @@ TEST_F(CameraProjection, KnownPointsLandWhereTheGlMatricesPutThem) {
             const glm::dvec4 viewport(v.x, v.y, v.width, v.height);
             for (double u : {0.2, 0.5, 0.8})
                 for (double t : {0.2, 0.5, 0.8}) {
-                    const glm::dvec3 world =
-                        glm::dvec3(worldFromQuad * glm::dvec4(test::rampPoint(kQuadW, kQuadH, u, t), 1));
+                    const glm::dvec3 world = glm::dvec3(
+                        worldFromQuad * glm::dvec4(test::rampPoint(kQuadW, kQuadH, u, t), 1));
                     const auto window = project(world, vc.viewFromWorld, clip, viewport);
                     ASSERT_TRUE(window) << cc.name;
                     // The case must keep its points in front of the camera and in its view.
                     const glm::dvec4 eye = vc.viewFromWorld * glm::dvec4(world, 1);
                     ASSERT_TRUE(vc.projection.kind == ProjectionKind::Orthographic || eye.z < 0)
                         << cc.name << ": point behind the camera";
-                    ASSERT_TRUE(window->x > v.x && window->x < v.x + v.width &&
-                                window->y > v.y && window->y < v.y + v.height)
+                    ASSERT_TRUE(window->x > v.x && window->x < v.x + v.width && window->y > v.y &&
+                                window->y < v.y + v.height)
                         << cc.name << ": point (" << u << ", " << t << ") outside the view";
                     const glm::dvec2 expected = test::imageFromWindow(*window, cc.height);
-                    const auto got = test::locateRamp(*image, test::rectOfView(v, cc.height), kId, u, t);
-                    ASSERT_TRUE(got) << cc.name << ": point (" << u << ", " << t
-                                     << ") not found; expected at " << expected.x << ", "
-                                     << expected.y << test::savedAs(*image, cc.name);
+                    const auto got =
+                        test::locateRamp(*image, test::rectOfView(v, cc.height), kId, u, t);
+                    ASSERT_TRUE(got)
+                        << cc.name << ": point (" << u << ", " << t << ") not found; expected at "
+                        << expected.x << ", " << expected.y << test::savedAs(*image, cc.name);
                     const double error = glm::length(*got - expected);
                     worst = std::max(worst, error);
                     EXPECT_LT(error, tolerance)
@@ -197,6 +201,46 @@ TEST_F(CameraProjection, ViewsStayInsideTheirViewports) {
             inside += in;
         }
     EXPECT_EQ(inside, 40u * 30u + 30u * 20u);
+}
+
+// GL's default: counter-clockwise faces are front faces, and back faces are culled. A quad
+// whose vertices run counter-clockwise seen from +Z shows from +Z and not from -Z; mirrored
+// by a negative scale (its winding reverses on screen) it still shows its front, from +Z.
+TEST_F(CameraProjection, FrontFacesAreCounterClockwiseAsInGl) {
+    struct Row {
+        const char* why;
+        glm::dvec3 scale, eye;
+        bool visible;
+    };
+    const Row rows[] = {
+        {"seen from the front", {1, 1, 1}, {0, 0, 3}, true},
+        {"seen from behind", {1, 1, 1}, {0, 0, -3}, false},
+        {"mirrored in x, from the front", {-1, 1, 1}, {0, 0, 3}, true},
+        {"mirrored in x, from behind", {-1, 1, 1}, {0, 0, -3}, false},
+        {"mirrored in x and y (a rotation), from the front", {-1, -1, 1}, {0, 0, 3}, true},
+    };
+    for (const Row& r : rows) {
+        Scene scene = test::emptyScene();
+        Primitive quad = makePlane(1.0); // counter-clockwise seen from +Z, normal +Z
+        quad.material = 0;
+        Material m = test::unlitMaterial("single-sided");
+        m.doubleSided = false;
+        scene.materials.push_back(m);
+        scene.meshes.push_back(Mesh{"quad", {quad}});
+        Node n;
+        n.mesh = 0;
+        n.scale = r.scale;
+        scene.nodes.push_back(n);
+        scene.roots[0].nodes.push_back(0);
+        RenderOptions o;
+        o.width = o.height = 32;
+        o.camera.source = CameraSpec::Source::GlDefault;
+        o.camera.lookAt = LookAt{r.eye, {0, 0, 0}, {0, 1, 0}};
+        o.camera.projection = Projection::makePerspective(40 * kDeg, 0.0, 0.1, 10);
+        auto image = renderer().render(scene, o, 0.0);
+        ASSERT_TRUE(image) << image.error().describe();
+        EXPECT_EQ(test::countCovered(*image) > 0, r.visible) << r.why;
+    }
 }
 
 } // namespace

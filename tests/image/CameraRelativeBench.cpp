@@ -5,12 +5,11 @@
 // docs/cameras.md quotes its output. Usage: lantern_camera_bench [NODES] [FRAMES]
 #include "render/FramePlan.h"
 
-#include <lantern/Lantern.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <lantern/Lantern.h>
 #include <vector>
 
 namespace {
@@ -44,8 +43,8 @@ Scene gridScene(int n, const glm::dvec3& offset) {
     for (int i = 0; i < n * n * n; ++i) {
         Node node;
         node.mesh = 0;
-        node.translation = offset + glm::dvec3(i % n, (i / n) % n, i / (n * n)) -
-                           glm::dvec3(n / 2.0);
+        node.translation =
+            offset + glm::dvec3(i % n, (i / n) % n, i / (n * n)) - glm::dvec3(n / 2.0);
         s.nodes.push_back(node);
         root.nodes.push_back(i);
     }
@@ -72,7 +71,8 @@ int main(int argc, char** argv) {
     const int frames = argc > 2 ? std::max(3, std::atoi(argv[2])) : 15;
     const double offsets[] = {0.0, 1e7};
     std::vector<Scene> scenes;
-    for (double o : offsets) scenes.push_back(gridScene(perSide, glm::dvec3(o, 0.5 * o, -0.75 * o)));
+    for (double o : offsets)
+        scenes.push_back(gridScene(perSide, glm::dvec3(o, 0.5 * o, -0.75 * o)));
     const std::size_t nodes = std::size_t(perSide) * perSide * perSide;
     std::printf("scene: %zu cube nodes (%zu triangles), frames: %d, interleaved\n", nodes,
                 nodes * 12, frames);
@@ -98,12 +98,14 @@ int main(int argc, char** argv) {
     const glm::dmat4 viewFromWorld =
         lookAt(scenes[1].cameras[0].lookAt->eye, scenes[1].cameras[0].lookAt->target, {0, 1, 0});
     std::vector<glm::dmat4> worldFromNode;
-    for (const Node& n : scenes[1].nodes) worldFromNode.push_back(n.localTransform());
+    for (const Node& n : scenes[1].nodes)
+        worldFromNode.push_back(n.localTransform());
     std::vector<double> compose;
     double sink = 0.0;
     for (int f = 0; f < frames * 4; ++f) {
         const auto t0 = Clock::now();
-        for (const glm::dmat4& m : worldFromNode) sink += (viewFromWorld * m)[3][2];
+        for (const glm::dmat4& m : worldFromNode)
+            sink += (viewFromWorld * m)[3][2];
         compose.push_back(msSince(t0));
     }
 
@@ -123,7 +125,8 @@ int main(int argc, char** argv) {
             }
             prepared.push_back(*p);
         }
-        for (int i = 0; i < 2; ++i) (void)renderer->render(prepared[i], options, 0.0);  // warm
+        for (int i = 0; i < 2; ++i)
+            (void)renderer->render(prepared[i], options, 0.0); // warm
         for (int f = 0; f < frames; ++f)
             for (int i = 0; i < 2; ++i) {
                 const auto t0 = Clock::now();

@@ -4,11 +4,10 @@
 
 #include "TestSupport.h"
 
-#include <glm/matrix.hpp>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <glm/matrix.hpp>
 #include <vector>
 
 namespace lantern::test {
@@ -42,8 +41,8 @@ Material unlitMaterial(const std::string& name) {
     return m;
 }
 
-std::optional<glm::dvec2> locateRamp(const Image& image, const PixelRect& rect, float id,
-                                     double u, double v) {
+std::optional<glm::dvec2> locateRamp(const Image& image, const PixelRect& rect, float id, double u,
+                                     double v) {
     struct Sample {
         double du, dv, x, y, distance;
     };
@@ -80,11 +79,13 @@ std::optional<glm::dvec2> locateRamp(const Image& image, const PixelRect& rect, 
 
 std::string savedAs(const Image& image, const std::string& name) {
     std::string file;
-    for (char c : name) file += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+    for (char c : name)
+        file += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
     const auto path = testOutputDir() / (file + ".exr");
-    (void)writeImage(testOutputDir() / (file + ".png"), image);  // for a quick look
+    (void)writeImage(testOutputDir() / (file + ".png"), image); // for a quick look
     auto written = writeImage(path, image);
-    return written ? " (image: " + path.string() + ")" : " (image not saved: " + written.error().describe() + ")";
+    return written ? " (image: " + path.string() + ")"
+                   : " (image not saved: " + written.error().describe() + ")";
 }
 
 Scene emptyScene() {
@@ -144,7 +145,8 @@ ImageDifference compareAwayFromEdges(const Image& actual, const Image& expected,
             ++d.compared;
             float largest = 0.0f;
             for (int c = 0; c < 4; ++c)
-                largest = std::max(largest, std::abs(actual.pixel(x, y)[c] - expected.pixel(x, y)[c]));
+                largest =
+                    std::max(largest, std::abs(actual.pixel(x, y)[c] - expected.pixel(x, y)[c]));
             d.largest = std::max(d.largest, largest);
             if (largest > tolerance) ++d.differing;
         }

@@ -6,11 +6,9 @@
 // pixels from the top-left corner, pixel (i, j) centred at (i + 0.5, j + 0.5).
 #pragma once
 
-#include <lantern/Lantern.h>
-
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
-
+#include <lantern/Lantern.h>
 #include <optional>
 #include <string>
 
@@ -36,8 +34,8 @@ Material unlitMaterial(const std::string& name = "unlit");
 /// Where (u, v) of the ramp quad with this id appears inside `rect` (image coordinates), or
 /// nullopt when it is not visible there (fewer than 6 ramp pixels, or the point is more than
 /// 1.5 pixels outside the pixels that show the quad).
-std::optional<glm::dvec2> locateRamp(const Image& image, const PixelRect& rect, float id,
-                                     double u, double v);
+std::optional<glm::dvec2> locateRamp(const Image& image, const PixelRect& rect, float id, double u,
+                                     double v);
 
 /// Writes `image` as <testOutputDir>/<name>.exr and returns " (image: PATH)", for failure
 /// messages (gtest evaluates them only on failure).

@@ -6,11 +6,10 @@
 #include "CameraTestSupport.h"
 #include "TestSupport.h"
 
+#include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
-
-#include <cmath>
 
 namespace {
 
@@ -48,8 +47,7 @@ glm::dvec3 normalAt(const Image& image, int x, int y) {
 
 // Pixels whose 3 x 3 neighbourhood is all covered (away from the rim, where the faceted
 // sphere's own normals vary fastest).
-template <typename F>
-void forEachInteriorPixel(const Image& image, F f) {
+template <typename F> void forEachInteriorPixel(const Image& image, F f) {
     for (int y = 1; y + 1 < image.height; ++y)
         for (int x = 1; x + 1 < image.width; ++x) {
             bool interior = true;
@@ -79,12 +77,13 @@ TEST_F(CameraTransform, UniformScalesOf1e20And1eMinus20RenderLikeScaleOne) {
         EXPECT_EQ(test::countNonFinite(*image), 0u) << scale;
         EXPECT_EQ(renderer().lastFrameStats().nonFinite, 0u) << scale;
         const auto d = test::compareAwayFromEdges(*image, *reference, 1.0f / 255.0f);
-        EXPECT_EQ(d.differing, 0u) << "scale " << scale << ": largest difference " << d.largest
-                                   << test::savedAs(*image, "scaled")
-                                   << test::savedAs(*reference, "reference");
+        EXPECT_EQ(d.differing, 0u)
+            << "scale " << scale << ": largest difference " << d.largest
+            << test::savedAs(*image, "scaled") << test::savedAs(*reference, "reference");
         double worst = 0;
         forEachInteriorPixel(*reference, [&](int x, int y) {
-            worst = std::max(worst, glm::length(normalAt(*image, x, y) - normalAt(*reference, x, y)));
+            worst =
+                std::max(worst, glm::length(normalAt(*image, x, y) - normalAt(*reference, x, y)));
         });
         EXPECT_LT(worst, 1e-5) << "scale " << scale << ": normals differ";
     }
@@ -93,9 +92,9 @@ TEST_F(CameraTransform, UniformScalesOf1e20And1eMinus20RenderLikeScaleOne) {
 struct NonUniformRow {
     const char* why;
     glm::dvec3 scale;
-    glm::dvec3 eye;  ///< the camera looks from here at the origin
-    int flatAxis;    ///< eye-space axis along which every interior normal must point (-1: none)
-    int zeroAxis;    ///< eye-space axis that every interior normal must be perpendicular to
+    glm::dvec3 eye; ///< the camera looks from here at the origin
+    int flatAxis;   ///< eye-space axis along which every interior normal must point (-1: none)
+    int zeroAxis;   ///< eye-space axis that every interior normal must be perpendicular to
     double tolerance;
 };
 
@@ -141,7 +140,7 @@ TEST_F(CameraTransform, ExtremeButValidProjectionsRenderWithoutNanOrInf) {
         Projection projection;
         LookAt lookAt;
         int width, height;
-        bool visible;  ///< the spheres must show
+        bool visible; ///< the spheres must show
     };
     const LookAt front{{0, 1, 9}, {0, 0, 0}, {0, 1, 0}};
     // With a nearly 180-degree field only what lies nearly 90 degrees off the axis reaches a
@@ -150,14 +149,22 @@ TEST_F(CameraTransform, ExtremeButValidProjectionsRenderWithoutNanOrInf) {
     const LookAt low{{0, -0.5, 4}, {0, -0.5, 3}, {0, 1, 0}};
     const LookAt between{{1.2, 0, 0}, {1.2, 0, -1}, {0, 1, 0}};
     const Row rows[] = {
-        {"fovy 1e-4 deg", Projection::makePerspective(1e-4 * kDeg, 0, 0.1, kInfinity), front, 64, 64, true},
-        {"fovy 179.9 deg", Projection::makePerspective(179.9 * kDeg, 0, 0.01, kInfinity), low, 64, 64, true},
-        {"aspect 1e-4 (viewport 64 x 64)", Projection::makePerspective(40 * kDeg, 1e-4, 0.1, 100), front, 64, 64, true},
-        {"aspect 1e4 (viewport 64 x 64)", Projection::makePerspective(40 * kDeg, 1e4, 0.001, 100), between, 64, 64, true},
-        {"viewport aspect 256 x 1", Projection::makePerspective(40 * kDeg, 0, 0.1, 100), front, 256, 1, false},
-        {"near 1e-6, far 1e12", Projection::makePerspective(40 * kDeg, 0, 1e-6, 1e12), front, 64, 64, true},
-        {"frustum near 1e-6, far 1e12", Projection::makeFrustum(-4e-7, 4e-7, -3e-7, 3e-7, 1e-6, 1e12), front, 64, 48, true},
-        {"ortho 1e-6 deep", Projection::makeOrtho(-3, 3, -2, 2, 8.0, 8.000001), front, 64, 48, false},
+        {"fovy 1e-4 deg", Projection::makePerspective(1e-4 * kDeg, 0, 0.1, kInfinity), front, 64,
+         64, true},
+        {"fovy 179.9 deg", Projection::makePerspective(179.9 * kDeg, 0, 0.01, kInfinity), low, 64,
+         64, true},
+        {"aspect 1e-4 (viewport 64 x 64)", Projection::makePerspective(40 * kDeg, 1e-4, 0.1, 100),
+         front, 64, 64, true},
+        {"aspect 1e4 (viewport 64 x 64)", Projection::makePerspective(40 * kDeg, 1e4, 0.001, 100),
+         between, 64, 64, true},
+        {"viewport aspect 256 x 1", Projection::makePerspective(40 * kDeg, 0, 0.1, 100), front, 256,
+         1, false},
+        {"near 1e-6, far 1e12", Projection::makePerspective(40 * kDeg, 0, 1e-6, 1e12), front, 64,
+         64, true},
+        {"frustum near 1e-6, far 1e12",
+         Projection::makeFrustum(-4e-7, 4e-7, -3e-7, 3e-7, 1e-6, 1e12), front, 64, 48, true},
+        {"ortho 1e-6 deep", Projection::makeOrtho(-3, 3, -2, 2, 8.0, 8.000001), front, 64, 48,
+         false},
     };
     auto scene = builtinScene("spheres");
     ASSERT_TRUE(scene);

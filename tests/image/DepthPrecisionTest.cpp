@@ -12,12 +12,11 @@
 #include "CameraTestSupport.h"
 #include "TestSupport.h"
 
-#include <glm/gtc/matrix_transform.hpp>
-#include <gtest/gtest.h>
-
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
 #include <map>
 #include <sstream>
 
@@ -32,7 +31,9 @@ constexpr int kTile = 16, kColumns = 8, kRows = 4, kWidth = kTile * kColumns,
 constexpr int kEpsCount = kColumns * kRows;
 constexpr double kFovy = 30 * kDeg;
 
-double epsAt(int k) { return std::pow(10.0, -(k + 4) / 4.0); }  // 1e-1 ... 1.8e-9
+double epsAt(int k) {
+    return std::pow(10.0, -(k + 4) / 4.0);
+} // 1e-1 ... 1.8e-9
 
 // What one tile shows.
 enum class TileResult { Resolved, Fights, Vanishes };
@@ -63,7 +64,7 @@ Scene makeScene(double distance, const glm::dvec3& camera, bool backFirst) {
         s.meshes.push_back(Mesh{m == 0 ? "front" : "back", {p}});
     }
     const double tanHalf = std::tan(kFovy / 2), aspect = double(kWidth) / kHeight;
-    const double pixel = 2.0 * distance * tanHalf / kHeight;  // pixel size at depth D
+    const double pixel = 2.0 * distance * tanHalf / kHeight; // pixel size at depth D
     glm::dmat4 tilt(1.0);
     tilt = glm::rotate(tilt, 25 * kDeg, glm::dvec3(0, 1, 0));
     tilt = glm::rotate(tilt, 15 * kDeg, glm::dvec3(1, 0, 0));
@@ -75,7 +76,7 @@ Scene makeScene(double distance, const glm::dvec3& camera, bool backFirst) {
             const double ndcX = (col + 0.5) * 2.0 / kColumns - 1.0;
             const double ndcY = 1.0 - (row + 0.5) * 2.0 / kRows;
             const glm::dvec3 ray(ndcX * tanHalf * aspect, ndcY * tanHalf, -1.0);
-            const double scale = back ? 1.0 + epsAt(k) : 1.0;  // about the eye
+            const double scale = back ? 1.0 + epsAt(k) : 1.0; // about the eye
             const double size = 11.0 * pixel * scale * (back ? 0.8 : 1.0);
             glm::dmat4 m = glm::translate(glm::dmat4(1.0), camera + distance * scale * ray) * tilt;
             m = glm::scale(m, glm::dvec3(size, size, 1.0));
@@ -100,7 +101,8 @@ TileResult judgeTile(const Image& image, int k) {
             if (!(image.pixel(x, y)[3] > 0.5f)) return TileResult::Vanishes;
     for (int y = y0; y < y0 + kTile; ++y)
         for (int x = x0; x < x0 + kTile; ++x)
-            if (image.pixel(x, y)[3] > 0.5f && image.pixel(x, y)[0] > 0.5f) return TileResult::Fights;
+            if (image.pixel(x, y)[3] > 0.5f && image.pixel(x, y)[0] > 0.5f)
+                return TileResult::Fights;
     return TileResult::Resolved;
 }
 
@@ -162,14 +164,14 @@ protected:
                         o.camera.source = CameraSpec::Source::GlDefault;
                         o.camera.lookAt =
                             LookAt{sc.camera, sc.camera + glm::dvec3(0, 0, -1), {0, 1, 0}};
-                        o.camera.projection =
-                            Projection::makePerspective(kFovy, 0.0, znear, zfar);
+                        o.camera.projection = Projection::makePerspective(kFovy, 0.0, znear, zfar);
                         auto image = renderer().render(scene, o, 0.0);
                         EXPECT_TRUE(image) << image.error().describe();
                         if (!image) return cells;
                         EXPECT_EQ(test::countNonFinite(*image), 0u);
                         auto& results = backFirst ? cell.backFirst : cell.frontFirst;
-                        for (int k = 0; k < kEpsCount; ++k) results[k] = judgeTile(*image, k);
+                        for (int k = 0; k < kEpsCount; ++k)
+                            results[k] = judgeTile(*image, k);
                     }
                     cells.push_back(cell);
                 }
@@ -180,9 +182,11 @@ protected:
         std::ostringstream out;
         out << "\n" << sc.name << " (smallest eps/D resolved in both draw orders):\n\n";
         out << "| near | far |";
-        for (int e = -2; e <= 8; ++e) out << " D=1e" << e << " |";
+        for (int e = -2; e <= 8; ++e)
+            out << " D=1e" << e << " |";
         out << "\n|---|---|";
-        for (int e = -2; e <= 8; ++e) out << "---|";
+        for (int e = -2; e <= 8; ++e)
+            out << "---|";
         out << "\n";
         for (double znear : kNears)
             for (double zfar : kFars) {
@@ -218,7 +222,8 @@ protected:
 const SweepCase kReversed{"reversed-Z, D32_SFLOAT (the default)", DepthMode::ReversedZ, {0, 0, 0}};
 const SweepCase kStandard{"standard Z, D32_SFLOAT", DepthMode::Standard, {0, 0, 0}};
 const SweepCase kReversedFar{"reversed-Z, D32_SFLOAT, camera at (6e6, 0, 8e6): 1e7 from the origin",
-                             DepthMode::ReversedZ, {6e6, 0, 8e6}};
+                             DepthMode::ReversedZ,
+                             {6e6, 0, 8e6}};
 
 // ZF-1, ZF-3, ZF-7: the default scheme resolves eps/D = 1e-6 at every D, finite or infinite
 // far, near or far from the origin (measured floor 1-3e-7: float vertex precision).

@@ -7,10 +7,9 @@
 #include "CameraTestSupport.h"
 #include "TestSupport.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdio>
+#include <gtest/gtest.h>
 
 namespace {
 
@@ -41,7 +40,7 @@ RenderOptions smallWithDepth() {
     RenderOptions o;
     o.width = 128;
     o.height = 96;
-    o.aovs.depth = true;  // to find silhouette edges
+    o.aovs.depth = true; // to find silhouette edges
     return o;
 }
 
@@ -117,7 +116,7 @@ TEST_F(LargeWorld, OneMillimetreCameraStepsMoveTheImageByTheAnalyticAmount) {
     const int size = 128;
     const double fovy = 10 * kDeg, distance = 10.0, step = 1e-3;
     const double pxPerMetre = (size / 2.0) / (distance * std::tan(fovy / 2));
-    const double expectedStep = -step * pxPerMetre;  // camera right: image left
+    const double expectedStep = -step * pxPerMetre; // camera right: image left
     for (double x : {0.0, 1e6, 1e7}) {
         Scene scene = test::emptyScene();
         glm::dmat4 placement(1.0);

@@ -64,8 +64,9 @@ std::optional<DepthMode> parseDepthMode(std::string_view text) noexcept;
 /// points down the framebuffer) and z mapped from -w..w to 0..w (Standard) or w..0 (ReversedZ):
 ///   Standard:  [1 0 0 0; 0 -1 0 0; 0 0 1/2 1/2; 0 0 0 1]   (rows)
 ///   ReversedZ: [1 0 0 0; 0 -1 0 0; 0 0 -1/2 1/2; 0 0 0 1]
-/// Because of the y flip, a face counter-clockwise in GL is clockwise in Vulkan's framebuffer;
-/// Lantern's pipelines declare clockwise front faces accordingly.
+/// The y flip happens in clip space and Vulkan measures winding in its y-down framebuffer, so
+/// a face counter-clockwise in GL's window is counter-clockwise for Vulkan too: front faces are
+/// counter-clockwise, as in GL (clockwise for mirroring transforms, whose winding reverses).
 glm::dmat4 vulkanFromGlClip(DepthMode mode);
 
 // --- Camera description ---------------------------------------------------------------------
