@@ -85,6 +85,28 @@ TEST(CameraMath, LookAtMatchesGluLookAt) {
         for (int j = 0; j < 3; ++j) EXPECT_NEAR(should[i][j], i == j ? 1.0 : 0.0, 1e-15);
 }
 
+TEST(CameraMath, LookAtMatchesTheGluReferencePageElementByElement) {
+    // gluLookAt: F = target - eye, f = F/|F|, UP' = up/|up|, s = f x UP', u = (s/|s|) x f,
+    // M = [s/|s|; u; -f] (rows), result M * translate(-eye).
+    const glm::dvec3 eye(1.5, -2, 3), target(-4, 0.5, -1), up(0.2, 1, 0.1);
+    const glm::dvec3 f = glm::normalize(target - eye);
+    const glm::dvec3 s = glm::normalize(glm::cross(f, glm::normalize(up)));
+    const glm::dvec3 u = glm::cross(s, f);
+    const double rows[4][4] = {{s.x, s.y, s.z, -glm::dot(s, eye)},
+                               {u.x, u.y, u.z, -glm::dot(u, eye)},
+                               {-f.x, -f.y, -f.z, glm::dot(f, eye)},
+                               {0, 0, 0, 1}};
+    expectMatrix(lookAt(eye, target, up), rows, 1e-15);
+    // The same view 1e7 units away: only the translation column changes, by -R * offset.
+    const glm::dvec3 offset(1e7, -3e6, 5e6);
+    const glm::dmat4 far = lookAt(eye + offset, target + offset, up);
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(at(far, r, c), rows[r][c], 1e-15);
+        const glm::dvec3 row(rows[r][0], rows[r][1], rows[r][2]);
+        EXPECT_NEAR(at(far, r, 3), rows[r][3] - glm::dot(row, offset), 1e-8);
+    }
+}
+
 TEST(CameraMath, ViewportMapsNdcToWindow) {
     const glm::dmat4 m = viewport(10, 20, 640, 480);
     const glm::dvec4 lo = m * glm::dvec4(-1, -1, -1, 1), hi = m * glm::dvec4(1, 1, 1, 1);
