@@ -266,8 +266,7 @@ Result<std::shared_ptr<Context>> Context::create(const ContextDesc& desc) {
     core.wideLines = supported.features.wideLines;
     core.shaderFloat64 = supported.features.shaderFloat64;
     core.independentBlend = supported.features.independentBlend;
-    // The AOV fragment shaders read gl_PrimitiveID, which SPIR-V ties to the Geometry
-    // capability: without this feature the validation layer refuses those shader modules.
+    // The AOV fragment shaders read gl_PrimitiveID: SPIR-V's Geometry capability.
     core.geometryShader = supported.features.geometryShader;
     ctx->m_caps.fillModeNonSolid = core.fillModeNonSolid;
     ctx->m_caps.wideLines = core.wideLines;
