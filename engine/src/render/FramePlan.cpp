@@ -2,6 +2,8 @@
 // All composition is in double precision; only camera-relative results become float.
 #include "render/FramePlan.h"
 
+#include "math/Robust.h"
+
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_access.hpp>
 #include <glm/matrix.hpp>
@@ -79,8 +81,20 @@ ResolvedCamera framingCamera(const Scene& scene, int root, const CameraSpec& spe
     if (spec.framingOrthographic) {
         const double d = 2.0 * r;
         rc.viewFromWorld = lookAt(c - dir * d, c, up);
-        double h = r * margin, w = h;
-        if (aspect >= 1.0) w = h * aspect; else h = w / aspect;
+        // Fit the bounds' box as seen from this direction (a modeller's top, front and side
+        // views), not its bounding sphere: a flat ground seen edge-on must not shrink the
+        // objects standing on it. The box is centred on the view axis.
+        double hw = 0.0, hh = 0.0;
+        for (int i = 0; i < 8 && !b.empty(); ++i) {
+            const glm::dvec3 corner((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y,
+                                    (i & 4) ? b.max.z : b.min.z);
+            const glm::dvec4 p = rc.viewFromWorld * glm::dvec4(corner, 1.0);
+            hw = std::max(hw, std::abs(p.x));
+            hh = std::max(hh, std::abs(p.y));
+        }
+        if (!(hw > 1e-6 * r) && !(hh > 1e-6 * r)) hw = hh = r;
+        double h = std::max(hh, 1e-6 * r) * margin, w = std::max(hw, 1e-6 * r) * margin;
+        if (w / h < aspect) w = h * aspect; else h = w / aspect;
         rc.projection = Projection::makeOrtho(-w, w, -h, h, d - 1.5 * r, d + 1.5 * r);
         rc.description = "automatic framing (orthographic)";
     } else {
@@ -438,7 +452,9 @@ Result<FramePlan> buildFramePlan(const Scene& scene, const RenderOptions& o, dou
             if (!plan.pose.visible[ni] || node.mesh < 0) continue;
             const glm::dmat4 viewFromModel = viewFromWorld * plan.pose.worldFromNode[ni];
             const glm::dmat3 normals = normalMatrix(viewFromModel);
-            const bool mirrored = glm::determinant(glm::dmat3(viewFromModel)) < 0.0;
+            // Accurate: glm::determinant gets the sign wrong for scales 1e-6 and 1e6 under a
+            // rotation, which would cull the visible faces.
+            const bool mirrored = math::accurateDeterminant(glm::dmat3(viewFromModel)) < 0.0;
             const Mesh& mesh = scene.meshes[node.mesh];
             for (std::size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
                 const Primitive& prim = mesh.primitives[pi];
