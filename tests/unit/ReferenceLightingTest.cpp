@@ -47,8 +47,10 @@ TEST(ReferenceLighting, ZeroShininessIsOneWhereverTheSurfaceIsLit) {
     // x^0 = 1 for every x >= 0, including n.h <= 0 (GLSL pow(0,0) is undefined).
     EXPECT_EQ(lobe({0, 0, 1}, {1, 0, 0}, 0.0), 1.0);
     EXPECT_EQ(lobe({0, 0, 1}, {0, 0, -1}, 0.0), 1.0);
-    EXPECT_EQ(powSafe(0.0, 0.0), 1.0);
-    EXPECT_EQ(powSafe(0.0, 2.0), 0.0);
+    EXPECT_EQ(lobe({0, 0, 1}, {0, 1, 0}, 2.0), 0.0);
+    // The spot exponent goes through the same lobe: exponent 0 inside the cone is 1.
+    EXPECT_EQ(glSpotFactor({0, 0, -1}, {0, 0, -1}, 0.0, 0.0), 1.0);
+    EXPECT_EQ(glSpotFactor({0, 1, 0}, {0, 0, -1}, 1.0, 0.0), 1.0);  // 90 degrees, cutoff 90
 }
 
 TEST(ReferenceLighting, LobeIsExactForHugeShininess) {
@@ -103,7 +105,7 @@ TEST(ReferenceLighting, GlSpotCutoffAndExponent) {
     l.type = LightType::Spot;
     l.position = {0, 0, 0};
     l.spotAxis = {0, 0, -1};
-    l.cosCutoff = std::cos(30.0 * 3.14159265358979323846 / 180.0);
+    l.oneMinusCosCutoff = 1.0 - std::cos(30.0 * 3.14159265358979323846 / 180.0);
     l.exponent = 2.0;
     MaterialSide m;
     m.ambient = {0, 0, 0};
