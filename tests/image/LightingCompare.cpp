@@ -1,10 +1,9 @@
 // The lighting image tests' shared scene builder and per-pixel reference comparison.
 #include "LightingCompare.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
+#include <gtest/gtest.h>
 #include <sstream>
 
 namespace lantern::test {
@@ -85,8 +84,8 @@ RenderOptions optionsFor(int width, int height, ShadingMode mode) {
 std::string ReferenceComparison::describe(const std::string& name) const {
     std::ostringstream s;
     s.precision(9);
-    s << compared << " pixels compared; worst difference " << worst << " at (" << worstX
-      << ", " << worstY << ")";
+    s << compared << " pixels compared; worst difference " << worst << " at (" << worstX << ", "
+      << worstY << ")";
     if (worstX >= 0) {
         const float* p = pixel(worstX, worstY);
         s << ": rendered (" << p[0] << ", " << p[1] << ", " << p[2] << ", " << p[3]
@@ -122,18 +121,21 @@ ReferenceComparison compareWithReference(Renderer& renderer, const Scene& scene,
             const std::uint32_t drawId = ids[i * 2];
             if (drawId == 0) continue;
             ProbeReport r = reference.explain(x, y, drawId, ids[i * 2 + 1], check.perLight);
-            for (int k = 0; k < 4; ++k) c.expected.pixel(x, y)[k] = float(r.colour[k]);
+            for (int k = 0; k < 4; ++k)
+                c.expected.pixel(x, y)[k] = float(r.colour[k]);
             const float* got = img.pixel(x, y);
             r.pixel = glm::dvec4(got[0], got[1], got[2], got[3]);
             bool interior = true;
             if (check.skipSilhouettes)
                 for (int dy = -1; dy <= 1; ++dy)
-                    for (int dx = -1; dx <= 1; ++dx) interior &= drawAt(x + dx, y + dy) == drawId;
+                    for (int dx = -1; dx <= 1; ++dx)
+                        interior &= drawAt(x + dx, y + dy) == drawId;
             if (interior) {
                 ++c.compared;
                 for (int k = 0; k < 4; ++k) {
                     const double want = r.colour[k];
-                    const double d = std::abs(double(got[k]) - want) / std::max(1.0, std::abs(want));
+                    const double d =
+                        std::abs(double(got[k]) - want) / std::max(1.0, std::abs(want));
                     if (!(d <= c.worst)) {
                         c.worst = std::isnan(d) ? HUGE_VAL : d;
                         c.worstX = x;

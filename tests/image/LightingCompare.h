@@ -5,12 +5,10 @@
 #pragma once
 
 #include "TestSupport.h"
-
 #include "render/Probe.h"
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include <functional>
+#include <glm/gtc/matrix_transform.hpp>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -45,22 +43,24 @@ glm::dmat4 aimed(const glm::dvec3& position, const glm::dvec3& direction);
 struct PixelCheck {
     /// Leave out pixels next to the background or to another draw (silhouettes).
     bool skipSilhouettes = false;
-    bool perLight = false;  ///< fill ProbeReport per-light terms (slower)
+    bool perLight = false; ///< fill ProbeReport per-light terms (slower)
 };
 
 /// The outcome of comparing every covered pixel of an opaque render with the reference.
 struct ReferenceComparison {
     render::ExplainedFrame frame;
-    Image expected;             ///< the reference colour of every covered pixel
-    std::size_t compared = 0;   ///< pixels compared
+    Image expected;           ///< the reference colour of every covered pixel
+    std::size_t compared = 0; ///< pixels compared
     /// The largest |rendered - reference| / max(1, |reference|) over compared pixels and
     /// channels (compare with PixelCheck::tolerance).
     double worst = 0.0;
     int worstX = -1, worstY = -1;
     ProbeReport worstReport;
-    std::vector<ProbeReport> reports;  ///< per pixel (hit = false for the background)
+    std::vector<ProbeReport> reports; ///< per pixel (hit = false for the background)
 
-    const ProbeReport& at(int x, int y) const { return reports[std::size_t(y) * frame.frame.image.width + x]; }
+    const ProbeReport& at(int x, int y) const {
+        return reports[std::size_t(y) * frame.frame.image.width + x];
+    }
     const float* pixel(int x, int y) const { return frame.frame.image.pixel(x, y); }
     /// The worst pixel, both colours, and the paths of saved actual/expected/diff images.
     std::string describe(const std::string& name) const;

@@ -5,13 +5,12 @@
 // the equation at the pixel centre with the interpolated normal renormalised.
 #include "LightingCompare.h"
 
-#include <glm/geometric.hpp>
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstdlib>
-#include <iostream>
 #include <functional>
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+#include <iostream>
 
 namespace {
 
@@ -45,8 +44,10 @@ Primitive openSphere(int segments) {
     std::vector<std::uint32_t> kept;
     for (std::size_t t = 0; t + 2 < p.indices.size(); t += 3) {
         bool cap = true;
-        for (int c = 0; c < 3; ++c) cap &= p.positions[p.indices[t + c]].z > 0.6f;
-        if (!cap) kept.insert(kept.end(), p.indices.begin() + long(t), p.indices.begin() + long(t) + 3);
+        for (int c = 0; c < 3; ++c)
+            cap &= p.positions[p.indices[t + c]].z > 0.6f;
+        if (!cap)
+            kept.insert(kept.end(), p.indices.begin() + long(t), p.indices.begin() + long(t) + 3);
     }
     p.indices = kept;
     return p;
@@ -55,7 +56,8 @@ Primitive openSphere(int segments) {
 Scene sphereDirectional() {
     LitScene s;
     s.objects.push_back({makeSphere(1.0, 24, 12), plastic({0.8, 0.6, 0.4}), glm::dmat4(1.0)});
-    s.lights.push_back({test::makeLight(LightType::Directional), test::aimed({0, 0, 0}, {1, -1, -1})});
+    s.lights.push_back(
+        {test::makeLight(LightType::Directional), test::aimed({0, 0, 0}, {1, -1, -1})});
     return s.build();
 }
 
@@ -108,8 +110,11 @@ Scene eightLights() {
     for (int i = 0; i < 8; ++i) {
         const double a = 2.0 * kPi * i / 8.0;
         const glm::dvec3 pos(2.5 * std::cos(a), 2.5 * std::sin(a), 2.0);
-        const glm::dvec3 colour(0.2 + 0.1 * (i % 3), 0.2 + 0.1 * ((i + 1) % 3), 0.2 + 0.1 * ((i + 2) % 3));
-        Light l = test::makeLight(i < 3 ? LightType::Directional : i < 6 ? LightType::Point : LightType::Spot);
+        const glm::dvec3 colour(0.2 + 0.1 * (i % 3), 0.2 + 0.1 * ((i + 1) % 3),
+                                0.2 + 0.1 * ((i + 2) % 3));
+        Light l = test::makeLight(i < 3   ? LightType::Directional
+                                  : i < 6 ? LightType::Point
+                                          : LightType::Spot);
         l.diffuse = l.specular = colour;
         l.ambient = colour * 0.1;
         if (l.type != LightType::Directional) l.attenuation = {1.0, 0.05 * i, 0.01 * i};
@@ -136,7 +141,8 @@ Scene threeHundredLights() {
         l.specular = l.diffuse;
         l.ambient = l.diffuse * 0.1;
         l.attenuation = {1.0, 0.0, 0.05};
-        s.lights.push_back({l, test::translation(3.0 * glm::dvec3(r * std::cos(a), r * std::sin(a), z))});
+        s.lights.push_back(
+            {l, test::translation(3.0 * glm::dvec3(r * std::cos(a), r * std::sin(a), z))});
     }
     return s.build();
 }
@@ -151,9 +157,11 @@ Scene twoSidedBackMaterial() {
     back.specular = {0.5, 0.5, 0.5};
     back.shininess = 8.0;
     m.back = back;
-    s.objects.push_back({openSphere(24), m, glm::rotate(glm::dmat4(1.0), 0.3, glm::dvec3(0, 1, 0))});
+    s.objects.push_back(
+        {openSphere(24), m, glm::rotate(glm::dmat4(1.0), 0.3, glm::dvec3(0, 1, 0))});
     s.lights.push_back({test::makeLight(LightType::Point), test::translation({0.3, 0.4, 2.5})});
-    s.lights.push_back({test::makeLight(LightType::Directional), test::aimed({0, 0, 0}, {-1, -0.5, -1})});
+    s.lights.push_back(
+        {test::makeLight(LightType::Directional), test::aimed({0, 0, 0}, {-1, -0.5, -1})});
     s.lighting->twoSided = true;
     return s.build();
 }
@@ -176,7 +184,8 @@ Scene mirroredTwoSided() {
 Scene vertexColours() {
     LitScene s;
     s.objects.push_back({colouredSphere(24), plastic({1, 1, 1}), glm::dmat4(1.0)});
-    s.lights.push_back({test::makeLight(LightType::Directional), test::aimed({0, 0, 0}, {1, -1, -2})});
+    s.lights.push_back(
+        {test::makeLight(LightType::Directional), test::aimed({0, 0, 0}, {1, -1, -2})});
     return s.build();
 }
 
@@ -221,8 +230,8 @@ struct SceneRow {
 
 const SceneRow kScenes[] = {
     {"sphere_directional", sphereDirectional, SpecularModel::Blinn, 1.0 / 255, "one 8-bit step"},
-    {"sphere_point_attenuated_phong_specular", spherePointAttenuated, SpecularModel::Phong, 1.0 / 255,
-     "one 8-bit step"},
+    {"sphere_point_attenuated_phong_specular", spherePointAttenuated, SpecularModel::Phong,
+     1.0 / 255, "one 8-bit step"},
     {"plane_gl_spot", planeGlSpot, SpecularModel::Blinn, 1.0 / 255, "one 8-bit step"},
     {"plane_gltf_spot", planeGltfSpot, SpecularModel::Blinn, 1.0 / 255, "one 8-bit step"},
     {"eight_lights", eightLights, SpecularModel::Blinn, 1.0 / 255, "one 8-bit step"},
@@ -238,7 +247,9 @@ const SceneRow kScenes[] = {
      "one 8-bit step relative to the value (HDR)"},
 };
 
-void PrintTo(const SceneRow& r, std::ostream* os) { *os << r.name; }
+void PrintTo(const SceneRow& r, std::ostream* os) {
+    *os << r.name;
+}
 
 using Param = std::tuple<SceneRow, ShadingMode>;
 class ShadingModes : public GpuTest, public ::testing::WithParamInterface<Param> {};
@@ -258,7 +269,8 @@ TEST_P(ShadingModes, EveryPixelMatchesTheReferenceUnderTheSameInterpolationRule)
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ShadingModes,
                          ::testing::Combine(::testing::ValuesIn(kScenes),
-                                            ::testing::Values(ShadingMode::Flat, ShadingMode::Gouraud,
+                                            ::testing::Values(ShadingMode::Flat,
+                                                              ShadingMode::Gouraud,
                                                               ShadingMode::Phong)),
                          [](const auto& p) {
                              return std::string(std::get<0>(p.param).name) + "_" +

@@ -274,10 +274,12 @@ Result<std::shared_ptr<Context>> Context::create(const ContextDesc& desc) {
     ctx->m_caps.shaderFloat64 = core.shaderFloat64;
     ctx->m_caps.provokingVertexLast = haveProvoking && provoking.provokingVertexLast;
     const auto& lim = ctx->m_properties.limits;
-    // The AOV attachments are integer formats, so they bound the usable sample counts too.
-    ctx->m_caps.colorDepthSampleCounts = lim.framebufferColorSampleCounts &
-                                         lim.framebufferDepthSampleCounts &
-                                         p12.framebufferIntegerColorSampleCounts;
+    ctx->m_caps.colorDepthSampleCounts =
+        lim.framebufferColorSampleCounts & lim.framebufferDepthSampleCounts;
+    // The AOV attachments are integer formats: they bound the sample counts of AOV renders
+    // only (lavapipe: 1 and 4 for float colour, 1 for integer).
+    ctx->m_caps.aovSampleCounts =
+        ctx->m_caps.colorDepthSampleCounts & p12.framebufferIntegerColorSampleCounts;
 
     VkPhysicalDeviceVulkan13Features enable13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     enable13.dynamicRendering = VK_TRUE;

@@ -38,6 +38,7 @@ struct Capabilities {
     bool wideLines = false;
     bool debugUtils = false;           ///< object names and the messenger
     std::uint32_t colorDepthSampleCounts = VK_SAMPLE_COUNT_1_BIT;  ///< float colour & depth
+    std::uint32_t aovSampleCounts = VK_SAMPLE_COUNT_1_BIT;  ///< ... & integer colour (AOVs)
 };
 
 class Context {

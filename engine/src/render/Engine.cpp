@@ -174,6 +174,11 @@ Result<void> Engine::checkOptions(const RenderOptions& o) const {
                          "the device does not support " + std::to_string(o.msaa) +
                              " samples per pixel for float colour and depth",
                          "--msaa");
+    if (o.aovs.any() && !(m_ctx->capabilities().aovSampleCounts & std::uint32_t(o.msaa)))
+        return makeError(ErrorCode::Unsupported,
+                         "the device does not support " + std::to_string(o.msaa) +
+                             " samples per pixel for the integer AOV attachments",
+                         "--msaa");
     if (o.aovs.any() && !m_ctx->capabilities().primitiveIdInFragment)
         return makeError(ErrorCode::Unsupported,
                          "the device lacks the geometryShader feature that the AOV shaders "

@@ -3,19 +3,18 @@
 // it (shaders/mesh.vert + phong.frag, pervertex.vert + pervertex.frag are the rules mirrored).
 #include "render/Probe.h"
 
-#include <glm/geometric.hpp>
-#include <glm/matrix.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 
 namespace lantern::render {
 namespace {
 
 struct Triangle {
     std::uint32_t vertices[3] = {};
-    glm::dvec3 eye[3];     ///< eye-space positions
-    glm::dvec3 normal[3];  ///< normal matrix times the vertex normal (not normalised)
+    glm::dvec3 eye[3];    ///< eye-space positions
+    glm::dvec3 normal[3]; ///< normal matrix times the vertex normal (not normalised)
 };
 
 // Where the ray through the pixel centre meets the triangle's plane, with the perspective-
@@ -33,7 +32,7 @@ RayHit intersect(const Triangle& t, const glm::dvec3& origin, const glm::dvec3& 
     h.counterClockwise = glm::dot(glm::cross(e1, e2), dir) < 0.0;
     const glm::dvec3 p = glm::cross(dir, e2);
     const double det = glm::dot(e1, p);
-    if (det == 0.0 || !std::isfinite(det)) {  // seen edge-on: it covers no pixel centre
+    if (det == 0.0 || !std::isfinite(det)) { // seen edge-on: it covers no pixel centre
         h.point = (t.eye[0] + t.eye[1] + t.eye[2]) / 3.0;
         return h;
     }
@@ -45,8 +44,7 @@ RayHit intersect(const Triangle& t, const glm::dvec3& origin, const glm::dvec3& 
     return h;
 }
 
-template <class T>
-T interpolate(const glm::dvec3& b, const T& a0, const T& a1, const T& a2) {
+template <class T> T interpolate(const glm::dvec3& b, const T& a0, const T& a1, const T& a2) {
     return a0 * b.x + a1 * b.y + a2 * b.z;
 }
 
@@ -55,7 +53,7 @@ T interpolate(const glm::dvec3& b, const T& a0, const T& a1, const T& a2) {
 struct DrawRules {
     ref::Settings settings;
     bool vertexColour = false;
-    bool colourScales = false;  ///< COLOR_0 scales (unlit, PBR-mapped) instead of replacing
+    bool colourScales = false; ///< COLOR_0 scales (unlit, PBR-mapped) instead of replacing
     bool ambientFollowsDiffuse = false;
     bool glClamp = false, fragmentClamp = false;
     bool opaque = true;
@@ -67,8 +65,8 @@ DrawRules rulesOf(const DrawItem& d, const ResolvedLighting& lit) {
     DrawRules r;
     r.settings.globalAmbient = lit.model.globalAmbient;
     r.settings.localViewer = sc[LANTERN_SC_LOCAL_VIEWER] != 0;
-    r.settings.specular =
-        sc[LANTERN_SC_SPECULAR] == LANTERN_SPECULAR_PHONG ? SpecularModel::Phong : SpecularModel::Blinn;
+    r.settings.specular = sc[LANTERN_SC_SPECULAR] == LANTERN_SPECULAR_PHONG ? SpecularModel::Phong
+                                                                            : SpecularModel::Blinn;
     r.settings.specularOn = sc[LANTERN_SC_SPECULAR] != LANTERN_SPECULAR_NONE;
     r.settings.unlit = sc[LANTERN_SC_UNLIT] != 0;
     r.vertexColour = sc[LANTERN_SC_VERTEX_COLOR] != 0 && d.hasColors;
@@ -116,9 +114,9 @@ ProbeEvaluation evaluate(const std::string& where, double weight, const glm::dve
         p.specular = c.specular;
         e.lights.push_back(std::move(p));
     }
-    const ref::SplitColour split = ref::splitColour(sums, mc.ambient, mc.diffuse,
-                                                    rules.ambientFollowsDiffuse, rules.glClamp);
-    e.colour = split.base + split.textured;  // a white texel
+    const ref::SplitColour split =
+        ref::splitColour(sums, mc.ambient, mc.diffuse, rules.ambientFollowsDiffuse, rules.glClamp);
+    e.colour = split.base + split.textured; // a white texel
     return e;
 }
 
@@ -188,7 +186,7 @@ ProbeReport PixelReference::explain(int x, int y, std::uint32_t drawId, std::uin
     };
     const glm::dvec3 a = unproject(0.25), b = unproject(0.75);
     glm::dvec3 dir = glm::normalize(b - a);
-    if (dir.z > 0.0) dir = -dir;  // every GL camera looks down -Z
+    if (dir.z > 0.0) dir = -dir; // every GL camera looks down -Z
     const RayHit hit = intersect(t, a, dir);
 
     r.hit = true;
@@ -198,7 +196,8 @@ ProbeReport PixelReference::explain(int x, int y, std::uint32_t drawId, std::uin
     r.mesh = int(d->mesh);
     r.primitive = int(d->primitive);
     r.triangle = triangle;
-    for (int c = 0; c < 3; ++c) r.vertices[c] = t.vertices[c];
+    for (int c = 0; c < 3; ++c)
+        r.vertices[c] = t.vertices[c];
     r.barycentric = hit.barycentric;
     r.position = hit.point;
     // A mirroring transform makes clockwise triangles the front ones (Engine::record).
@@ -234,7 +233,8 @@ ProbeReport PixelReference::explain(int x, int y, std::uint32_t drawId, std::uin
     }
     case Program::Gouraud:
         for (int c = 0; c < 3; ++c) {
-            const glm::dvec4 colour = rules.vertexColour ? colourAt(t.vertices[c]) : glm::dvec4(1.0);
+            const glm::dvec4 colour =
+                rules.vertexColour ? colourAt(t.vertices[c]) : glm::dvec4(1.0);
             r.evaluations.push_back(evaluate("vertex " + std::to_string(t.vertices[c]), bc[c],
                                              t.eye[c], sign * ref::safeNormalize(t.normal[c]),
                                              r.materialSide, rules.vertexColour ? &colour : nullptr,
@@ -255,7 +255,8 @@ ProbeReport PixelReference::explain(int x, int y, std::uint32_t drawId, std::uin
         // At the centroid with the face normal, both from the object-space positions as the
         // flat streams are built (render/GpuScene.cpp); COLOR_0 averaged.
         glm::dvec3 p[3];
-        for (int c = 0; c < 3; ++c) p[c] = glm::dvec3(prim.positions[t.vertices[c]]);
+        for (int c = 0; c < 3; ++c)
+            p[c] = glm::dvec3(prim.positions[t.vertices[c]]);
         const glm::dvec3 cross = glm::cross(p[1] - p[0], p[2] - p[0]);
         const double len = glm::length(cross);
         const glm::dvec3 face = (len > 0.0 && std::isfinite(len)) ? cross / len : glm::dvec3(0.0);
@@ -264,7 +265,8 @@ ProbeReport PixelReference::explain(int x, int y, std::uint32_t drawId, std::uin
         r.normal = sign * ref::safeNormalize(normals * face);
         glm::dvec4 colour(1.0);
         if (rules.vertexColour)
-            colour = (colourAt(t.vertices[0]) + colourAt(t.vertices[1]) + colourAt(t.vertices[2])) / 3.0;
+            colour =
+                (colourAt(t.vertices[0]) + colourAt(t.vertices[1]) + colourAt(t.vertices[2])) / 3.0;
         r.evaluations.push_back(evaluate("triangle centroid", 1.0, centroid, r.normal,
                                          r.materialSide, rules.vertexColour ? &colour : nullptr,
                                          lights, rules, perLight));

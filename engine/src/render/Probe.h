@@ -9,10 +9,9 @@
 #include "render/Engine.h"
 #include "render/FramePlan.h"
 
-#include <lantern/Renderer.h>
-
 #include <cstdint>
 #include <functional>
+#include <lantern/Renderer.h>
 #include <utility>
 #include <vector>
 
@@ -20,9 +19,9 @@ namespace lantern::render {
 
 /// A frame with everything needed to explain its pixels.
 struct ExplainedFrame {
-    RenderOptions options;  ///< as rendered (AOVs on)
+    RenderOptions options; ///< as rendered (AOVs on)
     FramePlan plan;
-    FrameResult frame;      ///< colour, depth and normal planes, and per-pixel ids
+    FrameResult frame; ///< colour, depth and normal planes, and per-pixel ids
 };
 
 /// The engine-internal door into a Renderer (a friend of it).
@@ -53,8 +52,8 @@ private:
     const Scene& m_scene;
     const FramePlan& m_plan;
     int m_imageHeight = 0;
-    std::vector<std::vector<ref::EyeLight>> m_lights;            ///< per view
-    std::vector<std::pair<std::size_t, std::size_t>> m_draws;    ///< per global draw index
+    std::vector<std::vector<ref::EyeLight>> m_lights;         ///< per view
+    std::vector<std::pair<std::size_t, std::size_t>> m_draws; ///< per global draw index
 };
 
 /// Explains pixel (x, y) of an explained frame (ProbeReport::pixel included).
