@@ -409,13 +409,15 @@ TEST_F(EdgeCasesPhong, LN11_PhongAgainstBlinnTimesFour) {
         s.objects.push_back({makePlane(40.0, 8), m, glm::dmat4(1.0)});
         const double a = incidenceDeg * kPi / 180.0;
         const glm::dvec3 toLight(std::sin(a), 0, std::cos(a)), mirror(-std::sin(a), 0, std::cos(a));
-        s.lights.push_back({test::makeLight(LightType::Directional), test::aimed({0, 0, 0}, -toLight)});
+        s.lights.push_back(
+            {test::makeLight(LightType::Directional), test::aimed({0, 0, 0}, -toLight)});
         s.lighting->globalAmbient = {0, 0, 0};
         s.lighting->specular = model;
         s.lighting->localViewer = true;
         s.lookAt = {3.0 * mirror, {0, 0, 0}, {0, 1, 0}};
         s.projection = Projection::makePerspective(kPi / 3.0, 0.0, 0.01, kInfinity);
-        auto img = renderer().render(s.build(), test::optionsFor(size, size, ShadingMode::Phong), 0.0);
+        auto img =
+            renderer().render(s.build(), test::optionsFor(size, size, ShadingMode::Phong), 0.0);
         EXPECT_TRUE(img) << img.error().describe();
         EXPECT_EQ(renderer().lastFrameStats().nonFinite, 0u);
         return img ? *img : Image(size, size);
@@ -600,7 +602,8 @@ TEST_F(EdgeCasesPhong, LN14_MsaaGouraudNeverExtrapolates) {
     auto plan = render::buildFramePlan(scene, o, 0.0);
     ASSERT_TRUE(plan);
     const render::DrawItem& d = plan->views[0].draws[0];
-    const auto lights = ref::eyeLights(scene, plan->pose, plan->views[0].camera.viewFromWorld, false);
+    const auto lights =
+        ref::eyeLights(scene, plan->pose, plan->views[0].camera.viewFromWorld, false);
     const glm::dmat3 normals = normalMatrix(d.viewFromModel);
     glm::dvec3 largest(0.0);
     const Primitive& p = scene.meshes[0].primitives[0];
