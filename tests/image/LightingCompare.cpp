@@ -9,42 +9,47 @@
 namespace lantern::test {
 
 Scene LitScene::build() const {
-    Scene s;
-    s.sourcePath = "test";
-    std::vector<int> rootNodes;
-    for (std::size_t i = 0; i < objects.size(); ++i) {
+    // The first object, the lights and the camera as SimpleScene builds them; then the rest.
+    SimpleScene first;
+    first.primitive = objects.at(0).primitive;
+    first.material = objects[0].material;
+    first.model = objects[0].model;
+    first.lights = lights;
+    first.projection = projection;
+    first.lookAt = lookAt;
+    first.lighting = lighting.value_or(LightingModel{});
+    Scene s = first.build();
+    s.roots[0].lighting = lighting;
+    for (std::size_t i = 1; i < objects.size(); ++i) {
         Mesh mesh{"mesh " + std::to_string(i), {objects[i].primitive}};
-        mesh.primitives[0].material = int(i);
-        s.meshes.push_back(std::move(mesh));
-        Material m = objects[i].material;
-        if (m.name.empty()) m.name = "material " + std::to_string(i);
-        s.materials.push_back(m);
+        mesh.primitives[0].material = int(s.materials.size());
+        s.materials.push_back(objects[i].material);
         Node n;
         n.name = "object " + std::to_string(i);
-        n.mesh = int(i);
+        n.mesh = int(s.meshes.size());
         n.matrix = objects[i].model;
-        rootNodes.push_back(int(s.nodes.size()));
+        s.meshes.push_back(std::move(mesh));
+        s.roots[0].nodes.push_back(int(s.nodes.size()));
         s.nodes.push_back(n);
     }
-    for (std::size_t i = 0; i < lights.size(); ++i) {
-        s.lights.push_back(lights[i].first);
-        Node n;
-        n.name = "light node " + std::to_string(i);
-        n.light = int(i);
-        n.matrix = lights[i].second;
-        rootNodes.push_back(int(s.nodes.size()));
-        s.nodes.push_back(n);
-    }
-    Camera cam;
-    cam.name = "test camera";
-    cam.projection = projection;
-    cam.lookAt = lookAt;
-    s.cameras.push_back(cam);
-    SceneRoot root;
-    root.nodes = rootNodes;
-    root.lighting = lighting;
-    s.roots.push_back(root);
     return s;
+}
+
+Material phongMaterial(const glm::dvec3& ambient, const glm::dvec4& diffuse,
+                       const glm::dvec3& specular, double shininess) {
+    Material m;
+    m.front.ambient = ambient;
+    m.front.diffuse = diffuse;
+    m.front.specular = specular;
+    m.front.shininess = shininess;
+    return m;
+}
+
+float brightestColour(const Image& image) {
+    float b = 0.0f;
+    for (std::size_t i = 0; i < image.rgba.size(); ++i)
+        if (i % 4 != 3) b = std::max(b, image.rgba[i]);
+    return b;
 }
 
 glm::dmat4 translation(const glm::dvec3& t) {

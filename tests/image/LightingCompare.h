@@ -16,7 +16,8 @@
 namespace lantern::test {
 
 /// Objects (primitive, material, world transform), lights (light, world transform), one
-/// camera and the scene's lighting model.
+/// camera and the scene's lighting model (absent: the scene chooses nothing). Object 0 is
+/// node 0 ("object"), then the lights' nodes, then the other objects ("object N").
 struct LitScene {
     struct Object {
         Primitive primitive;
@@ -30,6 +31,13 @@ struct LitScene {
     std::optional<LightingModel> lighting = LightingModel{};
     Scene build() const;
 };
+
+/// A Phong material (front side).
+Material phongMaterial(const glm::dvec3& ambient, const glm::dvec4& diffuse,
+                       const glm::dvec3& specular, double shininess);
+
+/// The largest colour channel value of an image (alpha left out).
+float brightestColour(const Image& image);
 
 /// A world transform that only translates.
 glm::dmat4 translation(const glm::dvec3& t);

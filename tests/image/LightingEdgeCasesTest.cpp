@@ -52,12 +52,8 @@ protected:
 // (lavapipe's pow(0, 0) is 0).
 TEST_P(EdgeCases, LN1_ZeroShininessGivesFullSpecularWhereverLit) {
     LitScene s;
-    Material m;
+    Material m = test::phongMaterial({0.1, 0.1, 0.1}, {0.3, 0.3, 0.3, 1.0}, {0.5, 0.4, 0.3}, 0.0);
     m.doubleSided = true;
-    m.front.ambient = {0.1, 0.1, 0.1};
-    m.front.diffuse = {0.3, 0.3, 0.3, 1.0};
-    m.front.specular = {0.5, 0.4, 0.3};
-    m.front.shininess = 0.0;
     // The plane's normal turned to -Z: away from the camera at +Z, towards the light behind.
     s.objects.push_back(
         {makePlane(3.0, 4), m, glm::rotate(glm::dmat4(1.0), kPi, glm::dvec3(0, 1, 0))});
@@ -204,9 +200,7 @@ TEST_P(EdgeCases, LN6_LightExactlyOnAVertex) {
     const test::ReferenceComparison c =
         check(s.build(), test::optionsFor(64, 64, GetParam()), "ln6");
     ASSERT_EQ(c.frame.plan.views[0].camera.viewFromWorld, glm::dmat4(1.0));
-    float brightest = 0.0f;
-    for (std::size_t i = 0; i < c.frame.frame.image.rgba.size(); ++i)
-        if (i % 4 != 3) brightest = std::max(brightest, c.frame.frame.image.rgba[i]);
+    const float brightest = test::brightestColour(c.frame.frame.image);
     if (GetParam() == ShadingMode::Gouraud)
         EXPECT_GT(brightest, 1e20f) << "the vertex on the light is lit with att = 1e30";
     else
@@ -217,9 +211,7 @@ TEST_P(EdgeCases, LN6_LightExactlyOnAVertex) {
 // (kq d) d = inf in float, attenuation 0, never NaN.
 TEST_P(EdgeCases, LN6_HugeAttenuationCoefficients) {
     LitScene s;
-    Material m;
-    m.front.specular = {1, 1, 1};
-    m.front.shininess = 5.0;
+    const Material m = test::phongMaterial({0.2, 0.2, 0.2}, {0.8, 0.8, 0.8, 1}, {1, 1, 1}, 5.0);
     s.objects.push_back({makeSphere(1.0, 16, 8), m, glm::dmat4(1.0)});
     Light l = test::makeLight(LightType::Point);
     l.attenuation = {0.0, 0.0, 1e30};
@@ -261,19 +253,26 @@ INSTANTIATE_TEST_SUITE_P(Modes, EdgeCases, ::testing::ValuesIn(kModes), modeName
 
 class EdgeCasesPhong : public EdgeCases {};
 
+// A plane (side `size`, facing +Z at the origin) under a GL spot, with no ambient light: the
+// picture is the spot's diffuse term alone.
+LitScene spotOnPlane(double size, double cutoffDeg, double exponent, const glm::dmat4& spotAt) {
+    LitScene s;
+    Material m;
+    m.front.ambient = {0, 0, 0};
+    s.objects.push_back({makePlane(size, 2), m, glm::dmat4(1.0)});
+    Light l = test::makeLight(LightType::Spot);
+    l.spotCutoffDeg = cutoffDeg;
+    l.spotExponent = exponent;
+    s.lights.push_back({l, spotAt});
+    s.lighting->globalAmbient = {0, 0, 0};
+    return s;
+}
+
 // LN-2: spot exponent 0 (x^0 = 1), cutoff 90: receivers where -l.s = +1e-6 are inside the cone
 // (spot = 1), where it is -1e-6 outside (0). An orthographic camera puts pixel-centre rows at
 // y = +-0.001 exactly; the spot, 1000 away, points along +Y.
 TEST_F(EdgeCasesPhong, LN2_SpotExponentZeroAtTheNinetyDegreeCone) {
-    LitScene s;
-    Material m;
-    m.front.ambient = {0.0, 0.0, 0.0};
-    s.objects.push_back({makePlane(4.0, 1), m, glm::dmat4(1.0)});
-    Light l = test::makeLight(LightType::Spot);
-    l.spotCutoffDeg = 90.0;
-    l.spotExponent = 0.0;
-    s.lights.push_back({l, test::aimed({0, 0, 1000}, {0, 1, 0})});
-    s.lighting->globalAmbient = {0, 0, 0};
+    LitScene s = spotOnPlane(4.0, 90.0, 0.0, test::aimed({0, 0, 1000}, {0, 1, 0}));
     s.projection = Projection::makeOrtho(-0.064, 0.064, -0.064, 0.064, 1.0, 20.0);
     s.lookAt = {{0, 0, 10}, {0, 0, 0}, {0, 1, 0}};
     const test::ReferenceComparison c =
@@ -293,14 +292,7 @@ TEST_F(EdgeCasesPhong, LN2_SpotExponentZeroAtTheNinetyDegreeCone) {
 // Spot cutoff 0: only the axis itself is inside the cone; no pixel centre of an even-sized
 // image lies on it, so nothing is lit, and nothing is NaN.
 TEST_F(EdgeCasesPhong, SpotCutoffZeroLightsOnlyTheAxis) {
-    LitScene s;
-    Material m;
-    m.front.ambient = {0, 0, 0};
-    s.objects.push_back({makePlane(4.0, 2), m, glm::dmat4(1.0)});
-    Light l = test::makeLight(LightType::Spot);
-    l.spotCutoffDeg = 0.0;
-    s.lights.push_back({l, test::aimed({0, 0, 4}, {0, 0, -1})});
-    s.lighting->globalAmbient = {0, 0, 0};
+    const LitScene s = spotOnPlane(4.0, 0.0, 0.0, test::aimed({0, 0, 4}, {0, 0, -1}));
     const test::ReferenceComparison c =
         check(s.build(), test::optionsFor(64, 64, ShadingMode::Phong), "cutoff0");
     for (float v : c.frame.frame.image.rgba)
@@ -311,16 +303,8 @@ TEST_F(EdgeCasesPhong, SpotCutoffZeroLightsOnlyTheAxis) {
 // so comparing cosines in float would move the edge by about 8%; lighting.glsl compares
 // 1 - cos computed without cancellation. Every pixel farther than 1% from the edge matches.
 TEST_F(EdgeCasesPhong, NarrowSpotConeKeepsItsEdge) {
-    LitScene s;
-    Material m;
-    m.front.ambient = {0, 0, 0};
-    s.objects.push_back({makePlane(1.0, 2), m, glm::dmat4(1.0)});
-    Light l = test::makeLight(LightType::Spot);
     const double cutoffDeg = 0.05;
-    l.spotCutoffDeg = cutoffDeg;
-    l.spotExponent = 1e5;
-    s.lights.push_back({l, test::aimed({0, 0, 4}, {0, 0, -1})});
-    s.lighting->globalAmbient = {0, 0, 0};
+    LitScene s = spotOnPlane(1.0, cutoffDeg, 1e5, test::aimed({0, 0, 4}, {0, 0, -1}));
     // The cone's radius is about 20 pixels.
     s.projection =
         Projection::makePerspective(cutoffDeg * kPi / 180.0 * 64.0 / 20.0, 0.0, 0.1, kInfinity);
@@ -352,11 +336,7 @@ TEST_F(EdgeCasesPhong, NarrowSpotConeKeepsItsEdge) {
 TEST_F(EdgeCasesPhong, LN9_ShininessSweep) {
     for (const double shininess : {0.0, 1.0, 8.0, 128.0, 1e3, 1e4, 1e5, 1e6}) {
         LitScene s;
-        Material m;
-        m.front.ambient = {0, 0, 0};
-        m.front.diffuse = {0, 0, 0, 1};
-        m.front.specular = {1, 1, 1};
-        m.front.shininess = shininess;
+        const Material m = test::phongMaterial({0, 0, 0}, {0, 0, 0, 1}, {1, 1, 1}, shininess);
         s.objects.push_back({makePlane(4.0, 4), m, glm::dmat4(1.0)});
         s.lights.push_back({test::makeLight(LightType::Point), test::translation({0, 0, 4})});
         s.lighting->localViewer = true;
@@ -401,11 +381,7 @@ TEST_F(EdgeCasesPhong, LN11_PhongAgainstBlinnTimesFour) {
     const int size = 192;
     auto render = [&](SpecularModel model, double shininess, double incidenceDeg) {
         LitScene s;
-        Material m;
-        m.front.ambient = {0, 0, 0};
-        m.front.diffuse = {0, 0, 0, 1};
-        m.front.specular = {1, 1, 1};
-        m.front.shininess = shininess;
+        const Material m = test::phongMaterial({0, 0, 0}, {0, 0, 0, 1}, {1, 1, 1}, shininess);
         s.objects.push_back({makePlane(40.0, 8), m, glm::dmat4(1.0)});
         const double a = incidenceDeg * kPi / 180.0;
         const glm::dvec3 toLight(std::sin(a), 0, std::cos(a)), mirror(-std::sin(a), 0, std::cos(a));
@@ -462,9 +438,8 @@ TEST_F(EdgeCasesPhong, LN11_PhongAgainstBlinnTimesFour) {
 TEST_F(EdgeCasesPhong, LN7_TinyAndHugeUniformScale) {
     auto render = [&](double k) {
         LitScene s;
-        Material m;
-        m.front.specular = {1, 1, 1};
-        m.front.shininess = 32.0;
+        const Material m =
+            test::phongMaterial({0.2, 0.2, 0.2}, {0.8, 0.8, 0.8, 1}, {1, 1, 1}, 32.0);
         s.objects.push_back(
             {makeSphere(1.0, 64, 32), m, glm::scale(glm::dmat4(1.0), glm::dvec3(k))});
         s.lights.push_back(
@@ -570,10 +545,7 @@ TEST_F(EdgeCasesPhong, HdrValuesAboveTheHalfRange) {
     s.lights.push_back({l, test::aimed({0, 0, 0}, {0, 0, -1})});
     const test::ReferenceComparison c =
         check(s.build(), test::optionsFor(64, 64, ShadingMode::Phong), "hdr");
-    float brightest = 0.0f;
-    for (float v : c.frame.frame.image.rgba)
-        brightest = std::max(brightest, v);
-    EXPECT_GT(brightest, 65504.0f);
+    EXPECT_GT(test::brightestColour(c.frame.frame.image), 65504.0f);
 }
 
 // LN-14: 4x MSAA with gouraud shading: no resolved pixel is below 0 or above the largest
@@ -582,9 +554,7 @@ TEST_F(EdgeCasesPhong, HdrValuesAboveTheHalfRange) {
 // the colours change fastest at the silhouette.
 TEST_F(EdgeCasesPhong, LN14_MsaaGouraudNeverExtrapolates) {
     LitScene s;
-    Material m;
-    m.front.specular = {1, 1, 1};
-    m.front.shininess = 64.0;
+    const Material m = test::phongMaterial({0.2, 0.2, 0.2}, {0.8, 0.8, 0.8, 1}, {1, 1, 1}, 64.0);
     s.objects.push_back({makeSphere(1.0, 64, 32), m, glm::dmat4(1.0)});
     Light l = test::makeLight(LightType::Point);
     l.attenuation = {0.0, 0.0, 1.0};

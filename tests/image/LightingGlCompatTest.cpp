@@ -21,11 +21,8 @@ constexpr double kStep = 1.0 / 255.0;
 
 Scene litSphere(double lightStrength, double shininess = 20.0, double spotExponent = 0.0) {
     LitScene s;
-    Material m;
-    m.front.ambient = {0.1, 0.1, 0.1};
-    m.front.diffuse = {0.7, 0.5, 0.3, 1.0};
-    m.front.specular = {0.4, 0.4, 0.4};
-    m.front.shininess = shininess;
+    const Material m =
+        test::phongMaterial({0.1, 0.1, 0.1}, {0.7, 0.5, 0.3, 1.0}, {0.4, 0.4, 0.4}, shininess);
     s.objects.push_back({makeSphere(1.0, 12, 6), m, glm::dmat4(1.0)});
     Light l = test::makeLight(spotExponent > 0.0 ? LightType::Spot : LightType::Point);
     l.diffuse = l.specular = glm::dvec3(lightStrength);
@@ -111,10 +108,7 @@ TEST_F(LightingGlCompat, GouraudClampsEachVertexColour) {
     RenderOptions o = test::optionsFor(64, 64, ShadingMode::Gouraud);
     o.glCompat = true;
     const test::ReferenceComparison c = compare(scene, o, "gl_gouraud");
-    float brightest = 0.0f;
-    for (std::size_t i = 0; i < c.frame.frame.image.rgba.size(); ++i)
-        brightest = std::max(brightest, c.frame.frame.image.rgba[i]);
-    EXPECT_LE(brightest, 1.0f);
+    EXPECT_LE(test::brightestColour(c.frame.frame.image), 1.0f);
     RenderOptions clampAfter = o;
     clampAfter.glCompat = false;
     clampAfter.clamp = true;

@@ -36,9 +36,7 @@ Scene oneDirectionalNoSpecular() {
 
 Scene everyCostlyFeature() {
     LitScene s;
-    Material m;
-    m.front.specular = {1, 1, 1};
-    m.front.shininess = 30.0;
+    const Material m = test::phongMaterial({0.2, 0.2, 0.2}, {0.8, 0.8, 0.8, 1}, {1, 1, 1}, 30.0);
     s.objects.push_back({makeSphere(1.0, 16, 8), m, glm::dmat4(1.0)});
     Light spot = test::makeLight(LightType::Spot);
     spot.spotCutoffDeg = 30.0;

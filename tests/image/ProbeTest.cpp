@@ -123,7 +123,7 @@ TEST_F(Probe, ReportsTheSurfaceMaterialAndEachLight) {
     ASSERT_TRUE(r) << r.error().describe();
     ASSERT_TRUE(r->hit);
     EXPECT_EQ(r->materialName, "shiny");
-    EXPECT_EQ(r->nodeName, "object 0");
+    EXPECT_EQ(r->nodeName, "object");
     EXPECT_FALSE(r->backFacing);
     ASSERT_EQ(r->evaluations.size(), 1u);
     const ProbeEvaluation& e = r->evaluations[0];

@@ -21,12 +21,9 @@ using lantern::test::LitScene;
 constexpr double kPi = 3.14159265358979323846;
 
 Material plastic(glm::dvec3 diffuse, double shininess = 20.0) {
-    Material m;
-    m.front.ambient = diffuse * 0.25;
-    m.front.diffuse = glm::dvec4(diffuse, 1.0);
-    m.front.specular = {0.8, 0.8, 0.8};
+    Material m =
+        test::phongMaterial(diffuse * 0.25, glm::dvec4(diffuse, 1.0), {0.8, 0.8, 0.8}, shininess);
     m.front.emission = {0.02, 0.01, 0.0};
-    m.front.shininess = shininess;
     return m;
 }
 
