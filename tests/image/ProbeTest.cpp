@@ -147,6 +147,32 @@ TEST_F(Probe, ReportsTheSurfaceMaterialAndEachLight) {
     EXPECT_NE(e.diffuseM, glm::dvec3(r->materialSide.diffuse));
 }
 
+// Several viewports: the probe finds the view a pixel belongs to (GL's bottom-left viewport
+// origin) and its ray goes through that view's camera.
+TEST_F(Probe, FindsTheViewOfAPixel) {
+    const Scene scene = probeScene();
+    RenderOptions o = test::optionsFor(96, 64, ShadingMode::Phong);
+    CameraSpec framing;
+    framing.source = CameraSpec::Source::Framing;
+    o.views = {View{0, 0, 48, 64, CameraSpec{}}, View{48, 16, 48, 48, framing}};
+    auto img = renderer().render(scene, o, 0.0);
+    ASSERT_TRUE(img) << img.error().describe();
+    int hits[2] = {0, 0};
+    for (const auto& [x, y] :
+         {std::pair{20, 30}, {30, 20}, {60, 30}, {70, 20}, {80, 40}, {72, 28}}) {
+        auto r = renderer().probe(scene, o, 0.0, x, y);
+        ASSERT_TRUE(r) << r.error().describe();
+        if (!r->hit) continue;
+        EXPECT_EQ(r->view, x < 48 ? 0 : 1) << x << "," << y;
+        ++hits[r->view];
+        const float* px = img->pixel(x, y);
+        for (int k = 0; k < 4; ++k)
+            EXPECT_NEAR(r->colour[k], px[k], kStep) << x << "," << y << " channel " << k;
+    }
+    EXPECT_GE(hits[0], 1);
+    EXPECT_GE(hits[1], 2);
+}
+
 TEST_F(Probe, BackgroundAndOutsideTheImage) {
     const Scene scene = probeScene();
     RenderOptions o = test::optionsFor(64, 64, ShadingMode::Phong);
