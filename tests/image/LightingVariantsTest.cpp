@@ -126,7 +126,9 @@ TEST_F(LightingVariants, PipelinesAreCached) {
 }
 
 // The command prints the features and the variants.
-TEST(LightingExplainCli, PrintsFeaturesAndVariants) {
+class LightingExplainCli : public GpuTest {}; // skips without a device
+
+TEST_F(LightingExplainCli, PrintsFeaturesAndVariants) {
     const auto dir = test::testOutputDir();
     const auto r = test::runLantern({"render", "builtin:spheres", "--width", "32", "--height", "24",
                                      "--explain", "-o", (dir / "explain.exr").string()});

@@ -194,12 +194,15 @@ TEST_F(Probe, BackgroundAndOutsideTheImage) {
 }
 
 // `lantern render --probe`: prints the equation term by term; bad pixels are refused (exit 1).
-TEST(ProbeCli, PrintsTheEquationAtAPixel) {
+class ProbeCli : public GpuTest {}; // skips without a device, like the renders it runs
+
+TEST_F(ProbeCli, PrintsTheEquationAtAPixel) {
     const auto dir = test::testOutputDir();
     const std::string out = (dir / "probe.png").string();
     const auto r = test::runLantern({"render", "builtin:spheres", "--width", "64", "--height", "48",
-                                     "--probe", "32,24", "-o", out});
+                                     "--probe", "32,24", "-o", out, "--validation"});
     ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err.find("validation"), std::string::npos) << "validation messages: " << r.err;
     for (const char* text :
          {"probe pixel 32,24", "surface point (eye space)", "normal (eye space", "material ",
           "evaluated at the surface point", "light 0 \"sun\" directional",
