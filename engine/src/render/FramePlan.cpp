@@ -136,6 +136,11 @@ ResolvedLighting resolveLighting(const Scene& scene, int root, const RenderOptio
     if (o.specular) r.model.specular = *o.specular;
     if (o.localViewer) r.model.localViewer = *o.localViewer;
     if (o.twoSided) r.model.twoSided = *o.twoSided;
+    // GL's default shading is GL_SMOOTH: with --gl-compat a scene that does not choose a mode
+    // (no LANTERN_lighting) is shaded per vertex, as OpenGL would.
+    const bool sceneChoosesShading =
+        ri >= 0 && ri < int(scene.roots.size()) && scene.roots[ri].lighting.has_value();
+    if (o.glCompat && !o.shading && !sceneChoosesShading) r.model.shading = ShadingMode::Gouraud;
     r.glCompat = o.glCompat;
     r.clamp = o.glCompat ? LANTERN_CLAMP_GL : o.clamp ? LANTERN_CLAMP_FRAGMENT : LANTERN_CLAMP_NONE;
     switch (r.model.shading) {
@@ -298,8 +303,10 @@ LightData packLight(const Light& l, const glm::dmat4& viewFromLight, bool glComp
     d.ambient = vec4(l.ambient);
     d.diffuse = vec4(l.diffuse);
     d.specular = vec4(l.specular);
-    const double cutoff = std::min(l.spotCutoffDeg, 90.0) * kPi / 180.0;
-    d.spotDirection = vec4(axis, std::cos(cutoff));
+    // 1 - cos(cutoff) as 2 sin^2(cutoff / 2): exact for small cutoffs (lighting.glsl's
+    // glSpotFactor compares 1 - cos(angle) with it).
+    const double halfCutoff = std::min(l.spotCutoffDeg, 90.0) * kPi / 360.0;
+    d.spotDirection = vec4(axis, 2.0 * std::sin(halfCutoff) * std::sin(halfCutoff));
     const double invRange = std::isinf(l.range) ? 0.0 : 1.0 / l.range;
     d.attenuation = vec4(glm::dvec4(l.attenuation, invRange));
     const double exponent = glCompat ? std::min(l.spotExponent, 128.0) : l.spotExponent;
@@ -399,7 +406,6 @@ Result<FramePlan> buildFramePlan(const Scene& scene, const RenderOptions& o, dou
     if (gltfFalloff) f.push_back("falloff:gltf");
     f.push_back(std::string("shading:") + toString(lit.model.shading) +
                 (lit.program == Program::GlFlat ? " (provoking vertex)" : ""));
-    f.push_back(std::string("specular-model:") + toString(lit.model.specular));
     if (lit.model.localViewer) f.push_back("local-viewer");
     if (lit.model.twoSided) f.push_back("two-sided");
     if (lit.clamp == LANTERN_CLAMP_GL) f.push_back("clamp:gl (per vertex)");
@@ -413,6 +419,7 @@ Result<FramePlan> buildFramePlan(const Scene& scene, const RenderOptions& o, dou
 
     bool anyVertexColor = false, anyTexture = false, anyMask = false, anyBlend = false,
          anyUnlit = false, anySpecular = false;
+    std::uint32_t drawCount = 0;
     for (std::size_t vi = 0; vi < views.size(); ++vi) {
         const View& v = views[vi];
         const std::string viewObject = o.views.empty() ? std::string("camera")
@@ -538,10 +545,14 @@ Result<FramePlan> buildFramePlan(const Scene& scene, const RenderOptions& o, dou
         vp.draws = std::move(opaque);
         vp.draws.insert(vp.draws.end(), std::make_move_iterator(blended.begin()),
                         std::make_move_iterator(blended.end()));
-        for (std::size_t i = 0; i < vp.draws.size(); ++i) vp.draws[i].block.drawIndex = std::uint32_t(i);
+        // Numbered across the frame, so the ids AOV names a draw of any view (--probe).
+        for (DrawItem& d : vp.draws) d.block.drawIndex = drawCount++;
         plan.views.push_back(std::move(vp));
     }
-    if (anySpecular) f.push_back("specular");
+    // The specular model only matters when some draw has a specular term at all.
+    f.push_back(anySpecular ? std::string("specular:") + toString(lit.model.specular)
+                            : std::string("specular:none (no specular light on a specular "
+                                          "material)"));
     if (anyVertexColor) f.push_back("vertex-colors");
     if (anyTexture) f.push_back("texture");
     if (anyMask) f.push_back("alpha-mask");
