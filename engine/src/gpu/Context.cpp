@@ -2,6 +2,10 @@
 // device creation.
 #include "gpu/Context.h"
 
+#if defined(__SANITIZE_ADDRESS__)
+#include "core/SanitizerSupport.h"
+#endif
+
 #include <algorithm>
 #include <cctype>
 #include <cstring>
@@ -117,6 +121,9 @@ VKAPI_ATTR VkBool32 VKAPI_CALL Context::debugCallback(
 
 Result<std::shared_ptr<Context>> Context::create(const ContextDesc& desc) {
     armFaultsFromEnvironment();
+#if defined(__SANITIZE_ADDRESS__)
+    core::pinVulkanLibraries();
+#endif
     std::shared_ptr<Context> ctx(new Context());
     ctx->m_log = desc.log;
 
