@@ -138,25 +138,27 @@ Result<void> CameraOptions::apply(RenderOptions& o) const {
                                  "--viewport");
         o.views.push_back(View{int(n[0]), int(n[1]), int(n[2]), int(n[3]), withCamera(spec, i)});
     }
-    if (layout == "quad") {
-        // A classic modeller's four views (GL origin bottom-left): top view top-left, front
-        // top-right, side bottom-left, the perspective camera bottom-right.
-        const int w = o.width / 2, h = o.height / 2;
-        auto orthoView = [](glm::dvec3 direction) {
-            CameraSpec s;
-            s.source = CameraSpec::Source::Framing;
-            s.framingDirection = direction;
-            s.framingOrthographic = true;
-            return s;
-        };
-        o.views = {
-            View{0, o.height - h, w, h, orthoView({0, -1, 0})},
-            View{w, o.height - h, o.width - w, h, orthoView({0, 0, -1})},
-            View{0, 0, w, o.height - h, orthoView({-1, 0, 0})},
-            View{w, 0, o.width - w, o.height - h, o.camera},
-        };
-    }
+    if (layout == "quad") o.views = quadLayout(o.width, o.height, o.camera);
     return {};
+}
+
+std::vector<View> quadLayout(int width, int height, const CameraSpec& perspective) {
+    // A classic modeller's four views (GL origin bottom-left): top view top-left, front
+    // top-right, side bottom-left, the perspective camera bottom-right.
+    const int w = width / 2, h = height / 2;
+    auto orthoView = [](glm::dvec3 direction) {
+        CameraSpec s;
+        s.source = CameraSpec::Source::Framing;
+        s.framingDirection = direction;
+        s.framingOrthographic = true;
+        return s;
+    };
+    return {
+        View{0, height - h, w, h, orthoView({0, -1, 0})},
+        View{w, height - h, width - w, h, orthoView({0, 0, -1})},
+        View{0, 0, w, height - h, orthoView({-1, 0, 0})},
+        View{w, 0, width - w, height - h, perspective},
+    };
 }
 
 void ShadingOptions::add(CLI::App& app) {

@@ -40,6 +40,10 @@ struct CameraOptions {
     Result<void> apply(RenderOptions& options) const;
 };
 
+/// The four views of --layout quad for a width x height image: top, front and side
+/// (orthographic framing) and `perspective` in the bottom-right quarter.
+std::vector<View> quadLayout(int width, int height, const CameraSpec& perspective);
+
 /// The lighting/shading options shared by render and view.
 struct ShadingOptions {
     std::string shading, specular;

@@ -115,6 +115,12 @@ public:
     /// resize events); the swapchain is rebuilt at the next render(). 0 x 0: minimised.
     void resize(int width, int height);
 
+    /// Waits until the frame slot the next render() uses is free (its previous frame has
+    /// finished on the GPU): the frames-in-flight bound. A host that calls this before it
+    /// samples input shortens the input-to-photon path by the time this waits; render() waits
+    /// by itself otherwise. Returns the milliseconds waited.
+    Result<double> waitForFrameSlot();
+
     /// Renders `scene` at `timeSeconds` with `options` (whose width and height are replaced by
     /// the swapchain's; views must fit width() x height()), records `overlay` (if any) and
     /// presents. A minimised window or an out-of-date swapchain is a status, not an error.

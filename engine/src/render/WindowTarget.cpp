@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <utility>
 
 namespace lantern {
 namespace {
@@ -68,6 +69,8 @@ struct WindowTarget::Impl {
     std::vector<gpu::UniqueFramebuffer> framebuffers;
     gpu::UniqueDescriptorPool overlayPool;
     OverlayContext overlay;
+    double slotGpuMs = -1.0;   ///< GPU time of the frame waited for by waitForFrameSlot()
+    double slotWaitMs = 0.0;   ///< and how long that took
 
     render::Engine& engine() { return *renderer->engine; }
 
@@ -309,6 +312,8 @@ Result<WindowFrame> WindowTarget::render(const PreparedScene& prepared, const Re
     // semaphore are reused: this wait is what bounds the frames in flight.
     const auto t1 = Clock::now();
     const std::uint32_t slot = engine.nextSlot();
+    out.stats.gpuMs = std::exchange(m.slotGpuMs, -1.0);
+    const double waitedBefore = std::exchange(m.slotWaitMs, 0.0);
     if (engine.busy(slot)) {
         auto done = engine.collect(slot, o);
         if (!done) return std::move(done).error();
@@ -324,7 +329,7 @@ Result<WindowFrame> WindowTarget::render(const PreparedScene& prepared, const Re
         return out;
     }
     if (*acquired == gpu::SwapchainState::Suboptimal) m.stale = true;
-    out.stats.waitMs = msSince(t1);
+    out.stats.waitMs = waitedBefore + msSince(t1);
 
     const auto t2 = Clock::now();
     render::SubmitHooks hooks;
@@ -362,6 +367,18 @@ Result<WindowFrame> WindowTarget::render(const PreparedScene& prepared, const Re
     }
     m.renderer->stats = out.stats;
     return out;
+}
+
+Result<double> WindowTarget::waitForFrameSlot() {
+    render::Engine& engine = m_impl->engine();
+    const std::uint32_t slot = engine.nextSlot();
+    if (!engine.busy(slot)) return 0.0;
+    const auto t0 = Clock::now();
+    auto done = engine.collect(slot, RenderOptions{});
+    if (!done) return std::move(done).error();
+    m_impl->slotGpuMs = done->gpuMs;
+    m_impl->slotWaitMs += msSince(t0);
+    return m_impl->slotWaitMs;
 }
 
 int WindowTarget::width() const {
