@@ -88,6 +88,28 @@ TEST_F(Renderer_, ExplainListsFeaturesAndVariants) {
     EXPECT_FALSE(r->variants.empty());
 }
 
+TEST_F(Renderer_, MsaaAntialiasesColourAndKeepsAovsExact) {
+    auto scene = builtinScene("spheres");
+    ASSERT_TRUE(scene);
+    RenderOptions o = small();
+    o.aovs.depth = o.aovs.normal = true;
+    auto one = renderer().render(*scene, o, 0.0);
+    o.msaa = 4;
+    auto four = renderer().render(*scene, o, 0.0);
+    ASSERT_TRUE(one && four);
+    // The AOVs are one value per pixel centre in both: identical.
+    EXPECT_EQ(one->depth, four->depth);
+    EXPECT_EQ(one->normal, four->normal);
+    // The colour is antialiased: silhouette pixels get partial coverage.
+    std::size_t partial = 0;
+    for (std::size_t i = 0; i < four->pixelCount(); ++i) {
+        const float a = four->rgba[i * 4 + 3];
+        partial += a > 0.01f && a < 0.99f;
+    }
+    EXPECT_GT(partial, 20u);
+    EXPECT_EQ(test::countNonFinite(*four), 0u);
+}
+
 // The proof that validation is really on: an invalid call must be counted.
 TEST(ValidationLayer, CountsAProvokedError) {
     gpu::ContextDesc desc;

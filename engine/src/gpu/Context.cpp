@@ -116,6 +116,7 @@ VKAPI_ATTR VkBool32 VKAPI_CALL Context::debugCallback(
 }
 
 Result<std::shared_ptr<Context>> Context::create(const ContextDesc& desc) {
+    armFaultsFromEnvironment();
     std::shared_ptr<Context> ctx(new Context());
     ctx->m_log = desc.log;
 
@@ -273,10 +274,10 @@ Result<std::shared_ptr<Context>> Context::create(const ContextDesc& desc) {
     ctx->m_caps.shaderFloat64 = core.shaderFloat64;
     ctx->m_caps.provokingVertexLast = haveProvoking && provoking.provokingVertexLast;
     const auto& lim = ctx->m_properties.limits;
-    // The AOV attachments are integer formats, so they bound the usable sample counts too.
+    // The integer AOV attachments are never multisampled (the AOV pass is single-sampled), so
+    // only float colour and depth bound the sample counts.
     ctx->m_caps.colorDepthSampleCounts = lim.framebufferColorSampleCounts &
-                                         lim.framebufferDepthSampleCounts &
-                                         p12.framebufferIntegerColorSampleCounts;
+                                         lim.framebufferDepthSampleCounts;
 
     VkPhysicalDeviceVulkan13Features enable13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     enable13.dynamicRendering = VK_TRUE;

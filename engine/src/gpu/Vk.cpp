@@ -2,7 +2,9 @@
 #include "gpu/Vk.h"
 
 #include <atomic>
+#include <cstdlib>
 #include <mutex>
+#include <string>
 #include <vector>
 
 namespace lantern::gpu {
@@ -99,6 +101,44 @@ VkResult injectedVkFault(const char* call) {
         return r;
     }
     return VK_SUCCESS;
+}
+
+} // namespace lantern::gpu
+
+namespace lantern::gpu {
+
+void armFaultsFromEnvironment() {
+#ifdef LANTERN_TESTING_HOOKS
+    // LANTERN_TEST_VK_FAULT="call=RESULT[@N][;call=RESULT...]": the (N+1)th check of a call
+    // whose text contains `call` reports RESULT. Compiled in only with LANTERN_TESTING_HOOKS
+    // (dev and CI builds), so that tests can drive the command line into device loss.
+    static std::once_flag once;
+    std::call_once(once, [] {
+        const char* env = std::getenv("LANTERN_TEST_VK_FAULT");
+        if (!env) return;
+        std::string spec(env);
+        std::size_t start = 0;
+        while (start < spec.size()) {
+            std::size_t end = spec.find(';', start);
+            if (end == std::string::npos) end = spec.size();
+            const std::string item = spec.substr(start, end - start);
+            start = end + 1;
+            const auto eq = item.find('=');
+            if (eq == std::string::npos) continue;
+            std::string result = item.substr(eq + 1);
+            int after = 0;
+            if (const auto at = result.find('@'); at != std::string::npos) {
+                after = std::atoi(result.c_str() + at + 1);
+                result = result.substr(0, at);
+            }
+            VkResult r = VK_ERROR_UNKNOWN;
+            for (VkResult candidate : {VK_ERROR_DEVICE_LOST, VK_ERROR_OUT_OF_DEVICE_MEMORY,
+                                       VK_ERROR_OUT_OF_HOST_MEMORY, VK_ERROR_INITIALIZATION_FAILED})
+                if (result == vkResultName(candidate)) r = candidate;
+            injectVkFault(item.substr(0, eq), r, after);
+        }
+    });
+#endif
 }
 
 } // namespace lantern::gpu

@@ -22,6 +22,9 @@ void injectVkFault(const std::string& callSubstring, VkResult result, int afterC
 void clearVkFaults();
 /// Returns the injected result for `call`, or VK_SUCCESS when none is armed for it.
 VkResult injectedVkFault(const char* call);
+/// Arms the faults named by the LANTERN_TEST_VK_FAULT environment variable (once per process;
+/// only in builds with LANTERN_TESTING_HOOKS).
+void armFaultsFromEnvironment();
 
 } // namespace lantern::gpu
 

@@ -178,7 +178,7 @@ Result<void> Engine::checkOptions(const RenderOptions& o) const {
     const double pixels = double(o.width) * double(o.height);
     double perPixel = 16 + 16 + 4 * o.msaa;              // colour, readback, depth
     if (o.msaa > 1) perPixel += 16.0 * o.msaa;           // multisampled colour
-    if (o.aovs.any()) perPixel += (16 + 8) * (2.0 + (o.msaa > 1 ? o.msaa : 0));
+    if (o.aovs.any()) perPixel += (16 + 8) * 2.0 + (o.msaa > 1 ? 16 + 4 : 0);  // + AOV pass scratch
     const double bytes = pixels * perPixel * double(m_slots.size());
     VkDeviceSize heap = 0;
     const auto& mem = m_ctx->memoryProperties();
@@ -297,9 +297,13 @@ Result<void> Engine::ensureTarget(Slot& slot, const RenderOptions& o) {
         LANTERN_TRY(make(t.ids, kIdFormat, VK_SAMPLE_COUNT_1_BIT, single, VK_IMAGE_ASPECT_COLOR_BIT,
                          "aov ids"));
         if (samples > 1) {
-            LANTERN_TRY(make(t.normalDepthMsaa, kNormalDepthFormat, ms, multi,
-                             VK_IMAGE_ASPECT_COLOR_BIT, "aov normal+depth msaa"));
-            LANTERN_TRY(make(t.idsMsaa, kIdFormat, ms, multi, VK_IMAGE_ASPECT_COLOR_BIT, "aov ids msaa"));
+            // The single-sampled AOV pass draws into these (its colour output is discarded).
+            LANTERN_TRY(make(t.aovColor, kColorFormat, VK_SAMPLE_COUNT_1_BIT,
+                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, VK_IMAGE_ASPECT_COLOR_BIT,
+                             "aov pass colour"));
+            LANTERN_TRY(make(t.aovDepth, kDepthFormat, VK_SAMPLE_COUNT_1_BIT,
+                             VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT,
+                             "aov pass depth"));
         }
         LANTERN_TRY(readback(t.readNormalDepth, pixels * 16, "aov normal+depth readback"));
         LANTERN_TRY(readback(t.readIds, pixels * 8, "aov ids readback"));
@@ -321,13 +325,26 @@ Result<std::uint32_t> Engine::submit(const std::shared_ptr<GpuScene>& scene, con
     LANTERN_TRY(ensureTarget(slot, o));
 
     // Pipelines (created on first use) and flat streams before recording.
-    std::vector<VkPipeline> pipelines;
+    // With MSAA the AOVs are drawn in a second, single-sampled pass: integer attachments cannot
+    // be multisampled on every device (lavapipe), and an AOV is one value per pixel anyway.
+    const bool aovPass = o.aovs.any() && o.msaa > 1;
+    std::vector<VkPipeline> pipelines, aovPipelines;
     bool needFlat = false;
     for (const ViewPlan& v : plan.views)
         for (const DrawItem& d : v.draws) {
-            auto p = pipeline(d.key);
+            VariantKey main = d.key;
+            if (aovPass) main.aov = false;
+            auto p = pipeline(main);
             if (!p) return std::move(p).error();
             pipelines.push_back(*p);
+            if (aovPass) {
+                VariantKey aov = d.key;
+                aov.samples = 1;
+                aov.aov = true;
+                auto a = pipeline(aov);
+                if (!a) return std::move(a).error();
+                aovPipelines.push_back(*a);
+            }
             needFlat |= d.key.program == Program::Flat;
         }
     if (needFlat) LANTERN_TRY(scene->ensureFlatStreams());
@@ -404,7 +421,7 @@ Result<std::uint32_t> Engine::submit(const std::shared_ptr<GpuScene>& scene, con
     slot.clearColor[3] = o.background.a;
     // Reversed-Z clears to 0 (infinitely far), standard depth to 1.
     slot.clearDepth = o.depth == DepthMode::ReversedZ ? 0.0f : 1.0f;
-    record(slot, *scene, plan, frameOffsets, lightOffsets, pipelines, hooks);
+    record(slot, *scene, plan, frameOffsets, lightOffsets, pipelines, aovPipelines, hooks);
     LANTERN_VK_TRY(vkEndCommandBuffer(slot.cmd));
 
     VkFence fence = slot.fence.get();
@@ -439,22 +456,25 @@ Result<std::uint32_t> Engine::submit(const std::shared_ptr<GpuScene>& scene, con
 void Engine::record(Slot& slot, GpuScene& scene, const FramePlan& plan,
                     const std::vector<VkDeviceSize>& frameOffsets,
                     const std::vector<VkDeviceSize>& lightOffsets,
-                    const std::vector<VkPipeline>& pipelines, const SubmitHooks& hooks) {
+                    const std::vector<VkPipeline>& pipelines,
+                    const std::vector<VkPipeline>& aovPipelines, const SubmitHooks& hooks) {
     const VkCommandBuffer cmd = slot.cmd;
     Target& t = slot.target;
     const bool msaa = t.samples > 1;
+    const bool aovPass = t.aov && msaa;
 
     if (slot.queries) vkCmdResetQueryPool(cmd, slot.queries, 0, 2);
 
     std::vector<VkImage> colorImages{t.color.get()};
+    std::vector<VkImage> depthImages{t.depth.get()};
     if (msaa) colorImages.push_back(t.colorMsaa.get());
     if (t.aov) {
         colorImages.push_back(t.normalDepth.get());
         colorImages.push_back(t.ids.get());
-        if (msaa) {
-            colorImages.push_back(t.normalDepthMsaa.get());
-            colorImages.push_back(t.idsMsaa.get());
-        }
+    }
+    if (aovPass) {
+        colorImages.push_back(t.aovColor.get());
+        depthImages.push_back(t.aovDepth.get());
     }
     for (VkImage img : colorImages)
         gpu::imageBarrier(cmd, img, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -463,130 +483,142 @@ void Engine::record(Slot& slot, GpuScene& scene, const FramePlan& plan,
                           VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
                           VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                           VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT);
-    gpu::imageBarrier(cmd, t.depth.get(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                      VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                      VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
-                          VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+    for (VkImage img : depthImages)
+        gpu::imageBarrier(cmd, img, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                          VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                          VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                          VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                          VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
+                              VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
     if (slot.queries)
         vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, slot.queries, 0);
 
-    auto attachment = [&](const gpu::Image& single, const gpu::Image& multi, VkClearValue clear,
-                          VkResolveModeFlagBits resolve) {
+    auto attachment = [](const gpu::Image& target, const gpu::Image* multisampled, VkClearValue clear) {
         VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
         a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
         a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
         a.clearValue = clear;
-        if (msaa) {
-            a.imageView = multi.view.get();
-            a.resolveMode = resolve;
-            a.resolveImageView = single.view.get();
+        if (multisampled) {
+            a.imageView = multisampled->view.get();
+            a.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
+            a.resolveImageView = target.view.get();
             a.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
             a.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
         } else {
-            a.imageView = single.view.get();
+            a.imageView = target.view.get();
             a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
         }
         return a;
     };
     VkClearValue colorClear{};
     std::memcpy(colorClear.color.float32, slot.clearColor, sizeof slot.clearColor);
-    std::vector<VkRenderingAttachmentInfo> colors{
-        attachment(t.color, t.colorMsaa, colorClear, VK_RESOLVE_MODE_AVERAGE_BIT)};
-    if (t.aov) {
-        VkClearValue nd{};
-        nd.color.uint32[3] = floatBits(FLT_MAX);  // background depth: the largest finite float
-        colors.push_back(attachment(t.normalDepth, t.normalDepthMsaa, nd, VK_RESOLVE_MODE_SAMPLE_ZERO_BIT));
-        colors.push_back(attachment(t.ids, t.idsMsaa, VkClearValue{}, VK_RESOLVE_MODE_SAMPLE_ZERO_BIT));
-    }
-    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depth.imageView = t.depth.view.get();
-    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    depth.clearValue.depthStencil.depth = slot.clearDepth;
-
-    VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    ri.renderArea = {{0, 0}, {t.width, t.height}};
-    ri.layerCount = 1;
-    ri.colorAttachmentCount = std::uint32_t(colors.size());
-    ri.pColorAttachments = colors.data();
-    ri.pDepthAttachment = &depth;
-    vkCmdBeginRendering(cmd, &ri);
+    VkClearValue normalDepthClear{};
+    normalDepthClear.color.uint32[3] = floatBits(FLT_MAX);  // background depth: the largest float
 
     const VkBuffer geometry = scene.geometry();
-    std::size_t drawCounter = 0;
-    for (std::size_t vi = 0; vi < plan.views.size(); ++vi) {
-        const ViewPlan& v = plan.views[vi];
-        // GL's viewport origin is the bottom-left corner; Vulkan's framebuffer starts at the top.
-        const float vy = float(int(t.height) - v.y - v.height);
-        VkViewport viewport{float(v.x), vy, float(v.width), float(v.height), 0.0f, 1.0f};
-        VkRect2D scissor{{v.x, int(vy)}, {std::uint32_t(v.width), std::uint32_t(v.height)}};
-        vkCmdSetViewport(cmd, 0, 1, &viewport);
-        vkCmdSetScissor(cmd, 0, 1, &scissor);
-        const std::uint32_t dynamicOffsets[2] = {std::uint32_t(frameOffsets[vi]),
-                                                 std::uint32_t(lightOffsets[vi])};
-        VkPipeline bound = VK_NULL_HANDLE;
-        VkDescriptorSet boundTexture = VK_NULL_HANDLE;
-        for (const DrawItem& d : v.draws) {
-            const VkPipeline p = pipelines[drawCounter++];
-            if (p != bound) {
-                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
-                if (bound == VK_NULL_HANDLE)
+    // Draws every view's list with the given pipelines (one per draw, in plan order).
+    auto drawViews = [&](const std::vector<VkPipeline>& drawPipelines) {
+        std::size_t drawCounter = 0;
+        for (std::size_t vi = 0; vi < plan.views.size(); ++vi) {
+            const ViewPlan& v = plan.views[vi];
+            // GL's viewport origin is the bottom-left corner; Vulkan's framebuffer starts at the top.
+            const float vy = float(int(t.height) - v.y - v.height);
+            VkViewport viewport{float(v.x), vy, float(v.width), float(v.height), 0.0f, 1.0f};
+            VkRect2D scissor{{v.x, int(vy)}, {std::uint32_t(v.width), std::uint32_t(v.height)}};
+            vkCmdSetViewport(cmd, 0, 1, &viewport);
+            vkCmdSetScissor(cmd, 0, 1, &scissor);
+            const std::uint32_t dynamicOffsets[2] = {std::uint32_t(frameOffsets[vi]),
+                                                     std::uint32_t(lightOffsets[vi])};
+            VkPipeline bound = VK_NULL_HANDLE;
+            VkDescriptorSet boundTexture = VK_NULL_HANDLE;
+            for (const DrawItem& d : v.draws) {
+                const VkPipeline p = drawPipelines[drawCounter++];
+                if (p != bound) {
+                    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
+                    if (bound == VK_NULL_HANDLE)
+                        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_pipelineLayout.get(),
+                                                0, 1, &slot.frameSet, 2, dynamicOffsets);
+                    bound = p;
+                }
+                const VkDescriptorSet tex = scene.textureSet(d.texture);
+                if (tex != boundTexture) {
                     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_pipelineLayout.get(),
-                                            0, 1, &slot.frameSet, 2, dynamicOffsets);
-                bound = p;
-            }
-            const VkDescriptorSet tex = scene.textureSet(d.texture);
-            if (tex != boundTexture) {
-                vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_pipelineLayout.get(),
-                                        1, 1, &tex, 0, nullptr);
-                boundTexture = tex;
-            }
-            vkCmdSetCullMode(cmd, d.cullBack ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE);
-            // The y flip in clipFromView keeps GL's counter-clockwise front faces
-            // counter-clockwise on screen; a mirroring transform reverses them (glTF's rule).
-            vkCmdSetFrontFace(cmd, d.mirrored ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE);
-            vkCmdPushConstants(cmd, m_pipelineLayout.get(),
-                               VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                               sizeof(DrawBlock), &d.block);
-            const GpuPrimitive& gp = scene.primitive(d.mesh, d.primitive);
-            if (d.key.program == Program::Flat) {
-                const VkBuffer flat = scene.flatGeometry();
-                VkBuffer buffers[5] = {flat, flat, gp.flatColor != kNoStream ? flat : geometry,
-                                       gp.flatTexcoord != kNoStream ? flat : geometry, flat};
-                VkDeviceSize offsets[5] = {
-                    gp.flatPosition, gp.flatNormal,
-                    gp.flatColor != kNoStream ? gp.flatColor : scene.defaultColorOffset(),
-                    gp.flatTexcoord != kNoStream ? gp.flatTexcoord : scene.defaultTexcoordOffset(),
-                    gp.flatCentroid};
-                VkDeviceSize strides[5] = {12, 12, gp.flatColor != kNoStream ? 16u : 0u,
-                                           gp.flatTexcoord != kNoStream ? 8u : 0u, 12};
-                vkCmdBindVertexBuffers2(cmd, 0, 5, buffers, offsets, nullptr, strides);
-                vkCmdDraw(cmd, gp.flatVertexCount, 1, 0, 0);
-            } else {
-                VkBuffer buffers[4] = {geometry, geometry, geometry, geometry};
-                VkDeviceSize offsets[4] = {
-                    gp.position, gp.normal,
-                    gp.color != kNoStream ? gp.color : scene.defaultColorOffset(),
-                    gp.texcoord != kNoStream ? gp.texcoord : scene.defaultTexcoordOffset()};
-                VkDeviceSize strides[4] = {12, 12, gp.color != kNoStream ? 16u : 0u,
-                                           gp.texcoord != kNoStream ? 8u : 0u};
-                vkCmdBindVertexBuffers2(cmd, 0, 4, buffers, offsets, nullptr, strides);
-                if (gp.indexCount > 0) {
-                    vkCmdBindIndexBuffer(cmd, geometry, gp.index, VK_INDEX_TYPE_UINT32);
-                    vkCmdDrawIndexed(cmd, gp.indexCount, 1, 0, 0, 0);
+                                            1, 1, &tex, 0, nullptr);
+                    boundTexture = tex;
+                }
+                vkCmdSetCullMode(cmd, d.cullBack ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE);
+                // The y flip in clipFromView keeps GL's counter-clockwise front faces
+                // counter-clockwise on screen; a mirroring transform reverses them (glTF's rule).
+                vkCmdSetFrontFace(cmd, d.mirrored ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE);
+                vkCmdPushConstants(cmd, m_pipelineLayout.get(),
+                                   VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                                   sizeof(DrawBlock), &d.block);
+                const GpuPrimitive& gp = scene.primitive(d.mesh, d.primitive);
+                if (d.key.program == Program::Flat) {
+                    const VkBuffer flat = scene.flatGeometry();
+                    VkBuffer buffers[5] = {flat, flat, gp.flatColor != kNoStream ? flat : geometry,
+                                           gp.flatTexcoord != kNoStream ? flat : geometry, flat};
+                    VkDeviceSize offsets[5] = {
+                        gp.flatPosition, gp.flatNormal,
+                        gp.flatColor != kNoStream ? gp.flatColor : scene.defaultColorOffset(),
+                        gp.flatTexcoord != kNoStream ? gp.flatTexcoord : scene.defaultTexcoordOffset(),
+                        gp.flatCentroid};
+                    VkDeviceSize strides[5] = {12, 12, gp.flatColor != kNoStream ? 16u : 0u,
+                                               gp.flatTexcoord != kNoStream ? 8u : 0u, 12};
+                    vkCmdBindVertexBuffers2(cmd, 0, 5, buffers, offsets, nullptr, strides);
+                    vkCmdDraw(cmd, gp.flatVertexCount, 1, 0, 0);
                 } else {
-                    vkCmdDraw(cmd, gp.vertexCount, 1, 0, 0);
+                    VkBuffer buffers[4] = {geometry, geometry, geometry, geometry};
+                    VkDeviceSize offsets[4] = {
+                        gp.position, gp.normal,
+                        gp.color != kNoStream ? gp.color : scene.defaultColorOffset(),
+                        gp.texcoord != kNoStream ? gp.texcoord : scene.defaultTexcoordOffset()};
+                    VkDeviceSize strides[4] = {12, 12, gp.color != kNoStream ? 16u : 0u,
+                                               gp.texcoord != kNoStream ? 8u : 0u};
+                    vkCmdBindVertexBuffers2(cmd, 0, 4, buffers, offsets, nullptr, strides);
+                    if (gp.indexCount > 0) {
+                        vkCmdBindIndexBuffer(cmd, geometry, gp.index, VK_INDEX_TYPE_UINT32);
+                        vkCmdDrawIndexed(cmd, gp.indexCount, 1, 0, 0, 0);
+                    } else {
+                        vkCmdDraw(cmd, gp.vertexCount, 1, 0, 0);
+                    }
                 }
             }
+            // The display overlays never meet the AOV pass (they refuse AOVs).
+            if (slot.debug.any())
+                m_debug->recordView(cmd, scene, v, slot.frameSet, dynamicOffsets, slot.debug);
         }
-        if (slot.debug.any())
-            m_debug->recordView(cmd, scene, v, slot.frameSet, dynamicOffsets, slot.debug);
+    };
+    auto pass = [&](const std::vector<VkRenderingAttachmentInfo>& colors, const gpu::Image& depthImage,
+                    const std::vector<VkPipeline>& drawPipelines) {
+        VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        depth.imageView = depthImage.view.get();
+        depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+        depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+        depth.clearValue.depthStencil.depth = slot.clearDepth;
+        VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        ri.renderArea = {{0, 0}, {t.width, t.height}};
+        ri.layerCount = 1;
+        ri.colorAttachmentCount = std::uint32_t(colors.size());
+        ri.pColorAttachments = colors.data();
+        ri.pDepthAttachment = &depth;
+        vkCmdBeginRendering(cmd, &ri);
+        drawViews(drawPipelines);
+        vkCmdEndRendering(cmd);
+    };
+
+    std::vector<VkRenderingAttachmentInfo> colors{attachment(t.color, msaa ? &t.colorMsaa : nullptr, colorClear)};
+    if (t.aov && !msaa) {
+        colors.push_back(attachment(t.normalDepth, nullptr, normalDepthClear));
+        colors.push_back(attachment(t.ids, nullptr, VkClearValue{}));
     }
-    vkCmdEndRendering(cmd);
+    pass(colors, t.depth, pipelines);
+    if (aovPass)
+        pass({attachment(t.aovColor, nullptr, colorClear), attachment(t.normalDepth, nullptr, normalDepthClear),
+              attachment(t.ids, nullptr, VkClearValue{})},
+             t.aovDepth, aovPipelines);
     if (slot.queries)
         vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, slot.queries, 1);
 

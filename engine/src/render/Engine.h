@@ -78,7 +78,8 @@ private:
     struct Target {
         std::uint32_t width = 0, height = 0, samples = 0;
         bool aov = false;
-        gpu::Image color, colorMsaa, depth, normalDepth, normalDepthMsaa, ids, idsMsaa;
+        gpu::Image color, colorMsaa, depth, normalDepth, ids;
+        gpu::Image aovColor, aovDepth;  ///< the single-sampled AOV pass, with MSAA
         gpu::Buffer readColor, readNormalDepth, readIds;
     };
     struct Slot {
@@ -105,7 +106,8 @@ private:
     void record(Slot& slot, GpuScene& scene, const FramePlan& plan,
                 const std::vector<VkDeviceSize>& frameOffsets,
                 const std::vector<VkDeviceSize>& lightOffsets,
-                const std::vector<VkPipeline>& pipelines, const SubmitHooks& hooks);
+                const std::vector<VkPipeline>& pipelines, const std::vector<VkPipeline>& aovPipelines,
+                const SubmitHooks& hooks);
 
     std::shared_ptr<gpu::Context> m_ctx;
     gpu::UniqueDescriptorSetLayout m_frameLayout, m_textureLayout;

@@ -1,0 +1,144 @@
+// Failures handled: device lost and out of memory (fault injection), a full disk, an image too
+// large for memory refused before allocating, and synchronisation validation on an offscreen
+// sequence. Each ends with a clear message and the right exit code, and leaves only complete
+// files.
+#include "TestSupport.h"
+
+#include <lantern/Sequence.h>
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+
+namespace {
+
+using namespace lantern;
+using lantern::test::runLantern;
+using lantern::test::runProcess;
+using lantern::test::testOutputDir;
+
+std::vector<std::string> files(const std::filesystem::path& dir) {
+    std::vector<std::string> names;
+    for (const auto& e : std::filesystem::directory_iterator(dir)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+void expectOnlyCompleteExrs(const std::filesystem::path& dir) {
+    for (const std::string& n : files(dir)) {
+        EXPECT_EQ(n.find(".tmp-"), std::string::npos) << "temporary file left: " << n;
+        EXPECT_TRUE(readExr(dir / n)) << n << " is not a complete EXR";
+    }
+}
+
+bool hookedBuild() {
+    // The fault hooks exist in dev and CI builds (LANTERN_TESTING_HOOKS), not in release ones.
+    const auto r = runLantern({"render", "builtin:spheres", "--width", "8", "--height", "8", "-o", "/proc/x.exr"},
+                              {"LANTERN_TEST_VK_FAULT=vkCreateDevice=VK_ERROR_INITIALIZATION_FAILED"});
+    return r.err.find("VK_ERROR_INITIALIZATION_FAILED") != std::string::npos;
+}
+
+TEST(Failure, DeviceLostMidSequenceExits3AndKeepsFinishedFrames) {
+    if (!hookedBuild()) GTEST_SKIP() << "this build has no fault-injection hooks (LANTERN_TESTING_HOOKS=OFF)";
+    const auto dir = testOutputDir();
+    // Uploads use the queue too: skip enough submissions that several frames are written first.
+    const auto r = runLantern({"render", "builtin:spheres-animated", "--frames", "0-40", "--width", "48", "--height",
+                               "32", "--encoder-threads", "1", "-o", (dir / "f_##.exr").string()},
+                              {"LANTERN_TEST_VK_FAULT=vkQueueSubmit2(m_ctx=VK_ERROR_DEVICE_LOST@8"});
+    EXPECT_EQ(r.exitCode, 3) << r.err;
+    EXPECT_NE(r.err.find("device was lost"), std::string::npos) << r.err;
+    const auto written = files(dir);
+    EXPECT_GE(written.size(), 4u);
+    EXPECT_LT(written.size(), 41u);
+    expectOnlyCompleteExrs(dir);
+}
+
+TEST(Failure, OutOfDeviceMemoryExits3) {
+    if (!hookedBuild()) GTEST_SKIP() << "this build has no fault-injection hooks (LANTERN_TESTING_HOOKS=OFF)";
+    const auto dir = testOutputDir();
+    const auto r = runLantern({"render", "builtin:spheres", "--width", "48", "--height", "32", "-o",
+                               (dir / "x.exr").string()},
+                              {"LANTERN_TEST_VK_FAULT=vkAllocateMemory=VK_ERROR_OUT_OF_DEVICE_MEMORY@3"});
+    EXPECT_EQ(r.exitCode, 3) << r.err;
+    EXPECT_NE(r.err.find("out of memory"), std::string::npos) << r.err;
+    EXPECT_TRUE(files(dir).empty());
+}
+
+TEST(Failure, FullDiskExits3AndKeepsFinishedFrames) {
+    if (std::system("command -v unshare >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "unshare (util-linux) is not installed";
+    const auto dir = testOutputDir();
+    std::filesystem::create_directories(dir / "mnt");
+    std::filesystem::create_directories(dir / "copy");
+    // A 1 MiB tmpfs in a private mount namespace fills after a few 160x120 float frames.
+    const std::string script =
+        "mount -t tmpfs -o size=1m tmpfs '" + (dir / "mnt").string() + "' || exit 77; '" +
+        test::cliPath().string() +
+        "' render builtin:spheres-animated --frames 0-200 --width 160 --height 120 --compression none "
+        "--encoder-threads 1 -o '" + (dir / "mnt" / "f_###.exr").string() + "' >/dev/null; echo $? > '" +
+        (dir / "rc").string() + "'; cp -a '" + (dir / "mnt").string() + "/.' '" + (dir / "copy").string() + "'";
+    const auto r = runProcess({"unshare", "-rm", "sh", "-c", script});
+    if (r.exitCode == 77) GTEST_SKIP() << "cannot mount a tmpfs here: " << r.err;
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::ifstream rcFile(dir / "rc");
+    int rc = -1;
+    rcFile >> rc;
+    EXPECT_EQ(rc, 3) << "a full disk is a renderer failure (exit 3)";
+    const auto written = files(dir / "copy");
+    EXPECT_GE(written.size(), 2u);
+    EXPECT_LT(written.size(), 201u);
+    expectOnlyCompleteExrs(dir / "copy");
+}
+
+class Limits : public test::GpuTest {};
+
+TEST_F(Limits, AnImageTooLargeForMemoryIsRefusedBeforeAllocating) {
+    auto scene = builtinScene("spheres");
+    ASSERT_TRUE(scene);
+    RenderOptions o;
+    o.width = 16384;
+    o.height = 16384;
+    o.msaa = 4;
+    o.aovs.depth = true;
+    const auto t0 = std::chrono::steady_clock::now();
+    auto r = renderer().render(*scene, o, 0.0);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    ASSERT_FALSE(r);
+    EXPECT_EQ(r.error().code, ErrorCode::OutOfMemory) << r.error().describe();
+    EXPECT_NE(r.error().message.find("MiB"), std::string::npos) << r.error().describe();
+    EXPECT_LT(seconds, 5.0) << "it should be refused from an estimate, not by trying";
+}
+
+TEST(SynchronizationValidation, OffscreenSequenceIsClean) {
+    RendererDesc desc;
+    desc.synchronizationValidation = true;
+    std::vector<std::string> messages;
+    desc.log = [&](LogLevel level, std::string_view m) {
+        if (level >= LogLevel::Warning) messages.emplace_back(m);
+    };
+    auto renderer = Renderer::create(desc);
+    if (!renderer) GTEST_SKIP() << "no Vulkan device: " << renderer.error().describe();
+    if (!renderer->device().validationEnabled)
+        GTEST_SKIP() << "VK_LAYER_KHRONOS_validation is not installed (vulkan-validationlayers)";
+    auto scene = builtinScene("spheres-animated");
+    ASSERT_TRUE(scene);
+    auto prepared = renderer->prepare(std::make_shared<const Scene>(std::move(*scene)));
+    ASSERT_TRUE(prepared);
+    RenderOptions o;
+    o.width = 64;
+    o.height = 48;
+    o.msaa = 4;
+    o.aovs.depth = o.aovs.normal = true;
+    SequenceOptions s;
+    s.frames = {0, 9};
+    s.outputs = {(testOutputDir() / "f_#.exr").string()};
+    auto r = renderer->renderSequence(*prepared, o, s);
+    ASSERT_TRUE(r) << r.error().describe();
+    EXPECT_EQ(r->framesWritten.size(), 10u);
+    EXPECT_EQ(renderer->validationMessageCount(), 0u);
+    for (const auto& m : messages) ADD_FAILURE() << m;
+}
+
+} // namespace

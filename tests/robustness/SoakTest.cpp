@@ -1,0 +1,67 @@
+// Soak: a 2000-frame sequence with the process's resident memory sampled every 100 frames;
+// after the first few hundred frames (pipelines compiled, buffers at their size) memory must
+// not grow. The series is printed so it can be reported.
+#include "TestSupport.h"
+
+#include <lantern/Sequence.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <thread>
+#include <unistd.h>
+
+namespace {
+
+using namespace lantern;
+
+double residentMiB() {
+    std::ifstream statm("/proc/self/statm");
+    long pages = 0, resident = 0;
+    statm >> pages >> resident;
+    return double(resident) * double(sysconf(_SC_PAGESIZE)) / 1048576.0;
+}
+
+class Soak : public test::GpuTest {};
+
+TEST_F(Soak, TwoThousandFramesKeepMemoryFlat) {
+    auto scene = builtinScene("spheres-animated");
+    ASSERT_TRUE(scene);
+    auto prepared = renderer().prepare(std::make_shared<const Scene>(std::move(*scene)));
+    ASSERT_TRUE(prepared);
+    RenderOptions o;
+    o.width = 64;
+    o.height = 48;
+    SequenceOptions s;
+    s.frames = {0, 1999};
+    s.fps = 30;
+    const auto dir = test::testOutputDir();
+    s.outputs = {(dir / "f_####.exr").string()};
+    std::vector<std::pair<int, double>> samples;
+    int next = 100;
+    s.progress = [&](const SequenceProgress& p) {
+        if (p.written >= next) {
+            samples.emplace_back(p.written, residentMiB());
+            next += 100;
+        }
+    };
+    auto r = renderer().renderSequence(*prepared, o, s);
+    std::filesystem::remove_all(dir);  // 2000 small files: not worth keeping
+    ASSERT_TRUE(r) << r.error().describe();
+    ASSERT_EQ(r->framesWritten.size(), 2000u);
+    ASSERT_GE(samples.size(), 19u);
+    std::string series;
+    for (const auto& [frame, mib] : samples) series += std::to_string(frame) + ":" + std::to_string(mib).substr(0, 6) + " ";
+    std::printf("resident MiB by frames written: %s\n", series.c_str());
+    // From frame 500 on, memory stays within 4 MiB of its level there.
+    double base = 0, peak = 0;
+    for (const auto& [frame, mib] : samples) {
+        if (frame == 500) base = mib;
+        if (frame >= 500) peak = std::max(peak, mib);
+    }
+    EXPECT_LT(peak - base, 4.0) << series;
+    EXPECT_LE(r->peakQueuedFrames, 2u * std::max(1u, std::thread::hardware_concurrency()));
+}
+
+} // namespace
