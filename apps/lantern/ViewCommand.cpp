@@ -131,7 +131,7 @@ private:
     int m_presented = 0;
     int m_shotCounter = 0;
     Clock::time_point m_lastPresent{}, m_lastTitle{};
-    std::vector<double> m_intervals, m_cpuMs, m_waitMs, m_gpuMs, m_recentIntervals;
+    std::vector<double> m_intervals, m_cpuMs, m_waitMs, m_presentMs, m_gpuMs, m_recentIntervals;
 
     fs::file_time_type m_loadedTime{}, m_seenTime{};
     std::uintmax_t m_loadedSize = 0, m_seenSize = 0;
@@ -490,12 +490,13 @@ void Viewer::printStats() const {
     const WindowTarget& t = m_window.target();
     std::fprintf(stderr,
                  "lantern: view: %d frames at %dx%d, %s, %u frames in flight, %u swapchain images; "
-                 "frame time median %.2f ms (p10 %.2f, p90 %.2f); per frame (median): CPU %.2f ms, "
-                 "waiting for the frame slot and image %.2f ms, GPU %.2f ms\n",
+                 "frame time median %.2f ms (p10 %.2f, p90 %.2f); per frame (median): planning and "
+                 "recording %.2f ms, waiting for the frame slot and image %.2f ms, presenting %.2f ms, "
+                 "GPU %.2f ms\n",
                  m_presented, t.width(), t.height(), toString(t.presentMode()), t.framesInFlight(),
                  t.imageCount(), median(tail(m_intervals)), percentile(tail(m_intervals), 0.1),
                  percentile(tail(m_intervals), 0.9), median(tail(m_cpuMs)), median(tail(m_waitMs)),
-                 median(tail(m_gpuMs)));
+                 median(tail(m_presentMs)), median(tail(m_gpuMs)));
 }
 
 int Viewer::run(std::shared_ptr<Scene> scene) {
@@ -606,6 +607,7 @@ int Viewer::run(std::shared_ptr<Scene> scene) {
         m_lastPresent = now;
         m_cpuMs.push_back(frame->stats.cpuMs);
         m_waitMs.push_back(frame->stats.waitMs);
+        m_presentMs.push_back(frame->presentMs);
         if (frame->stats.gpuMs >= 0) m_gpuMs.push_back(frame->stats.gpuMs);
         if (frame->capture) {
             captureNext = false;

@@ -3,13 +3,16 @@
 // at the pivot, framing contains the bounds, and the printed command line gives back the very
 // same doubles.
 #include "CliSupport.h"
+#include "TestSupport.h"
 #include "ViewerCamera.h"
+#include "ViewerState.h"
 
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
 
 #include <cmath>
+#include <fstream>
 
 namespace {
 
@@ -184,6 +187,16 @@ TEST(ViewerCamera, CommandLineGivesBackTheSameDoubles) {
         EXPECT_EQ(a.top, b.top);
         EXPECT_EQ(a.znear, b.znear);
         EXPECT_EQ(a.zfar, b.zfar);
+    }
+}
+
+TEST(ViewerDocs, EveryKeyOfTheHelpOverlayIsInDocsViewerMd) {
+    std::ifstream in(lantern::test::sourceDir() / "docs" / "viewer.md");
+    const std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_FALSE(doc.empty());
+    for (const lantern::cli::KeyHelp& k : lantern::cli::viewerKeys()) {
+        const std::string row = std::string("| ") + k.keys + " | " + k.action + " |";
+        EXPECT_NE(doc.find(row), std::string::npos) << "docs/viewer.md lacks the row: " << row;
     }
 }
 

@@ -269,6 +269,58 @@ TEST_F(ViewerTest, OrbitPanZoomAndQuadViewMoveTheCameraAsPrinted) {
     auto framed = viewer.screenshot({"v", "f"});
     ASSERT_TRUE(framed);
     expectSameAsRender(framed->first, framed->second);
+    // Tab: fly mode; holding W moves the eye forward.
+    ASSERT_TRUE(viewer.keys({"Tab"}));
+    ASSERT_TRUE(m_server->xdotool({"keydown", "w"}));
+    std::this_thread::sleep_for(400ms);
+    ASSERT_TRUE(m_server->xdotool({"keyup", "w"}));
+    auto flown = viewer.screenshot();
+    ASSERT_TRUE(flown);
+    expectSameAsRender(flown->first, flown->second);
+    EXPECT_GT(differingPixels(readImage(framed->first), readImage(flown->first)), std::size_t(500));
+    // C: back to the scene's camera 0, exactly as render --camera 0 shows it.
+    auto sceneCamera = viewer.screenshot({"c"});
+    ASSERT_TRUE(sceneCamera);
+    EXPECT_NE(sceneCamera->second.find("--camera 0"), std::string::npos) << sceneCamera->second;
+    expectSameAsRender(sceneCamera->first, sceneCamera->second);
+    EXPECT_EQ(maxAbsDifference(readImage(sceneCamera->first), readImage(before->first)), 0.0f);
+    expectCleanExit(viewer);
+}
+
+TEST_F(ViewerTest, AnimationPlaysPausesAndStepsByFrames) {
+    ViewerRun viewer(*m_server, m_dir);
+    ASSERT_TRUE(viewer.start({"builtin:spheres-animated", "--width", "160", "--height", "100",
+                              "--no-panel", "--paused", "--fps", "10"}));
+    auto timeOf = [](const std::string& command) {
+        const auto at = command.find("--time ");
+        return at == std::string::npos ? -1.0 : std::stod(command.substr(at + 7));
+    };
+    auto start = viewer.screenshot();
+    ASSERT_TRUE(start);
+    EXPECT_EQ(timeOf(start->second), 0.0);
+    // Right, Right: two frames of 1/10 s forward.
+    auto stepped = viewer.screenshot({"Right", "Right"});
+    ASSERT_TRUE(stepped);
+    EXPECT_NEAR(timeOf(stepped->second), 0.2, 1e-12);
+    expectSameAsRender(stepped->first, stepped->second);
+    EXPECT_GT(differingPixels(readImage(start->first), readImage(stepped->first)), std::size_t(50))
+        << "the lamp and the middle sphere moved";
+    // Left: one frame back.
+    auto back = viewer.screenshot({"Left"});
+    ASSERT_TRUE(back);
+    EXPECT_NEAR(timeOf(back->second), 0.1, 1e-12);
+    // Space plays, Space pauses: time went on by itself.
+    ASSERT_TRUE(viewer.keys({"space"}));
+    std::this_thread::sleep_for(600ms);
+    auto played = viewer.screenshot({"space"});
+    ASSERT_TRUE(played);
+    EXPECT_GT(timeOf(played->second), 0.2);
+    expectSameAsRender(played->first, played->second);
+    // Paused, it stays put.
+    std::this_thread::sleep_for(300ms);
+    auto still = viewer.screenshot();
+    ASSERT_TRUE(still);
+    EXPECT_EQ(timeOf(still->second), timeOf(played->second));
     expectCleanExit(viewer);
 }
 

@@ -69,6 +69,8 @@ protected:
     std::optional<Renderer> makeRenderer(int framesInFlight) {
         RendererDesc base;
         base.validation = true;
+        // Frames in flight, acquire/present semaphores and the blit are checked for hazards.
+        base.synchronizationValidation = true;
         base.framesInFlight = framesInFlight;
         base.log = [this](LogLevel level, std::string_view message) {
             if (level >= LogLevel::Warning) {

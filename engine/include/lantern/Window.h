@@ -69,6 +69,9 @@ struct WindowFrame {
     /// on the frame slot (frames in flight) and acquiring the image; gpuMs of the frame that
     /// last completed in this slot (-1: unknown yet).
     FrameStats stats;
+    /// Milliseconds spent queueing the presentation. Software presentation (lavapipe's X11
+    /// path) waits there until the frame is rendered and copies it to the window server.
+    double presentMs = 0.0;
     /// With FrameRequest::capture: the linear, premultiplied picture that was blitted into the
     /// window, with Lantern's metadata (camera, time, shading), as render() returns it.
     std::optional<Image> capture;

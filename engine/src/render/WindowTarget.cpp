@@ -347,10 +347,12 @@ Result<WindowFrame> WindowTarget::render(const PreparedScene& prepared, const Re
         m.stale = true;
         return std::move(submitted).error();
     }
+    out.stats.cpuMs = planMs + msSince(t2);
+    const auto t3 = Clock::now();
     auto presented = m.swapchain->present(m.rendered[index].get(), index);
     if (!presented) return std::move(presented).error();
     if (*presented != gpu::SwapchainState::Ready) m.stale = true;
-    out.stats.cpuMs = planMs + msSince(t2);
+    out.presentMs = msSince(t3);
     out.stats.draws = 0;
     for (const render::ViewPlan& v : plan->views) out.stats.draws += v.draws.size();
     out.stats.pipelinesCreated = engine.pipelineCount() - pipelinesBefore;
