@@ -251,7 +251,11 @@ void Viewer::onKey(int key, int action, int mods) {
     case GLFW_KEY_Z: o.wireframe = !o.wireframe; break;
     case GLFW_KEY_N: o.normals = !o.normals; break;
     case GLFW_KEY_V: m_st.quad = !m_st.quad; break;
-    case GLFW_KEY_H: m_st.headlight = !m_st.headlight; break;
+    case GLFW_KEY_H:
+        // Fixed to the camera as it is now, before any motion queued behind this key.
+        m_st.headlight = !m_st.headlight;
+        updateHeadlight();
+        break;
     case GLFW_KEY_F: m_st.frameAllRequested = true; break;
     case GLFW_KEY_C: {
         const int n = int(m_st.scene->cameras.size());

@@ -15,6 +15,7 @@
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
@@ -41,6 +42,9 @@ std::unique_ptr<ChildProcess> ChildProcess::start(const std::vector<std::string>
     const pid_t pid = fork();
     if (pid < 0) return nullptr;
     if (pid == 0) {
+        // Dies with the test even when the test itself is killed (a ctest timeout), so no
+        // Xvfb or viewer outlives it.
+        prctl(PR_SET_PDEATHSIG, SIGKILL);
         const int out = ::open(stdoutFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
         const int err = ::open(stderrFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
         if (out >= 0) dup2(out, 1);
