@@ -1,8 +1,10 @@
 // Shared command-line pieces: error reporting, number lists, camera/shading/device options.
 #include "CliSupport.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <mutex>
 #include <sstream>
@@ -54,6 +56,27 @@ Result<std::vector<double>> parseNumbers(const std::string& text, std::size_t co
                              std::to_string(values.size()),
                          option);
     return values;
+}
+
+Result<void> checkImagePaths(const std::vector<std::string>& paths, const std::string& option) {
+    for (const std::string& out : paths) {
+        const std::string ext = std::filesystem::path(out).extension().string();
+        if (ext != ".exr" && ext != ".png")
+            return makeError(ErrorCode::InvalidInput,
+                             "unknown image type \"" + ext + "\" (use .exr or .png)", option, out);
+    }
+    return {};
+}
+
+Result<glm::vec4> parseBackground(const std::string& text) {
+    const bool rgba = std::count(text.begin(), text.end(), ',') == 3;
+    auto v = parseNumbers(text, rgba ? 4 : 3, "--background");
+    if (!v) return std::move(v).error();
+    // Premultiplied: an opaque background is (r, g, b, 1); a translucent one scales rgb.
+    const double alpha = rgba ? (*v)[3] : 1.0;
+    if (alpha < 0.0 || alpha > 1.0)
+        return makeError(ErrorCode::InvalidInput, "alpha must be in [0, 1]", "--background");
+    return glm::vec4(float((*v)[0] * alpha), float((*v)[1] * alpha), float((*v)[2] * alpha), float(alpha));
 }
 
 void CameraOptions::add(CLI::App& app) {

@@ -113,6 +113,9 @@ private:
     int writeCapture(const Image& image);
     std::string renderCommand(const std::string& output) const;
     std::string statusText() const;
+    std::string backgroundText() const {
+        return m_args.background.empty() ? "0,0,0" : m_args.background;
+    }
     void updateTitle();
     void printStats() const;
 
@@ -424,8 +427,7 @@ std::string Viewer::renderCommand(const std::string& output) const {
     if (o.clamp) s += " --clamp";
     if (o.glCompat) s += " --gl-compat";
     if (o.msaa > 1) s += " --msaa " + std::to_string(o.msaa);
-    s += " --background " + number(o.background.r) + "," + number(o.background.g) + "," +
-         number(o.background.b) + (o.background.a != 1.0f ? "," + number(o.background.a) : "");
+    s += " --background " + backgroundText();  // the text it was parsed from: the same floats
     if (m_st.quad) s += " --layout quad";
     s += m_st.camera.commandLine(perspectiveAspect());
     return s;
@@ -520,16 +522,10 @@ int Viewer::run(std::shared_ptr<Scene> scene) {
     if (!m_args.camera.cameras.empty()) m_st.sceneCamera = m_args.camera.cameras.front();
     m_st.options.wireframe = m_args.wireframe;
     m_st.options.normals = m_args.normals;
-    m_st.options.background = {0.0f, 0.0f, 0.0f, 1.0f};
-    if (!m_args.background.empty()) {
-        const bool rgba = std::count(m_args.background.begin(), m_args.background.end(), ',') == 3;
-        auto v = parseNumbers(m_args.background, rgba ? 4 : 3, "--background");
-        if (!v) return report(v.error());
-        const double a = rgba ? (*v)[3] : 1.0;
-        if (a < 0.0 || a > 1.0)
-            return report(makeError(ErrorCode::InvalidInput, "alpha must be in [0, 1]", "--background"));
-        m_st.options.background = glm::vec4(float((*v)[0] * a), float((*v)[1] * a), float((*v)[2] * a), float(a));
-    }
+    // The window shows an opaque background unless told otherwise (premultiplied over black).
+    auto background = parseBackground(backgroundText());
+    if (!background) return report(background.error());
+    m_st.options.background = *background;
     if (m_st.root >= int(scene->roots.size()))
         return report(makeError(ErrorCode::InvalidInput,
                                 "scene " + std::to_string(m_st.root) + " does not exist (the file has " +
@@ -644,13 +640,7 @@ int runView(const ViewArgs& a) {
         return report(makeError(ErrorCode::Usage, "--after-frames must be >= 0", "--after-frames"));
     if (!a.screenshots.empty() && a.afterFrames == 0)
         return report(makeError(ErrorCode::Usage, "--screenshot needs --after-frames N", "--screenshot"));
-    for (const std::string& out : a.screenshots) {
-        const std::string ext = fs::path(out).extension().string();
-        if (ext != ".exr" && ext != ".png")
-            return report(makeError(ErrorCode::InvalidInput,
-                                    "unknown image type \"" + ext + "\" (use .exr or .png)",
-                                    "--screenshot", out));
-    }
+    if (auto r = checkImagePaths(a.screenshots, "--screenshot"); !r) return report(r.error());
     const auto mode = parsePresentMode(a.presentMode);
     if (!mode)
         return report(makeError(ErrorCode::InvalidInput,

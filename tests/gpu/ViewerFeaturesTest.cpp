@@ -14,6 +14,7 @@ namespace {
 
 using namespace lantern;
 using lantern::test::GpuTest;
+using lantern::test::maxAbsDifference;
 
 class ViewerFeatures : public GpuTest {};
 
@@ -22,13 +23,6 @@ RenderOptions small(int w = 96, int h = 64) {
     o.width = w;
     o.height = h;
     return o;
-}
-
-float maxAbsDifference(const Image& a, const Image& b) {
-    if (a.rgba.size() != b.rgba.size()) return INFINITY;
-    float worst = 0.0f;
-    for (std::size_t i = 0; i < a.rgba.size(); ++i) worst = std::max(worst, std::abs(a.rgba[i] - b.rgba[i]));
-    return worst;
 }
 
 TEST_F(ViewerFeatures, EditsBetweenFramesAreSeenByThePreparedScene) {

@@ -49,31 +49,6 @@ std::vector<std::string> words(const std::string& text) {
     return out;
 }
 
-std::uint8_t srgb8(float linear) {
-    const double c = std::clamp(double(linear), 0.0, 1.0);
-    const double e = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
-    return std::uint8_t(std::lround(e * 255.0));
-}
-
-// Largest difference between the X server's pixels and the sRGB encoding of `image`.
-int maxDifference(const XImageRgb& x, const Image& image) {
-    if (x.width != image.width || x.height != image.height) return 256;
-    int worst = 0;
-    for (int y = 0; y < image.height; ++y)
-        for (int px = 0; px < image.width; ++px)
-            for (int c = 0; c < 3; ++c)
-                worst = std::max(worst, std::abs(int(srgb8(image.pixel(px, y)[c])) -
-                                                 int(x.rgb[(std::size_t(y) * std::size_t(x.width) + std::size_t(px)) * 3 + std::size_t(c)])));
-    return worst;
-}
-
-float maxAbsDifference(const Image& a, const Image& b) {
-    if (a.width != b.width || a.height != b.height) return INFINITY;
-    float worst = 0.0f;
-    for (std::size_t i = 0; i < a.rgba.size(); ++i) worst = std::max(worst, std::abs(a.rgba[i] - b.rgba[i]));
-    return worst;
-}
-
 // Pixels whose colour differs by more than 1/255 in some channel.
 std::size_t differingPixels(const Image& a, const Image& b) {
     if (a.width != b.width || a.height != b.height) return a.pixelCount();

@@ -29,32 +29,6 @@ constexpr const char* kNoXvfb =
     "Xvfb is not installed (Debian package xvfb; `scripts/install-deps.sh test` installs it): "
     "the window tests need a real X server";
 
-std::uint8_t srgb8(float linear) {
-    const double c = std::clamp(double(linear), 0.0, 1.0);
-    const double e = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
-    return std::uint8_t(std::lround(e * 255.0));
-}
-
-// The largest difference between the X server's pixels and the sRGB encoding of `image`
-// (premultiplied over black, as the swapchain shows it), over the rectangle [x0,x1)x[y0,y1).
-int maxDifference(const XImageRgb& x, const Image& image, int x0, int y0, int x1, int y1) {
-    int worst = 0;
-    for (int y = y0; y < y1; ++y)
-        for (int px = x0; px < x1; ++px) {
-            const float* p = image.pixel(px, y);
-            const std::uint8_t* q = &x.rgb[(std::size_t(y) * std::size_t(x.width) + std::size_t(px)) * 3];
-            for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(int(srgb8(p[c])) - int(q[c])));
-        }
-    return worst;
-}
-
-float maxAbsDifference(const Image& a, const Image& b) {
-    if (a.rgba.size() != b.rgba.size()) return INFINITY;
-    float worst = 0.0f;
-    for (std::size_t i = 0; i < a.rgba.size(); ++i) worst = std::max(worst, std::abs(a.rgba[i] - b.rgba[i]));
-    return worst;
-}
-
 class WindowTargetTest : public ::testing::Test {
 protected:
     void SetUp() override {
@@ -91,6 +65,19 @@ protected:
         if (!r->device().validationEnabled)
             std::cerr << "note: VK_LAYER_KHRONOS_validation is not installed; validation not checked\n";
         return std::move(*r);
+    }
+
+    // A window titled so that xWindow() finds it.
+    static Result<glfw::Window> openWindow(Renderer& renderer, int width, int height,
+                                           bool overlay = false,
+                                           PresentMode mode = PresentMode::Fifo) {
+        glfw::WindowDesc wd;
+        wd.width = width;
+        wd.height = height;
+        wd.title = "lantern window test";
+        wd.overlay = overlay;
+        wd.presentMode = mode;
+        return glfw::Window::create(renderer, wd);
     }
 
     // The X id of the test's window (found by its title, as xdotool finds windows).
@@ -166,12 +153,7 @@ TEST_F(WindowTargetTest, EveryPresentModeShowsTheHeadlessPicture) {
         auto renderer = makeRenderer(row.framesInFlight);
         if (!m_skipReason.empty()) GTEST_SKIP() << m_skipReason;
         ASSERT_TRUE(renderer);
-        glfw::WindowDesc wd;
-        wd.width = 96;
-        wd.height = 64;
-        wd.title = "lantern window test";
-        wd.presentMode = row.mode;
-        auto window = glfw::Window::create(*renderer, wd);
+        auto window = openWindow(*renderer, 96, 64, false, row.mode);
         ASSERT_TRUE(window) << window.error().describe();
         EXPECT_EQ(window->target().framesInFlight(), std::uint32_t(row.framesInFlight));
         EXPECT_GE(window->target().imageCount(), std::uint32_t(row.framesInFlight));
@@ -218,11 +200,7 @@ TEST_F(WindowTargetTest, MinimisedResizedAndOutOfDateAreStatuses) {
     auto renderer = makeRenderer(2);
     if (!m_skipReason.empty()) GTEST_SKIP() << m_skipReason;
     ASSERT_TRUE(renderer);
-    glfw::WindowDesc wd;
-    wd.width = 80;
-    wd.height = 60;
-    wd.title = "lantern window test";
-    auto window = glfw::Window::create(*renderer, wd);
+    auto window = openWindow(*renderer, 80, 60);
     ASSERT_TRUE(window) << window.error().describe();
     auto prepared = renderer->prepare(spheres());
     ASSERT_TRUE(prepared);
@@ -275,12 +253,7 @@ TEST_F(WindowTargetTest, OverlayIsDrawnOverThePictureButNotCaptured) {
     auto renderer = makeRenderer(2);
     if (!m_skipReason.empty()) GTEST_SKIP() << m_skipReason;
     ASSERT_TRUE(renderer);
-    glfw::WindowDesc wd;
-    wd.width = 64;
-    wd.height = 48;
-    wd.title = "lantern window test";
-    wd.overlay = true;
-    auto window = glfw::Window::create(*renderer, wd);
+    auto window = openWindow(*renderer, 64, 48, true);
     ASSERT_TRUE(window) << window.error().describe();
     const OverlayContext& oc = window->target().overlayContext();
     ASSERT_NE(oc.renderPass, VK_NULL_HANDLE);

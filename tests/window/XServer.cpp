@@ -6,7 +6,9 @@
 #include <X11/Xlib.h>
 #include <X11/Xutil.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -51,13 +53,7 @@ std::unique_ptr<ChildProcess> ChildProcess::start(const std::vector<std::string>
         if (err >= 0) dup2(err, 2);
         const int null = ::open("/dev/null", O_RDONLY);
         if (null >= 0) dup2(null, 0);
-        for (const std::string& e : environment) putenv(strdup(e.c_str()));
-        std::vector<char*> argv;
-        for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-        argv.push_back(nullptr);
-        execvp(argv[0], argv.data());
-        std::fprintf(stderr, "exec %s: %s\n", argv[0], std::strerror(errno));
-        _exit(127);
+        execChild(args, environment);
     }
     auto p = std::unique_ptr<ChildProcess>(new ChildProcess());
     p->m_pid = pid;
@@ -110,6 +106,26 @@ double ChildProcess::cpuSeconds() const {
     // utime and stime are fields 14 and 15 of the file, 12 and 13 after the name.
     if (fields.size() < 13) return 0.0;
     return double(std::stoull(fields[11]) + std::stoull(fields[12])) / double(sysconf(_SC_CLK_TCK));
+}
+
+std::uint8_t srgb8(float linear) {
+    const double c = std::clamp(double(linear), 0.0, 1.0);
+    const double e = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+    return std::uint8_t(std::lround(e * 255.0));
+}
+
+int maxDifference(const XImageRgb& x, const Image& image, int x0, int y0, int x1, int y1) {
+    if (x1 < 0) x1 = image.width;
+    if (y1 < 0) y1 = image.height;
+    if (x.width != image.width || x.height != image.height) return 256;
+    int worst = 0;
+    for (int y = y0; y < y1; ++y)
+        for (int px = x0; px < x1; ++px) {
+            const float* p = image.pixel(px, y);
+            const std::uint8_t* q = &x.rgb[(std::size_t(y) * std::size_t(x.width) + std::size_t(px)) * 3];
+            for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(int(srgb8(p[c])) - int(q[c])));
+        }
+    return worst;
 }
 
 bool XServer::available() { return !findProgram("Xvfb").empty(); }

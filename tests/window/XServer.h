@@ -4,6 +4,8 @@
 // from the server (XGetImage).
 #pragma once
 
+#include <lantern/Image.h>
+
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
@@ -48,6 +50,15 @@ struct XImageRgb {
     int width = 0, height = 0;
     std::vector<std::uint8_t> rgb;
 };
+
+/// The 8-bit sRGB encoding of a linear value (clamped to [0, 1]), as an sRGB swapchain holds it.
+std::uint8_t srgb8(float linear);
+
+/// The largest difference between the X server's pixels and the sRGB encoding of `image`
+/// (premultiplied over black, as the swapchain shows it) over [x0,x1) x [y0,y1) (-1: to the
+/// edge); 256 when the sizes differ.
+int maxDifference(const XImageRgb& x, const Image& image, int x0 = 0, int y0 = 0, int x1 = -1,
+                  int y1 = -1);
 
 /// An Xvfb server for one test.
 class XServer {
