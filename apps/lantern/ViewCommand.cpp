@@ -20,7 +20,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <sstream>
 
 namespace lantern::cli {
 namespace {

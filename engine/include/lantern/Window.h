@@ -40,7 +40,8 @@ std::optional<PresentMode> parsePresentMode(std::string_view text) noexcept;
 
 struct WindowTargetDesc {
     /// Created by the host on windowInstance(renderer); must outlive the target unless
-    /// `ownsSurface`, in which case the target destroys it after its swapchain.
+    /// `ownsSurface`, in which case the target destroys it after its swapchain (and create()
+    /// destroys it when it fails).
     VkSurfaceKHR surface = VK_NULL_HANDLE;
     bool ownsSurface = false;
     /// The framebuffer's size in pixels now (0 x 0 while minimised); see resize().

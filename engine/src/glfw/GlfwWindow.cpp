@@ -113,11 +113,8 @@ Result<Window> Window::create(Renderer& renderer, const WindowDesc& desc) {
     glfwGetFramebufferSize(impl->window, &td.width, &td.height);
     td.presentMode = desc.presentMode;
     td.overlay = desc.overlay;
-    auto target = WindowTarget::create(renderer, td);
-    if (!target) {
-        vkDestroySurfaceKHR(WindowTarget::windowInstance(renderer), surface, nullptr);
-        return std::move(target).error();
-    }
+    auto target = WindowTarget::create(renderer, td);  // owns the surface, even on failure
+    if (!target) return std::move(target).error();
     impl->target.emplace(std::move(*target));
     return Window(std::move(impl));
 }

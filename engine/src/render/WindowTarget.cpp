@@ -250,10 +250,13 @@ VkInstance WindowTarget::windowInstance(const Renderer& renderer) {
 
 Result<WindowTarget> WindowTarget::create(Renderer& renderer, const WindowTargetDesc& desc) {
     Renderer::Impl& r = *renderer.m_impl;
-    if (!r.presentation)
+    if (!desc.surface) return makeError(ErrorCode::Usage, "WindowTargetDesc::surface is null");
+    if (!r.presentation) {
+        if (desc.ownsSurface) vkDestroySurfaceKHR(r.ctx->instance(), desc.surface, nullptr);
         return makeError(ErrorCode::Usage,
                          "the renderer was not created for presentation (RendererDesc::presentation)");
-    if (!desc.surface) return makeError(ErrorCode::Usage, "WindowTargetDesc::surface is null");
+    }
+    // From here on the Impl owns an owned surface: a failure below destroys it with the Impl.
     auto impl = std::make_unique<Impl>();
     impl->renderer = &r;
     impl->ctx = r.ctx;
