@@ -525,15 +525,7 @@ int Viewer::run(std::shared_ptr<Scene> scene) {
     auto background = parseBackground(backgroundText());
     if (!background) return report(background.error());
     m_st.options.background = *background;
-    if (m_st.root >= int(scene->roots.size()))
-        return report(makeError(ErrorCode::InvalidInput,
-                                "scene " + std::to_string(m_st.root) + " does not exist (the file has " +
-                                    std::to_string(scene->roots.size()) + " scenes)",
-                                "--scene"));
     if (!adopt(std::move(scene))) return kFailed;
-    // The command line's camera must resolve (a --camera that does not exist is refused).
-    if (auto p = resolveCameraPlacement(*m_st.scene, m_st.camera.base(), 1.0, m_st.root, m_st.time); !p)
-        return report(p.error());
     if (m_args.watch) {
         std::error_code ec;
         m_loadedTime = m_seenTime = fs::last_write_time(m_st.source, ec);
@@ -653,6 +645,18 @@ int runView(const ViewArgs& a) {
     load.log = stderrSink(a.device.verbose);
     auto scene = loadScene(a.scene, load);
     if (!scene) return report(scene.error());
+    if (a.sceneIndex < -1 || a.sceneIndex >= int(scene->roots.size()))
+        return report(makeError(ErrorCode::InvalidInput,
+                                "scene " + std::to_string(a.sceneIndex) + " does not exist (the file has " +
+                                    std::to_string(scene->roots.size()) + " scenes)",
+                                "--scene"));
+    {
+        // The camera options must hold, and name a camera that exists, before a window opens.
+        RenderOptions check;
+        if (auto r = a.camera.apply(check); !r) return report(r.error());
+        if (auto p = resolveCameraPlacement(*scene, check.camera, 1.0, a.sceneIndex, a.time); !p)
+            return report(p.error());
+    }
 
     RendererDesc base = a.device.desc();
     base.framesInFlight = a.framesInFlight;

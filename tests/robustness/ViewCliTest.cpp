@@ -33,6 +33,9 @@ TEST(ViewCli, RefusesBadOptionsBeforeOpeningAWindow) {
         {{"builtin:spheres", "--present-mode", "vsync"}, 1, "vsync", "an unknown present mode"},
         {{"builtin:spheres", "--viewport", "0,0,10,10"}, 2, "--layout quad", "views follow the window"},
         {{"builtin:nothing"}, 1, "nothing", "an unknown scene"},
+        {{"builtin:spheres", "--scene", "-4"}, 1, "--scene", "a glTF scene index that does not exist"},
+        {{"builtin:spheres", "--camera", "3"}, 1, "camera 3", "a scene camera that does not exist"},
+        {{"builtin:spheres", "--look-at", "0,0,0,0,0,0,0,1,0"}, 1, "--look-at", "eye == target"},
         {{"builtin:spheres", "--frames-in-flight", "9"}, 2, "frames-in-flight", "1 to 4 frames in flight"},
     };
     for (const Refusal& row : rows) {
