@@ -91,6 +91,10 @@ void CameraOptions::add(CLI::App& app) {
                    "Draw into X,Y,W,H (pixels, origin bottom-left as glViewport); repeatable");
     app.add_option("--layout", layout, "quad: top, front, side (orthographic) and the perspective camera")
         ->check(CLI::IsMember({"quad"}));
+    app.add_option("--depth", depth,
+                   "Depth scheme with the float depth buffer: reversed (near at 1, the default: "
+                   "uniform relative precision) or standard (near at 0)")
+        ->check(CLI::IsMember({"reversed", "standard"}));
 }
 
 Result<void> CameraOptions::apply(RenderOptions& o) const {
@@ -98,6 +102,9 @@ Result<void> CameraOptions::apply(RenderOptions& o) const {
     if (projections > 1)
         return makeError(ErrorCode::Usage, "give at most one of --perspective, --ortho and --frustum",
                          "--perspective/--ortho/--frustum");
+    if (defaultCamera && !cameras.empty())
+        return makeError(ErrorCode::Usage, "give either --camera or --default-camera", "--camera");
+    if (!depth.empty()) o.depth = *parseDepthMode(depth);  // CLI11 checked the spelling
     CameraSpec spec;
     if (defaultCamera) spec.source = CameraSpec::Source::GlDefault;
     if (!lookAt.empty()) {

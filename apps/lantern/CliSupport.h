@@ -1,5 +1,5 @@
 // CliSupport.h: shared pieces of the `lantern` subcommands: the stderr log sink, exit codes,
-// number-list parsing and the camera/view options (--look-at, --perspective, --viewport...).
+// number-list parsing and the camera/view options (--look-at, --perspective, --viewport, --depth...).
 // Uses only Lantern's public API.
 #pragma once
 
@@ -40,6 +40,7 @@ struct CameraOptions {
     std::string lookAt, perspective, ortho, frustum;
     std::vector<std::string> viewports;
     std::string layout;
+    std::string depth;  ///< --depth reversed|standard (default: reversed)
 
     void add(CLI::App& app);
     /// Fills options.camera / options.views; refuses bad values with the option named.

@@ -4,15 +4,81 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <iomanip>
 #include <iostream>
 #include <memory>
+#include <sstream>
 #include <thread>
 #include <unistd.h>
 
 namespace lantern::cli {
 namespace {
+
+std::string triple(const glm::dvec3& v) {
+    std::ostringstream s;
+    s << std::setprecision(6) << v.x << " " << v.y << " " << v.z;
+    return s.str();
+}
+
+const char* lightTypeName(LightType t) {
+    return t == LightType::Directional ? "directional" : t == LightType::Point ? "point" : "spot";
+}
+
+// --probe: the lighting equation at one pixel, term by term (Renderer::probe).
+void printProbe(std::ostream& out, const ProbeReport& r) {
+    out << std::setprecision(6);
+    out << "probe pixel " << r.x << "," << r.y << " (x from the left, y from the top)\n";
+    if (!r.hit) {
+        out << "  no surface: background " << triple(glm::dvec3(r.pixel)) << " alpha " << r.pixel.a
+            << "\n";
+        return;
+    }
+    out << "  view " << r.view << ", node " << r.node << " \"" << r.nodeName << "\", mesh " << r.mesh
+        << " primitive " << r.primitive << ", triangle " << r.triangle << " (vertices "
+        << r.vertices[0] << " " << r.vertices[1] << " " << r.vertices[2] << ", barycentric "
+        << triple(r.barycentric) << ")\n";
+    out << "  surface point (eye space): " << triple(r.position) << "\n";
+    out << "  normal (eye space, as lit): " << triple(r.normal) << "  "
+        << (r.backFacing ? "back face" : "front face")
+        << (r.backMaterial ? ", back material and negated normal (two-sided)" : "") << "\n";
+    const MaterialSide& m = r.materialSide;
+    out << "  material " << r.material << " \"" << r.materialName << "\""
+        << (r.backMaterial ? " (back)" : "") << (r.unlit ? " unlit" : "") << ": ambient "
+        << triple(m.ambient) << ", diffuse " << triple(glm::dvec3(m.diffuse)) << " alpha "
+        << m.diffuse.a << ", specular " << triple(m.specular) << ", shininess " << m.shininess
+        << ", emission " << triple(m.emission) << "\n";
+    out << "  shading " << toString(r.shading) << (r.glCompat ? " (gl-compat)" : "") << ", specular "
+        << (r.specularPresent ? toString(r.specular) : "none (not compiled in)") << ", "
+        << (r.localViewer ? "local" : "distant") << " viewer, "
+        << (r.twoSided ? "two-sided" : "one-sided") << (r.clamped ? ", clamped to [0,1]" : "")
+        << "\n";
+    if (r.textured)
+        out << "  note: a base-colour texture modulates this pixel; the probe assumes a white "
+               "texel\n";
+    for (const ProbeEvaluation& e : r.evaluations) {
+        out << "  evaluated at the " << e.where << " (weight " << e.weight << "): point "
+            << triple(e.position) << ", normal " << triple(e.normal) << "\n";
+        out << "    a_m " << triple(e.ambientM) << ", d_m " << triple(e.diffuseM) << "\n";
+        out << "    emission e_m:          " << triple(e.emission) << "\n";
+        out << "    global ambient a_m*A:  " << triple(e.globalAmbient) << "\n";
+        for (std::size_t i = 0; i < e.lights.size(); ++i) {
+            const ProbeLight& l = e.lights[i];
+            out << "    light " << i << " \"" << l.name << "\" " << lightTypeName(l.type)
+                << ": attenuation " << l.attenuation << ", spot " << l.spot << ", n.l " << l.nDotL
+                << ", specular term " << l.specularTerm << "\n";
+            out << "      ambient " << triple(l.ambient) << ", diffuse " << triple(l.diffuse)
+                << ", specular " << triple(l.specular) << "\n";
+        }
+        out << "    colour:                " << triple(e.colour) << " alpha " << e.alpha << "\n";
+    }
+    out << "  colour (reference):  " << triple(glm::dvec3(r.colour)) << " alpha " << r.colour.a
+        << "\n";
+    out << "  pixel (renderer):    " << triple(glm::dvec3(r.pixel)) << " alpha " << r.pixel.a
+        << "\n";
+}
 
 struct RenderArgs {
     std::string scene;
@@ -24,6 +90,7 @@ struct RenderArgs {
     std::string aov;
     bool half = false;
     bool explain = false;
+    std::string probe;
     std::string compression = "zip";
     std::uint64_t maxSize = std::uint64_t(1) << 30;
     std::string background;
@@ -183,6 +250,21 @@ int run(const RenderArgs& a) {
         std::cout << "pipeline variants:\n";
         for (const auto& v : report_->variants) std::cout << "  " << v << "\n";
     }
+    if (!a.probe.empty()) {
+        auto xy = parseNumbers(a.probe, 2, "--probe");
+        if (!xy) return report(xy.error());
+        const double x = (*xy)[0], y = (*xy)[1];
+        if (x != std::floor(x) || y != std::floor(y) || x < 0 || y < 0 || x >= a.width ||
+            y >= a.height)
+            return report(makeError(ErrorCode::InvalidInput,
+                                    "pixel " + a.probe + " is not a whole pixel inside the " +
+                                        std::to_string(a.width) + "x" + std::to_string(a.height) +
+                                        " image",
+                                    "--probe"));
+        auto probed = renderer->probe(*shared, options, a.time, int(x), int(y));
+        if (!probed) return report(probed.error());
+        printProbe(std::cout, *probed);
+    }
     auto prepared = renderer->prepare(shared);
     if (!prepared) return report(prepared.error());
     if (!a.frames.empty()) return runSequence(a, *renderer, *prepared, options, exr, outputs);
@@ -227,6 +309,9 @@ Runner addRenderCommand(CLI::App& app) {
                     "EXR compression: none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab")
         ->capture_default_str();
     cmd->add_flag("--explain", args->explain, "Print the features the scene uses and the pipeline variants");
+    cmd->add_option("--probe", args->probe,
+                    "X,Y: print the lighting equation term by term at pixel X,Y (x from the left, "
+                    "y from the top)");
     cmd->add_option("--max-size", args->maxSize, "Largest file, buffer or image accepted, in bytes")
         ->capture_default_str();
     args->camera.add(*cmd);

@@ -36,20 +36,25 @@ float safeLength(vec3 v) {
     return m * length(v / m);
 }
 
-// x^e for x >= 0 with x^0 = 1 (GLSL leaves pow(0, 0) undefined; lavapipe returns 0).
-float powSafe(float x, float e) {
-    return e == 0.0 ? 1.0 : pow(max(x, 0.0), e);
-}
-
-// ln(1 - y) for y in [0, 1), accurate for tiny y (Kahan's log1p): ln(u) * y / (1 - u).
+// ln(1 - y) for y in [0, 1) with a small relative error for every y. GLSL's log() only
+// promises an absolute error of 2^-21 near 1 (and lavapipe's has it: Kahan's log1p trick
+// built on it lost 6% of the highlight at shininess 1e6), so below 1/16 the series
+// -(y + y^2/2 + ... + y^6/6) is used (truncation < 1e-8 relative); above, |ln(1 - y)| > 0.06
+// and log()'s absolute error is < 1e-5 of it.
 float logOneMinus(float y) {
-    float u = 1.0 - y;
-    return u == 1.0 ? -y : log(u) * (y / (1.0 - u));
+    if (y < 0.0625) {
+        float p = 1.0 / 5.0 + y * (1.0 / 6.0);
+        p = 1.0 / 3.0 + y * (1.0 / 4.0 + y * p);
+        return -y * (1.0 + y * (1.0 / 2.0 + y * p));
+    }
+    return log(1.0 - y);
 }
 
 // max(a.b, 0)^s for unit vectors a and b, evaluated as exp(s ln(1 - y)) with
 // y = 1 - a.b = |a - b|^2 / 2: no cancellation near the peak, so the highlight stays within
 // 1e-6 of the exact value for any shininess (pow(dot(a, b), s) loses 3% at s = 1e6).
+// s = 0 gives 1 for every a, b (x^0 = 1, where GLSL's pow(0, 0) is undefined and lavapipe's
+// is 0). Every power in the equation (shininess, spot exponent) goes through here.
 float lobe(vec3 a, vec3 b, float s) {
     if (s == 0.0) return 1.0;
     vec3 d = a - b;
@@ -58,9 +63,22 @@ float lobe(vec3 a, vec3 b, float s) {
     return exp(s * logOneMinus(y));
 }
 
+// GL's spot factor: x = max(-l.s, 0); x^e inside the cone (x >= cos(cutoff)), else 0. Evaluated
+// as 1 - x = |(-l) - s|^2 / 2 against oneMinusCosCutoff = 1 - cos(cutoff) (computed in double
+// on the CPU) and x^e as lobe(): no cancellation near the axis, so a cutoff of 0.01 degrees
+// keeps its edge and a huge exponent its shape (1 - x rounds to 0 in float within 0.02
+// degrees of the axis). Outside 90 degrees x is 0, and the cutoff is at most 90.
+float glSpotFactor(vec3 towardsPoint, vec3 axis, float oneMinusCosCutoff, float exponent) {
+    vec3 d = towardsPoint - axis;
+    float y = 0.5 * dot(d, d);
+    return y <= oneMinusCosCutoff ? lobe(towardsPoint, axis, exponent) : 0.0;
+}
+
 // spec_i: Blinn max(n.h, 0)^s with h = normalize(l + v), or Phong max(r.v, 0)^s with
-// r = 2(n.l)n - l. When l = -v there is no halfway vector and the term is 0.
+// r = 2(n.l)n - l. Shininess 0 gives 1 (x^0 = 1 for every x); otherwise, when l = -v there is
+// no halfway vector and the term is 0.
 float specularTerm(vec3 n, vec3 l, vec3 v, float shininess) {
+    if (shininess == 0.0) return 1.0;
     if (SC_SPECULAR == LANTERN_SPECULAR_PHONG) {
         vec3 r = 2.0 * dot(n, l) * n - l;
         return lobe(r, v, shininess);
@@ -127,13 +145,11 @@ LightSums evaluateLighting(vec3 V, vec3 n, MaterialSideData m) {
             }
             if (type == LANTERN_LIGHT_SPOT) {
                 if ((SC_LIGHT_TYPES & LANTERN_LIGHT_BIT_SPOT) == 0u) continue;
-                float cd = dot(-l, lights[i].spotDirection.xyz);
-                if (SC_GL_SPOT && falloff == LANTERN_FALLOFF_GL) {
-                    float x = max(cd, 0.0);
-                    spot = x >= lights[i].spotDirection.w ? powSafe(x, lights[i].spot.x) : 0.0;
-                }
+                vec3 axis = lights[i].spotDirection.xyz;
+                if (SC_GL_SPOT && falloff == LANTERN_FALLOFF_GL)
+                    spot = glSpotFactor(-l, axis, lights[i].spotDirection.w, lights[i].spot.x);
                 if (SC_GLTF_FALLOFF && falloff == LANTERN_FALLOFF_GLTF) {
-                    float t = clamp((cd - lights[i].spot.y) * lights[i].spot.z, 0.0, 1.0);
+                    float t = clamp((dot(-l, axis) - lights[i].spot.y) * lights[i].spot.z, 0.0, 1.0);
                     spot = t * t;
                 }
             }
@@ -152,17 +168,27 @@ LightSums evaluateLighting(vec3 V, vec3 n, MaterialSideData m) {
 }
 
 // The material's ambient and diffuse colours and alpha at a point: COLOR_0 replaces ambient
-// and diffuse (GL's colour-material tracking) and multiplies alpha.
+// and diffuse (GL's colour-material tracking) of a Phong material, scales them for unlit and
+// PBR-mapped materials, and multiplies alpha in every case.
 void materialColours(MaterialSideData m, vec4 vertexColor, out vec3 ambientM, out vec3 diffuseM,
                      out float alpha) {
     ambientM = m.ambient.rgb;
     diffuseM = m.diffuse.rgb;
     alpha = m.diffuse.a;
     if (SC_VERTEX_COLOR && (draw.flags & 1u) != 0u) {
-        ambientM = vertexColor.rgb;
-        diffuseM = vertexColor.rgb;
+        // glTF's meaning for unlit and PBR-mapped materials: COLOR_0 scales the base colour.
+        bool scales = SC_UNLIT || SC_AMBIENT_FOLLOWS_DIFFUSE;
+        ambientM = scales ? ambientM * vertexColor.rgb : vertexColor.rgb;
+        diffuseM = scales ? diffuseM * vertexColor.rgb : vertexColor.rgb;
         alpha *= vertexColor.a;
     }
+}
+
+// clamp(v, 0, 1) that lets NaN and Inf through: lavapipe's clamp turns NaN into 0, which would
+// hide a bug from the non-finite count taken at readback (numerics.md LN-13).
+vec3 clampVisible(vec3 v) {
+    bvec3 bad = bvec3(uvec3(isnan(v)) | uvec3(isinf(v)));
+    return mix(clamp(v, 0.0, 1.0), v, bad);
 }
 
 // Splits the colour into `base` and `textured` so that colour = base + texel * textured: the
@@ -178,7 +204,7 @@ void splitColour(LightSums s, vec3 ambientM, vec3 diffuseM, out vec3 base, out v
         textured = diffuseM * s.diffuse;
     }
     if (SC_CLAMP == LANTERN_CLAMP_GL) {
-        textured = clamp(base + textured, 0.0, 1.0);
+        textured = clampVisible(base + textured);
         base = vec3(0.0);
     }
 }

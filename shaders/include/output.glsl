@@ -16,7 +16,7 @@ layout(location = 2) out uvec2 outId;           // draw index + 1, gl_PrimitiveI
 // c: linear colour; alpha: opacity; n: the surface normal before any two-sided flip;
 // eyePosition: the eye-space point.
 void writeOutputs(vec3 c, float alpha, vec3 n, vec3 eyePosition) {
-    if (SC_CLAMP != LANTERN_CLAMP_NONE) c = clamp(c, 0.0, 1.0);
+    if (SC_CLAMP != LANTERN_CLAMP_NONE) c = clampVisible(c);
     outColor = vec4(c, SC_OPAQUE ? 1.0 : alpha);
 #ifdef LANTERN_AOV
     vec3 visible = safeNormalize(n);

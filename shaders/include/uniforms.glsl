@@ -20,7 +20,7 @@ struct LightData {
     vec4 ambient;        // rgb
     vec4 diffuse;        // rgb
     vec4 specular;       // rgb
-    vec4 spotDirection;  // xyz unit axis (eye space); w = cos(cutoff) for GL spots
+    vec4 spotDirection;  // xyz unit axis (eye space); w = 1 - cos(cutoff) for GL spots
     vec4 attenuation;    // kc, kl, kq (GL); w = 1/range (glTF; 0 = unlimited)
     vec4 spot;           // x = GL exponent; y = cos(outer), z = 1/(cos(inner) - cos(outer)) (glTF)
     uvec4 info;          // x = LANTERN_LIGHT_*, y = LANTERN_FALLOFF_*

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace {
 
@@ -82,6 +83,28 @@ TEST(CameraMath, LookAtMatchesGluLookAt) {
     const glm::dmat3 should = glm::transpose(rot) * rot;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) EXPECT_NEAR(should[i][j], i == j ? 1.0 : 0.0, 1e-15);
+}
+
+TEST(CameraMath, LookAtMatchesTheGluReferencePageElementByElement) {
+    // gluLookAt: F = target - eye, f = F/|F|, UP' = up/|up|, s = f x UP', u = (s/|s|) x f,
+    // M = [s/|s|; u; -f] (rows), result M * translate(-eye).
+    const glm::dvec3 eye(1.5, -2, 3), target(-4, 0.5, -1), up(0.2, 1, 0.1);
+    const glm::dvec3 f = glm::normalize(target - eye);
+    const glm::dvec3 s = glm::normalize(glm::cross(f, glm::normalize(up)));
+    const glm::dvec3 u = glm::cross(s, f);
+    const double rows[4][4] = {{s.x, s.y, s.z, -glm::dot(s, eye)},
+                               {u.x, u.y, u.z, -glm::dot(u, eye)},
+                               {-f.x, -f.y, -f.z, glm::dot(f, eye)},
+                               {0, 0, 0, 1}};
+    expectMatrix(lookAt(eye, target, up), rows, 1e-15);
+    // The same view 1e7 units away: only the translation column changes, by -R * offset.
+    const glm::dvec3 offset(1e7, -3e6, 5e6);
+    const glm::dmat4 far = lookAt(eye + offset, target + offset, up);
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(at(far, r, c), rows[r][c], 1e-15);
+        const glm::dvec3 row(rows[r][0], rows[r][1], rows[r][2]);
+        EXPECT_NEAR(at(far, r, 3), rows[r][3] - glm::dot(row, offset), 1e-8);
+    }
 }
 
 TEST(CameraMath, ViewportMapsNdcToWindow) {
@@ -218,6 +241,248 @@ TEST(CameraMath, ChecksRefuseDegenerateInput) {
     ASSERT_FALSE(e);
     EXPECT_EQ(e.error().object, "--frustum");
     EXPECT_NE(e.error().message.find("near"), std::string::npos);
+}
+
+TEST(CameraMath, InfiniteFrustumIsTheLimitOfFiniteFrustum) {
+    const double l = -0.3, r = 0.5, b = -0.2, t = 0.4, n = 0.7;
+    const double rows[4][4] = {{2 * n / (r - l), 0, (r + l) / (r - l), 0},
+                               {0, 2 * n / (t - b), (t + b) / (t - b), 0},
+                               {0, 0, -1, -2 * n},
+                               {0, 0, -1, 0}};
+    expectMatrix(frustum(l, r, b, t, n, kInfinity), rows, 1e-15);
+    const glm::dmat4 far = frustum(l, r, b, t, n, 1e16);
+    for (int row = 0; row < 4; ++row)
+        for (int c = 0; c < 4; ++c) EXPECT_NEAR(at(far, row, c), rows[row][c], 1e-15);
+}
+
+TEST(CameraMath, ViewportWithDepthRangeMatchesGlViewport) {
+    // glViewport(x, y, w, h) + glDepthRange(n, f): x_w = (x_ndc + 1) w/2 + x, same for y,
+    // z_w = z_ndc (f - n)/2 + (f + n)/2.
+    const double x = 7, y = -3, w = 320, h = 200, n = 0.25, f = 0.75;
+    const double rows[4][4] = {{w / 2, 0, 0, x + w / 2},
+                               {0, h / 2, 0, y + h / 2},
+                               {0, 0, (f - n) / 2, (f + n) / 2},
+                               {0, 0, 0, 1}};
+    expectMatrix(viewport(x, y, w, h, n, f), rows);
+}
+
+TEST(CameraMath, VulkanFromGlClipIsTheDocumentedMatrix) {
+    const double standard[4][4] = {{1, 0, 0, 0}, {0, -1, 0, 0}, {0, 0, 0.5, 0.5}, {0, 0, 0, 1}};
+    const double reversed[4][4] = {{1, 0, 0, 0}, {0, -1, 0, 0}, {0, 0, -0.5, 0.5}, {0, 0, 0, 1}};
+    expectMatrix(vulkanFromGlClip(DepthMode::Standard), standard, 0.0);
+    expectMatrix(vulkanFromGlClip(DepthMode::ReversedZ), reversed, 0.0);
+}
+
+TEST(CameraMath, GlDefaultCameraIsTheOrthographicUnitCube) {
+    const Camera c = glDefaultCamera();
+    ASSERT_TRUE(c.lookAt);
+    const double identity[4][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
+    expectMatrix(lookAt(c.lookAt->eye, c.lookAt->target, c.lookAt->up), identity, 0.0);
+    // glOrtho(-1, 1, -1, 1, -1, 1) is diag(1, 1, -1, 1): GL's initial projection flips z only.
+    const double projection[4][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, -1, 0}, {0, 0, 0, 1}};
+    expectMatrix(glClipFromView(c.projection, 1.0), projection, 0.0);
+    EXPECT_TRUE(checkProjection(c.projection, "default"));
+}
+
+TEST(CameraMath, LensGivesTheFieldOfViewAndAspectOfItsFilm) {
+    struct Row {
+        double focal, filmW, filmH, yfovDeg, aspect;
+        const char* why;
+    };
+    const Row rows[] = {
+        {50, 36, 24, 2 * std::atan(12.0 / 50.0) * 180 / kPi, 1.5, "35 mm still, normal lens"},
+        {24, 36, 24, 2 * std::atan(12.0 / 24.0) * 180 / kPi, 1.5, "wide angle"},
+        {35, 0, 24, 2 * std::atan(12.0 / 35.0) * 180 / kPi, 0.0, "film width 0: viewport aspect"},
+        {12, 24, 24, 90.0, 1.0, "f = h/2 is exactly 90 degrees"},
+    };
+    for (const Row& r : rows) {
+        const Projection p = Projection::makeLens(r.focal, r.filmW, r.filmH, 0.1, kInfinity);
+        EXPECT_EQ(p.kind, ProjectionKind::Perspective) << r.why;
+        EXPECT_NEAR(p.yfov * 180 / kPi, r.yfovDeg, 1e-12) << r.why;
+        EXPECT_NEAR(p.aspect, r.aspect, 1e-15) << r.why;
+        EXPECT_TRUE(checkProjection(p, "lens")) << r.why;
+    }
+    // A zero focal length is a 180-degree field of view: refused, fovy named.
+    const auto e = checkProjection(Projection::makeLens(0, 36, 24, 0.1, 10), "lens");
+    ASSERT_FALSE(e);
+    EXPECT_NE(e.error().message.find("fovy"), std::string::npos);
+}
+
+TEST(CameraMath, ProjectAndUnProjectFollowGlu) {
+    const glm::dmat4 view = lookAt({1, 2, 3}, {0, 0, -1}, {0, 1, 0});
+    const glm::dmat4 proj = perspective(45, 1.25, 0.5, 100);
+    const glm::dvec4 vp(10, 20, 200, 160);
+    const glm::dvec3 object(0.3, -0.2, -2.0);
+    const auto win = project(object, view, proj, vp);
+    ASSERT_TRUE(win);
+    // gluProject's formulas, written out.
+    const glm::dvec4 clip = proj * view * glm::dvec4(object, 1);
+    const glm::dvec3 ndc = glm::dvec3(clip) / clip.w;
+    EXPECT_NEAR(win->x, vp.x + vp.z * (ndc.x + 1) / 2, 1e-12);
+    EXPECT_NEAR(win->y, vp.y + vp.w * (ndc.y + 1) / 2, 1e-12);
+    EXPECT_NEAR(win->z, (ndc.z + 1) / 2, 1e-15);
+    const auto back = unProject(*win, view, proj, vp);
+    ASSERT_TRUE(back);
+    EXPECT_NEAR(glm::length(*back - object), 0.0, 1e-12);
+    // The eye itself has w = 0: no image.
+    EXPECT_FALSE(project({1, 2, 3}, view, proj, vp));
+    EXPECT_FALSE(unProject(*win, view, glm::dmat4(0.0), vp));
+}
+
+TEST(CameraMath, TransformStackRotateMatchesGlRotate) {
+    // glRotate(a, x, y, z) reference page, with (x, y, z) normalised, c = cos a, s = sin a.
+    const double angle = 37.0;
+    const glm::dvec3 axis = glm::normalize(glm::dvec3(1, -2, 0.5));
+    const double c = std::cos(angle * kPi / 180), s = std::sin(angle * kPi / 180);
+    const double x = axis.x, y = axis.y, z = axis.z;
+    const double rows[4][4] = {
+        {x * x * (1 - c) + c, x * y * (1 - c) - z * s, x * z * (1 - c) + y * s, 0},
+        {y * x * (1 - c) + z * s, y * y * (1 - c) + c, y * z * (1 - c) - x * s, 0},
+        {x * z * (1 - c) - y * s, y * z * (1 - c) + x * s, z * z * (1 - c) + c, 0},
+        {0, 0, 0, 1}};
+    TransformStack st;
+    st.rotate(angle, {1, -2, 0.5});  // not normalised: glRotate normalises
+    expectMatrix(st.top(), rows);
+}
+
+TEST(CameraMath, TransformStackComposesLikeGl) {
+    // glLoadIdentity; gluLookAt; glTranslate; glRotate; glScale; glMultMatrix: the product
+    // V * T * R * S * M, so M acts first on a vertex and the lookAt last.
+    glm::dmat4 extra(1.0);
+    extra[1][0] = 0.25;  // a shear: row 0, column 1
+    TransformStack st;
+    st.lookAt({0, 1, 5}, {0, 0, 0}, {0, 1, 0});
+    st.translate({1, 2, 3});
+    st.rotate(90, {0, 1, 0});
+    st.scale({2, 3, 4});
+    st.multiply(extra);
+    glm::dmat4 t(1.0), r(0.0), sc(1.0);
+    t[3] = glm::dvec4(1, 2, 3, 1);
+    r[0][2] = -1, r[1][1] = 1, r[2][0] = 1, r[3][3] = 1;  // 90 degrees about +y: x -> -z
+    sc[0][0] = 2, sc[1][1] = 3, sc[2][2] = 4;
+    const glm::dmat4 expected = lookAt({0, 1, 5}, {0, 0, 0}, {0, 1, 0}) * t * r * sc * extra;
+    for (int row = 0; row < 4; ++row)
+        for (int col = 0; col < 4; ++col)
+            EXPECT_NEAR(at(st.top(), row, col), at(expected, row, col), 1e-15);
+    // push copies the top; pop restores it; load and loadIdentity replace only the top.
+    const glm::dmat4 saved = st.top();
+    st.push();
+    st.loadIdentity();
+    EXPECT_EQ(st.top(), glm::dmat4(1.0));
+    st.load(extra);
+    EXPECT_EQ(st.top(), extra);
+    EXPECT_TRUE(st.pop());
+    EXPECT_EQ(st.top(), saved);
+}
+
+TEST(CameraMath, DepthModeNames) {
+    EXPECT_STREQ(toString(DepthMode::ReversedZ), "reversed");
+    EXPECT_STREQ(toString(DepthMode::Standard), "standard");
+    EXPECT_EQ(parseDepthMode("reversed"), DepthMode::ReversedZ);
+    EXPECT_EQ(parseDepthMode("standard"), DepthMode::Standard);
+    EXPECT_FALSE(parseDepthMode("reversed-z"));
+}
+
+// Every refusal of part 4 of the camera issue, one row each, with the word the message must
+// contain; and the extreme but valid values, which must pass.
+TEST(CameraMath, ChecksRefuseWithAClearMessage) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double deg = kPi / 180;
+    struct Row {
+        const char* why;
+        Projection p;
+        const char* mention;  ///< nullptr: valid
+    };
+    const Row rows[] = {
+        {"near 0, perspective", Projection::makePerspective(1, 1, 0, 10), "near"},
+        {"near < 0, perspective", Projection::makePerspective(1, 1, -1, 10), "near"},
+        {"near 0, frustum", Projection::makeFrustum(-1, 1, -1, 1, 0, 10), "near"},
+        {"far == near, perspective", Projection::makePerspective(1, 1, 2, 2), "far"},
+        {"far < near, perspective", Projection::makePerspective(1, 1, 2, 1), "far"},
+        {"far == near, frustum", Projection::makeFrustum(-1, 1, -1, 1, 2, 2), "far"},
+        {"far == near, ortho", Projection::makeOrtho(-1, 1, -1, 1, 2, 2), "far == near"},
+        {"left == right, frustum", Projection::makeFrustum(1, 1, -1, 1, 1, 2), "left == right"},
+        {"left == right, ortho", Projection::makeOrtho(1, 1, -1, 1, 1, 2), "left == right"},
+        {"bottom == top, frustum", Projection::makeFrustum(-1, 1, 3, 3, 1, 2), "bottom == top"},
+        {"bottom == top, ortho", Projection::makeOrtho(-1, 1, 3, 3, 1, 2), "bottom == top"},
+        {"fovy 0", Projection::makePerspective(0, 1, 0.1, 10), "fovy"},
+        {"fovy 180", Projection::makePerspective(180 * deg, 1, 0.1, 10), "fovy"},
+        {"fovy < 0", Projection::makePerspective(-10 * deg, 1, 0.1, 10), "fovy"},
+        {"fovy > 180", Projection::makePerspective(200 * deg, 1, 0.1, 10), "fovy"},
+        {"aspect < 0", Projection::makePerspective(1, -1, 0.1, 10), "aspect"},
+        {"fovy NaN", Projection::makePerspective(nan, 1, 0.1, 10), "fovy"},
+        {"aspect inf", Projection::makePerspective(1, kInfinity, 0.1, 10), "aspect"},
+        {"near NaN", Projection::makePerspective(1, 1, nan, 10), "near"},
+        {"near inf", Projection::makeFrustum(-1, 1, -1, 1, kInfinity, kInfinity), "near"},
+        {"far NaN", Projection::makePerspective(1, 1, 0.1, nan), "far"},
+        {"far -inf", Projection::makePerspective(1, 1, 0.1, -kInfinity), "far"},
+        {"ortho far inf", Projection::makeOrtho(-1, 1, -1, 1, 0, kInfinity), "far"},
+        {"left NaN", Projection::makeOrtho(nan, 1, -1, 1, 0, 1), "finite"},
+        {"top inf", Projection::makeFrustum(-1, 1, -1, kInfinity, 1, 2), "finite"},
+        {"width overflows", Projection::makeOrtho(-1e308, 1e308, -1, 1, 0, 1), "too large"},
+        {"depth overflows", Projection::makeOrtho(-1, 1, -1, 1, -1e308, 1e308), "too deep"},
+        {"width 1e-40 (float overflow)", Projection::makeFrustum(0, 1e-40, -1, 1, 1, 2), "overflows"},
+        {"fovy 1e-40 deg", Projection::makePerspective(1e-40 * deg, 1, 0.1, 10), "overflows"},
+        {"near 1e-40 (flushes to 0)", Projection::makePerspective(1, 1, 1e-40, 10), "underflows"},
+        {"ortho 1e40 wide", Projection::makeOrtho(-1e40, 1e40, -1, 1, 0, 1), "underflows"},
+        // Extreme but valid.
+        {"fovy 1e-4 deg", Projection::makePerspective(1e-4 * deg, 1, 0.1, 10), nullptr},
+        {"fovy 179.9 deg", Projection::makePerspective(179.9 * deg, 1, 0.1, 10), nullptr},
+        {"aspect 1e-4", Projection::makePerspective(1, 1e-4, 0.1, 10), nullptr},
+        {"aspect 1e4", Projection::makePerspective(1, 1e4, 0.1, 10), nullptr},
+        {"near 1e-6 far 1e12", Projection::makePerspective(1, 1, 1e-6, 1e12), nullptr},
+        {"near 1e-6 far inf", Projection::makeFrustum(-1e-6, 1e-6, -1e-6, 1e-6, 1e-6, kInfinity), nullptr},
+        {"aspect 0 (the viewport's)", Projection::makePerspective(1, 0, 0.1, 10), nullptr},
+        {"ortho near > far (GL allows)", Projection::makeOrtho(-1, 1, -1, 1, 5, -5), nullptr},
+        {"ortho negative near", Projection::makeOrtho(-1, 1, -1, 1, -1e6, 1e6), nullptr},
+    };
+    for (const Row& r : rows) {
+        const auto result = checkProjection(r.p, "--camera-object");
+        if (!r.mention) {
+            EXPECT_TRUE(result) << r.why << ": " << result.error().message;
+            continue;
+        }
+        ASSERT_FALSE(result) << r.why;
+        EXPECT_EQ(result.error().code, ErrorCode::InvalidInput) << r.why;
+        EXPECT_EQ(result.error().object, "--camera-object") << r.why;
+        EXPECT_NE(result.error().message.find(r.mention), std::string::npos)
+            << r.why << ": \"" << result.error().message << "\" should mention " << r.mention;
+    }
+
+    struct LookAtRow {
+        const char* why;
+        LookAt la;
+        const char* mention;
+    };
+    const LookAtRow lookAts[] = {
+        {"eye == target", {{1, 2, 3}, {1, 2, 3}, {0, 1, 0}}, "same point"},
+        {"eye == target at 1e7", {{1e7, 0, 0}, {1e7, 0, 0}, {0, 1, 0}}, "same point"},
+        {"up zero", {{0, 0, 0}, {0, 0, -1}, {0, 0, 0}}, "zero length"},
+        {"up along view", {{0, 0, 0}, {0, 0, -1}, {0, 0, -3}}, "parallel"},
+        {"up against view", {{0, 0, 0}, {0, 0, -1}, {0, 0, 2}}, "parallel"},
+        {"up nearly along view", {{0, 0, 0}, {0, 0, -1}, {1e-14, 0, 1}}, "parallel"},
+        {"eye NaN", {{nan, 0, 0}, {0, 0, -1}, {0, 1, 0}}, "non-finite"},
+        {"target inf", {{0, 0, 0}, {0, 0, -kInfinity}, {0, 1, 0}}, "non-finite"},
+        {"up NaN", {{0, 0, 0}, {0, 0, -1}, {0, nan, 0}}, "non-finite"},
+        {"distance overflows", {{-1e308, 0, 0}, {1e308, 0, 0}, {0, 1, 0}}, "too far apart"},
+        {"tiny up is a direction", {{0, 0, 0}, {0, 0, -1}, {0, 1e-200, 0}}, nullptr},
+        {"huge up is a direction", {{0, 0, 0}, {0, 0, -1}, {1e300, 1e300, 0}}, nullptr},
+        {"eye at 1e7, 1 mm view", {{1e7, 0, 0}, {1e7 + 1e-3, 0, 0}, {0, 1, 0}}, nullptr},
+    };
+    for (const LookAtRow& r : lookAts) {
+        const auto result = checkLookAt(r.la, "--look-at");
+        if (!r.mention) {
+            EXPECT_TRUE(result) << r.why << ": " << result.error().message;
+            const glm::dmat4 v = lookAt(r.la.eye, r.la.target, r.la.up);
+            for (int c = 0; c < 4; ++c)
+                for (int row = 0; row < 4; ++row) EXPECT_TRUE(std::isfinite(v[c][row])) << r.why;
+            continue;
+        }
+        ASSERT_FALSE(result) << r.why;
+        EXPECT_EQ(result.error().object, "--look-at") << r.why;
+        EXPECT_NE(result.error().message.find(r.mention), std::string::npos)
+            << r.why << ": \"" << result.error().message << "\" should mention " << r.mention;
+    }
 }
 
 } // namespace

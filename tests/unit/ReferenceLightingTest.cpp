@@ -47,8 +47,10 @@ TEST(ReferenceLighting, ZeroShininessIsOneWhereverTheSurfaceIsLit) {
     // x^0 = 1 for every x >= 0, including n.h <= 0 (GLSL pow(0,0) is undefined).
     EXPECT_EQ(lobe({0, 0, 1}, {1, 0, 0}, 0.0), 1.0);
     EXPECT_EQ(lobe({0, 0, 1}, {0, 0, -1}, 0.0), 1.0);
-    EXPECT_EQ(powSafe(0.0, 0.0), 1.0);
-    EXPECT_EQ(powSafe(0.0, 2.0), 0.0);
+    EXPECT_EQ(lobe({0, 0, 1}, {0, 1, 0}, 2.0), 0.0);
+    // The spot exponent goes through the same lobe: exponent 0 inside the cone is 1.
+    EXPECT_EQ(glSpotFactor({0, 0, -1}, {0, 0, -1}, 0.0, 0.0), 1.0);
+    EXPECT_EQ(glSpotFactor({0, 1, 0}, {0, 0, -1}, 1.0, 0.0), 1.0);  // 90 degrees, cutoff 90
 }
 
 TEST(ReferenceLighting, LobeIsExactForHugeShininess) {
@@ -103,7 +105,7 @@ TEST(ReferenceLighting, GlSpotCutoffAndExponent) {
     l.type = LightType::Spot;
     l.position = {0, 0, 0};
     l.spotAxis = {0, 0, -1};
-    l.cosCutoff = std::cos(30.0 * 3.14159265358979323846 / 180.0);
+    l.oneMinusCosCutoff = 1.0 - std::cos(30.0 * 3.14159265358979323846 / 180.0);
     l.exponent = 2.0;
     MaterialSide m;
     m.ambient = {0, 0, 0};
@@ -118,6 +120,53 @@ TEST(ReferenceLighting, GlSpotCutoffAndExponent) {
     EXPECT_NEAR(at(0), 0.8, 1e-14);
     EXPECT_NEAR(at(20), 0.8 * std::pow(std::cos(20 * 3.14159265358979323846 / 180), 2), 1e-14);
     EXPECT_EQ(at(40), 0.0);
+}
+
+TEST(ReferenceLighting, GlSpotConeEdgesAtTheExtremes) {
+    constexpr double kDeg = 3.14159265358979323846 / 180.0;
+    auto oneMinusCos = [&](double cutoffDeg) {
+        return 2.0 * std::pow(std::sin(cutoffDeg * kDeg / 2.0), 2.0);
+    };
+    const glm::dvec3 axis(0, 0, -1);
+    auto towards = [&](double degrees) {
+        return glm::dvec3(std::sin(degrees * kDeg), 0, -std::cos(degrees * kDeg));
+    };
+    // Cutoff 90, exponent 0 (numerics.md LN-2): -l.s = +-1e-6 either side of the cone.
+    EXPECT_EQ(glSpotFactor(glm::normalize(glm::dvec3(1, 0, -1e-6)), axis, oneMinusCos(90), 0.0), 1.0);
+    EXPECT_EQ(glSpotFactor(glm::normalize(glm::dvec3(1, 0, 1e-6)), axis, oneMinusCos(90), 0.0), 0.0);
+    // Cutoff 0: only the axis itself.
+    EXPECT_EQ(glSpotFactor(axis, axis, oneMinusCos(0), 3.0), 1.0);
+    EXPECT_EQ(glSpotFactor(towards(1e-6), axis, oneMinusCos(0), 0.0), 0.0);
+    // A 0.05 degree cone keeps its edge to 0.1% of its angle.
+    EXPECT_GT(glSpotFactor(towards(0.05 * 0.999), axis, oneMinusCos(0.05), 0.0), 0.0);
+    EXPECT_EQ(glSpotFactor(towards(0.05 * 1.001), axis, oneMinusCos(0.05), 0.0), 0.0);
+    // A huge exponent is exact: cos(a)^1e6 at a = 1e-3.
+    EXPECT_NEAR(glSpotFactor(towards(1e-3 / kDeg), axis, oneMinusCos(1.0), 1e6) /
+                    std::exp(1e6 * std::log(std::cos(1e-3))),
+                1.0, 1e-9);
+}
+
+TEST(ReferenceLighting, VertexColourReplacesOrScales) {
+    MaterialSide m;
+    m.ambient = {0.2, 0.3, 0.4};
+    m.diffuse = {0.5, 0.6, 0.7, 0.8};
+    const glm::dvec4 c(0.1, 0.2, 0.3, 0.5);
+    const MaterialColours replaced = materialColours(m, &c, false);
+    EXPECT_EQ(replaced.ambient, glm::dvec3(0.1, 0.2, 0.3));
+    EXPECT_EQ(replaced.diffuse, glm::dvec3(0.1, 0.2, 0.3));
+    EXPECT_DOUBLE_EQ(replaced.alpha, 0.4);
+    const MaterialColours scaled = materialColours(m, &c, true);
+    EXPECT_NEAR(scaled.diffuse.y, 0.12, 1e-15);
+    EXPECT_NEAR(scaled.ambient.z, 0.12, 1e-15);
+    const MaterialColours none = materialColours(m, nullptr, true);
+    EXPECT_EQ(none.diffuse, glm::dvec3(0.5, 0.6, 0.7));
+    EXPECT_DOUBLE_EQ(none.alpha, 0.8);
+}
+
+TEST(ReferenceLighting, ZeroShininessWithoutAHalfwayVectorIsStillOne) {
+    // l = -v: no halfway vector, but x^0 = 1 for every x.
+    EXPECT_EQ(specularTerm({0, 0, -1}, {0, 0, -1}, {0, 0, 1}, 0.0, SpecularModel::Blinn), 1.0);
+    EXPECT_EQ(specularTerm({0, 0, -1}, {0, 0, -1}, {0, 0, 1}, 2.0, SpecularModel::Blinn), 0.0);
 }
 
 } // namespace

@@ -16,6 +16,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace lantern {
@@ -39,18 +40,33 @@ glm::dmat4 perspective(double fovyDegrees, double aspect, double n, double f);
 glm::dmat4 viewport(double x, double y, double w, double h, double depthNear = 0.0,
                     double depthFar = 1.0);
 /// The vertical field of view in degrees of a physical lens: 2 atan(filmHeight / (2 focal)).
+/// Any unit works as long as both lengths use it (millimetres by convention).
 double fovyFromLens(double focalLengthMm, double filmHeightMm);
+
+/// gluProject: window coordinates (GL's: origin bottom-left, depth in 0..1 for glDepthRange
+/// 0..1) of `object` seen through GL matrices and `viewport` (x, y, width, height). The
+/// homogeneous divide is by clip w; a point with w == 0 has no image and gives nullopt.
+std::optional<glm::dvec3> project(const glm::dvec3& object, const glm::dmat4& viewFromModel,
+                                  const glm::dmat4& clipFromView, const glm::dvec4& viewport);
+/// gluUnProject: the model-space point whose window coordinates are `window` (the inverse of
+/// project()); nullopt when the matrices are singular or the point is at infinity.
+std::optional<glm::dvec3> unProject(const glm::dvec3& window, const glm::dmat4& viewFromModel,
+                                    const glm::dmat4& clipFromView, const glm::dvec4& viewport);
 
 /// How depth is stored: Vulkan's 0..1 with near at 0 (Standard) or near at 1 (ReversedZ,
 /// the default: with a float depth buffer its precision is nearly uniform in distance).
 enum class DepthMode { ReversedZ, Standard };
+const char* toString(DepthMode mode) noexcept;  ///< "reversed", "standard"
+/// Parses "reversed" or "standard" (as the command line's --depth spells them).
+std::optional<DepthMode> parseDepthMode(std::string_view text) noexcept;
 
 /// The one matrix that converts GL clip space to Vulkan clip space: y flipped (Vulkan's y
 /// points down the framebuffer) and z mapped from -w..w to 0..w (Standard) or w..0 (ReversedZ):
 ///   Standard:  [1 0 0 0; 0 -1 0 0; 0 0 1/2 1/2; 0 0 0 1]   (rows)
 ///   ReversedZ: [1 0 0 0; 0 -1 0 0; 0 0 -1/2 1/2; 0 0 0 1]
-/// Because of the y flip, a face counter-clockwise in GL is clockwise in Vulkan's framebuffer;
-/// Lantern's pipelines declare clockwise front faces accordingly.
+/// The y flip happens in clip space and Vulkan measures winding in its y-down framebuffer, so
+/// a face counter-clockwise in GL's window is counter-clockwise for Vulkan too: front faces are
+/// counter-clockwise, as in GL (clockwise for mirroring transforms, whose winding reverses).
 glm::dmat4 vulkanFromGlClip(DepthMode mode);
 
 // --- Camera description ---------------------------------------------------------------------
@@ -75,6 +91,13 @@ struct Projection {
                                       double zfar);
     static Projection makeFrustum(double l, double r, double b, double t, double n, double f);
     static Projection makeOrtho(double l, double r, double b, double t, double n, double f);
+    /// A physical camera: a lens of the given focal length in front of a film (sensor) of the
+    /// given size, all in the same unit (millimetres by convention: 50 mm on 36 x 24 mm film).
+    /// yfov = 2 atan(filmHeight / (2 focal)), aspect = filmWidth / filmHeight (a viewport of
+    /// another aspect stretches the image, as GL does; pass filmWidth 0 to use the viewport's).
+    /// Check the result with checkProjection (a focal length <= 0 gives fovy >= 180).
+    static Projection makeLens(double focalLength, double filmWidth, double filmHeight,
+                               double znear, double zfar);
 };
 
 /// The GL clip-from-view matrix of a projection for a viewport of the given aspect (w/h).
@@ -111,7 +134,11 @@ Camera glDefaultCamera();
 Result<void> checkLookAt(const LookAt& lookAt, const std::string& object);
 /// Refuses what GL refuses or what cannot render: near <= 0 for perspective and frustum,
 /// far == near (far <= near for perspective), left == right, bottom == top, fovy outside
-/// (0, 180) degrees, aspect < 0, and any non-finite value except a perspective far of +inf.
+/// (0, 180) degrees, aspect < 0 (0 stands for the viewport's), any non-finite value except a
+/// perspective or frustum far of +inf, and a view volume whose matrix does not fit single
+/// precision (the GPU's): an entry that overflows float, or a scale or near term that would
+/// flush to zero. Extreme valid values (fovy 1e-4 or 179.9 degrees, aspect 1e-4 or 1e4, near
+/// 1e-6 with far 1e12) pass and render.
 Result<void> checkProjection(const Projection& projection, const std::string& object);
 
 // --- GL's matrix stack ----------------------------------------------------------------------

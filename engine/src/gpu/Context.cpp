@@ -2,6 +2,10 @@
 // device creation.
 #include "gpu/Context.h"
 
+#if defined(__SANITIZE_ADDRESS__)
+#include "core/SanitizerSupport.h"
+#endif
+
 #include <algorithm>
 #include <cctype>
 #include <cstring>
@@ -117,6 +121,9 @@ VKAPI_ATTR VkBool32 VKAPI_CALL Context::debugCallback(
 
 Result<std::shared_ptr<Context>> Context::create(const ContextDesc& desc) {
     armFaultsFromEnvironment();
+#if defined(__SANITIZE_ADDRESS__)
+    core::pinVulkanLibraries();
+#endif
     std::shared_ptr<Context> ctx(new Context());
     ctx->m_log = desc.log;
 
@@ -267,8 +274,9 @@ Result<std::shared_ptr<Context>> Context::create(const ContextDesc& desc) {
     core.wideLines = supported.features.wideLines;
     core.shaderFloat64 = supported.features.shaderFloat64;
     core.independentBlend = supported.features.independentBlend;
-    // The AOV fragment shaders read gl_PrimitiveID: SPIR-V's Geometry capability.
+    // The id AOV reads gl_PrimitiveID in fragment shaders: SPIR-V's Geometry capability.
     core.geometryShader = supported.features.geometryShader;
+    ctx->m_caps.primitiveIdInFragment = core.geometryShader;
     ctx->m_caps.fillModeNonSolid = core.fillModeNonSolid;
     ctx->m_caps.wideLines = core.wideLines;
     ctx->m_caps.shaderFloat64 = core.shaderFloat64;

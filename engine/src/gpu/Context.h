@@ -33,6 +33,7 @@ struct ContextDesc {
 struct Capabilities {
     bool provokingVertexLast = false;  ///< VK_EXT_provoking_vertex (GL-compatible flat)
     bool shaderFloat64 = false;
+    bool primitiveIdInFragment = false;  ///< geometryShader feature: the AOV ids need it
     bool fillModeNonSolid = false;     ///< wireframe
     bool wideLines = false;
     bool debugUtils = false;           ///< object names and the messenger

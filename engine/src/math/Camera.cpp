@@ -1,11 +1,15 @@
 // GL/GLU camera matrices in double precision and their exact conversion to Vulkan clip space.
 #include <lantern/Camera.h>
 
+#include "math/Robust.h"
+
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace lantern {
@@ -15,6 +19,13 @@ constexpr double kPi = 3.14159265358979323846;
 
 bool finite(const glm::dvec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// The unit vector along v, computed after dividing by the largest component so that neither
+// the squares of tiny components (1e-200) underflow nor those of huge ones (1e200) overflow.
+glm::dvec3 direction(const glm::dvec3& v) {
+    const double m = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    return glm::normalize(v / m);
 }
 
 // Sets row `r` of a column-major matrix.
@@ -29,8 +40,8 @@ void setRow(glm::dmat4& m, int r, double a, double b, double c, double d) {
 
 glm::dmat4 lookAt(const glm::dvec3& eye, const glm::dvec3& target, const glm::dvec3& up) {
     // GLU: forward f, side s = f x up, u = s x f; rows s, u, -f; then translate by -eye.
-    const glm::dvec3 f = glm::normalize(target - eye);
-    const glm::dvec3 s = glm::normalize(glm::cross(f, up));
+    const glm::dvec3 f = direction(target - eye);
+    const glm::dvec3 s = direction(glm::cross(f, direction(up)));
     const glm::dvec3 u = glm::cross(s, f);
     glm::dmat4 m(1.0);
     setRow(m, 0, s.x, s.y, s.z, -glm::dot(s, eye));
@@ -87,6 +98,37 @@ double fovyFromLens(double focalLengthMm, double filmHeightMm) {
     return 2.0 * std::atan(filmHeightMm / (2.0 * focalLengthMm)) * 180.0 / kPi;
 }
 
+std::optional<glm::dvec3> project(const glm::dvec3& object, const glm::dmat4& viewFromModel,
+                                  const glm::dmat4& clipFromView, const glm::dvec4& vp) {
+    const glm::dvec4 clip = clipFromView * (viewFromModel * glm::dvec4(object, 1.0));
+    if (clip.w == 0.0) return std::nullopt;
+    const glm::dvec3 ndc = glm::dvec3(clip) / clip.w;
+    return glm::dvec3(vp.x + vp.z * (ndc.x + 1.0) / 2.0, vp.y + vp.w * (ndc.y + 1.0) / 2.0,
+                      (ndc.z + 1.0) / 2.0);
+}
+
+std::optional<glm::dvec3> unProject(const glm::dvec3& window, const glm::dmat4& viewFromModel,
+                                    const glm::dmat4& clipFromView, const glm::dvec4& vp) {
+    const glm::dmat4 clipFromModel = clipFromView * viewFromModel;
+    if (glm::determinant(clipFromModel) == 0.0 || vp.z == 0.0 || vp.w == 0.0)
+        return std::nullopt;
+    const glm::dvec4 ndc(2.0 * (window.x - vp.x) / vp.z - 1.0,
+                         2.0 * (window.y - vp.y) / vp.w - 1.0, 2.0 * window.z - 1.0, 1.0);
+    const glm::dvec4 object = glm::inverse(clipFromModel) * ndc;
+    if (object.w == 0.0 || !std::isfinite(object.w)) return std::nullopt;
+    return glm::dvec3(object) / object.w;
+}
+
+const char* toString(DepthMode mode) noexcept {
+    return mode == DepthMode::ReversedZ ? "reversed" : "standard";
+}
+
+std::optional<DepthMode> parseDepthMode(std::string_view text) noexcept {
+    if (text == "reversed") return DepthMode::ReversedZ;
+    if (text == "standard") return DepthMode::Standard;
+    return std::nullopt;
+}
+
 glm::dmat4 vulkanFromGlClip(DepthMode mode) {
     glm::dmat4 m(0.0);
     const double zs = mode == DepthMode::ReversedZ ? -0.5 : 0.5;
@@ -120,6 +162,13 @@ Projection Projection::makeOrtho(double l, double r, double b, double t, double 
     p.kind = ProjectionKind::Orthographic;
     p.left = l, p.right = r, p.bottom = b, p.top = t, p.znear = n, p.zfar = f;
     return p;
+}
+
+Projection Projection::makeLens(double focalLength, double filmWidth, double filmHeight,
+                                double znear, double zfar) {
+    const double aspect = filmWidth > 0.0 ? filmWidth / filmHeight : 0.0;
+    return makePerspective(fovyFromLens(focalLength, filmHeight) * kPi / 180.0, aspect, znear,
+                           zfar);
 }
 
 glm::dmat4 glClipFromView(const Projection& p, double viewportAspect) {
@@ -170,15 +219,17 @@ Result<void> checkLookAt(const LookAt& la, const std::string& object) {
     if (!finite(la.eye) || !finite(la.target) || !finite(la.up))
         return makeError(ErrorCode::InvalidInput, "lookAt has a non-finite value", object);
     const glm::dvec3 f = la.target - la.eye;
-    const double fl = glm::length(f);
-    if (!(fl > 0.0) || !std::isfinite(fl))
+    if (f == glm::dvec3(0.0))
         return makeError(ErrorCode::InvalidInput,
                          "eye and target are the same point (no view direction)", object);
-    const double ul = glm::length(la.up);
-    if (!(ul > 0.0) || !std::isfinite(ul))
+    if (!finite(f))
+        return makeError(ErrorCode::InvalidInput,
+                         "eye and target are too far apart (their difference overflows)", object);
+    if (la.up == glm::dvec3(0.0))
         return makeError(ErrorCode::InvalidInput, "up vector has zero length", object);
+    // Judged by direction only: up = (0, 1e-200, 0) is as good as (0, 1, 0).
     // Parallel when the sine of the angle between f and up is below ~1e-12.
-    const double s = glm::length(glm::cross(f / fl, la.up / ul));
+    const double s = glm::length(glm::cross(direction(f), direction(la.up)));
     if (!(s > 1e-12))
         return makeError(ErrorCode::InvalidInput,
                          "up vector is parallel to the view direction", object);
@@ -211,6 +262,30 @@ Result<void> checkProjection(const Projection& p, const std::string& object) {
         if (!(p.zfar > p.znear)) return bad("far must be greater than near");
     } else if (p.zfar == p.znear) {
         return bad("far == near (zero-depth view volume)");
+    }
+    if (p.kind != ProjectionKind::Perspective &&
+        (!std::isfinite(p.right - p.left) || !std::isfinite(p.top - p.bottom)))
+        return bad("the view volume is too large (right - left or top - bottom overflows)");
+    if (p.kind == ProjectionKind::Orthographic && !std::isfinite(p.zfar - p.znear))
+        return bad("the view volume is too deep (far - near overflows)");
+    // The GPU receives the matrix in single precision: an entry beyond float's range would be
+    // infinite there (NaN in the image), and a scale or near term below float's smallest
+    // normal number flushes to zero (an empty image). Refuse both rather than render either.
+    const double aspect = p.aspect > 0.0 ? p.aspect : 1.0;
+    for (DepthMode mode : {DepthMode::ReversedZ, DepthMode::Standard}) {
+        const glm::dmat4 m = vulkanClipFromView(p, aspect, mode);
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r)
+                if (!(std::abs(m[c][r]) <= double(std::numeric_limits<float>::max())))
+                    return bad("the projection matrix overflows single precision (the view "
+                               "volume is too narrow: fovy, right - left, top - bottom or "
+                               "far - near is too small)");
+        const double essential[] = {m[0][0], m[1][1],
+                                    p.kind == ProjectionKind::Orthographic ? m[2][2] : m[3][2]};
+        for (double v : essential)
+            if (std::abs(v) < double(std::numeric_limits<float>::min()))
+                return bad("the projection matrix underflows single precision (the view "
+                           "volume is too wide, or near is too small: nothing would render)");
     }
     return {};
 }
@@ -266,9 +341,12 @@ glm::dmat3 normalMatrix(const glm::dmat4& viewFromModel) {
     if (!(largest > 0.0) || !std::isfinite(largest)) return glm::dmat3(0.0);
     // The cofactor is homogeneous of degree 2: pre-scaling keeps it in double range.
     m /= largest;
-    glm::dmat3 cof(glm::cross(m[1], m[2]), glm::cross(m[2], m[0]), glm::cross(m[0], m[1]));
+    // Accurate cross products and determinant: with scales 1e-6 and 1e6 under a rotation the
+    // textbook formulas cancel to noise, and the determinant's sign comes out wrong.
+    glm::dmat3 cof(math::accurateCross(m[1], m[2]), math::accurateCross(m[2], m[0]),
+                   math::accurateCross(m[0], m[1]));
     // cof = det * inverse-transpose; a mirroring transform (det < 0) would flip normals inward.
-    if (glm::determinant(m) < 0.0) cof = -cof;
+    if (math::accurateDot(m[0], cof[0]) < 0.0) cof = -cof;
     double big = 0.0;
     for (int c = 0; c < 3; ++c)
         for (int r = 0; r < 3; ++r) big = std::max(big, std::abs(cof[c][r]));

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace lantern::ref {
 
@@ -23,8 +24,6 @@ double safeLength(const glm::dvec3& v) {
     return m * glm::length(v / m);
 }
 
-double powSafe(double x, double e) { return e == 0.0 ? 1.0 : std::pow(std::max(x, 0.0), e); }
-
 double lobe(const glm::dvec3& a, const glm::dvec3& b, double s) {
     if (s == 0.0) return 1.0;
     const glm::dvec3 d = a - b;
@@ -33,8 +32,16 @@ double lobe(const glm::dvec3& a, const glm::dvec3& b, double s) {
     return std::exp(s * std::log1p(-y));
 }
 
+double glSpotFactor(const glm::dvec3& towardsPoint, const glm::dvec3& axis,
+                    double oneMinusCosCutoff, double exponent) {
+    const glm::dvec3 d = towardsPoint - axis;
+    const double y = 0.5 * glm::dot(d, d);
+    return y <= oneMinusCosCutoff ? lobe(towardsPoint, axis, exponent) : 0.0;
+}
+
 double specularTerm(const glm::dvec3& n, const glm::dvec3& l, const glm::dvec3& v,
                     double shininess, SpecularModel model) {
+    if (shininess == 0.0) return 1.0;
     if (model == SpecularModel::Phong) {
         const glm::dvec3 r = 2.0 * glm::dot(n, l) * n - l;
         return lobe(r, v, shininess);
@@ -84,11 +91,10 @@ LightSums evaluateLighting(const glm::dvec3& V, const glm::dvec3& n, const Mater
                 c.attenuation = window / std::max(d * d, LANTERN_MIN_GLTF_DISTANCE_SQUARED);
             }
             if (L.type == LightType::Spot) {
-                const double cd = glm::dot(-l, L.spotAxis);
                 if (L.falloff == LightFalloff::Gl) {
-                    const double x = std::max(cd, 0.0);
-                    c.spot = x >= L.cosCutoff ? powSafe(x, L.exponent) : 0.0;
+                    c.spot = glSpotFactor(-l, L.spotAxis, L.oneMinusCosCutoff, L.exponent);
                 } else {
+                    const double cd = glm::dot(-l, L.spotAxis);
                     const double t = std::clamp((cd - L.cosOuter) * L.coneScale, 0.0, 1.0);
                     c.spot = t * t;
                 }
@@ -98,8 +104,8 @@ LightSums evaluateLighting(const glm::dvec3& V, const glm::dvec3& n, const Mater
         c.nDotL = glm::dot(n, l);
         s.ambient += k * L.ambient;
         s.diffuse += (k * std::max(c.nDotL, 0.0)) * L.diffuse;
-        c.ambient = k * L.ambient * m.ambient;
-        c.diffuse = (k * std::max(c.nDotL, 0.0)) * L.diffuse * glm::dvec3(m.diffuse);
+        c.ambient = k * L.ambient;
+        c.diffuse = (k * std::max(c.nDotL, 0.0)) * L.diffuse;
         if (st.specularOn && c.nDotL > 0.0) {
             c.specularTerm = specularTerm(n, l, v, m.shininess, st.specular);
             c.specular = (k * c.specularTerm) * (m.specular * L.specular);
@@ -108,6 +114,18 @@ LightSums evaluateLighting(const glm::dvec3& V, const glm::dvec3& n, const Mater
         if (contributions) contributions->push_back(c);
     }
     return s;
+}
+
+MaterialColours materialColours(const MaterialSide& m, const glm::dvec4* vertexColour,
+                                bool scales) {
+    MaterialColours r{m.ambient, glm::dvec3(m.diffuse), m.diffuse.a};
+    if (vertexColour) {
+        const glm::dvec3 rgb(*vertexColour);
+        r.ambient = scales ? r.ambient * rgb : rgb;
+        r.diffuse = scales ? r.diffuse * rgb : rgb;
+        r.alpha *= vertexColour->a;
+    }
+    return r;
 }
 
 SplitColour splitColour(const LightSums& s, const glm::dvec3& ambientM, const glm::dvec3& diffuseM,
@@ -137,9 +155,10 @@ glm::dvec3 shade(const glm::dvec3& V, const glm::dvec3& n, const MaterialSide& m
 std::vector<EyeLight> eyeLights(const Scene& scene, const Pose& pose, const glm::dmat4& viewFromWorld,
                                 bool glCompat) {
     std::vector<EyeLight> out;
-    auto place = [&](const Light& l, const glm::dmat4& viewFromLight) {
+    auto place = [&](const Light& l, const std::string& fallbackName,
+                     const glm::dmat4& viewFromLight) {
         EyeLight e;
-        e.name = l.name;
+        e.name = l.name.empty() ? fallbackName : l.name;
         e.falloff = l.falloff;
         e.type = l.type;
         if (l.type == LightType::Spot && l.falloff == LightFalloff::Gl && l.spotCutoffDeg == 180.0)
@@ -155,7 +174,8 @@ std::vector<EyeLight> eyeLights(const Scene& scene, const Pose& pose, const glm:
         e.specular = l.specular;
         e.attenuation = l.attenuation;
         e.invRange = std::isinf(l.range) ? 0.0 : 1.0 / l.range;
-        e.cosCutoff = std::cos(std::min(l.spotCutoffDeg, 90.0) * 3.14159265358979323846 / 180.0);
+        const double halfCutoff = std::min(l.spotCutoffDeg, 90.0) * 3.14159265358979323846 / 360.0;
+        e.oneMinusCosCutoff = 2.0 * std::sin(halfCutoff) * std::sin(halfCutoff);
         e.exponent = glCompat ? std::min(l.spotExponent, 128.0) : l.spotExponent;
         e.cosOuter = std::cos(l.outerConeAngle);
         e.coneScale = 1.0 / std::max(std::cos(l.innerConeAngle) - e.cosOuter, 1e-6);
@@ -163,12 +183,14 @@ std::vector<EyeLight> eyeLights(const Scene& scene, const Pose& pose, const glm:
     };
     for (std::size_t i = 0; i < scene.nodes.size(); ++i)
         if (pose.visible[i] && scene.nodes[i].light >= 0)
-            place(scene.lights[scene.nodes[i].light], viewFromWorld * pose.worldFromNode[i]);
+            place(scene.lights[scene.nodes[i].light],
+                  "light " + std::to_string(scene.nodes[i].light),
+                  viewFromWorld * pose.worldFromNode[i]);
     if (out.empty()) {
         Light l;
         l.name = "GL default light 0";
         l.type = LightType::Directional;
-        place(l, glm::dmat4(1.0));
+        place(l, l.name, glm::dmat4(1.0));
     }
     return out;
 }

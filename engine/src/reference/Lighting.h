@@ -24,9 +24,9 @@ struct EyeLight {
     glm::dvec3 ambient{0.0}, diffuse{1.0}, specular{1.0};
     glm::dvec3 attenuation{1, 0, 0};
     double invRange = 0.0;
-    double cosCutoff = -1.0, exponent = 0.0;       ///< GL spot
+    double oneMinusCosCutoff = 1.0, exponent = 0.0;  ///< GL spot: 1 - cos(cutoff), exponent
     double cosOuter = 0.0, coneScale = 1.0;        ///< glTF spot: 1/max(cos inner - cos outer, 1e-6)
-    std::string name;
+    std::string name;  ///< the light's name, or "light N" (N: index in Scene::lights)
 };
 
 /// The lighting switches that change the equation.
@@ -45,17 +45,26 @@ struct LightSums {
     glm::dvec3 diffuse{0.0};
 };
 
-/// One light's share of the colour at a point, for --probe.
+/// One light's terms at a point, for --probe. The ambient and diffuse sums still lack the
+/// material's a_m and d_m (a vertex colour may replace them; the caller applies them).
 struct LightContribution {
-    double attenuation = 1.0, spot = 1.0, nDotL = 0.0, specularTerm = 0.0;
-    glm::dvec3 ambient{0.0}, diffuse{0.0}, specular{0.0};  ///< already times the material
+    double attenuation = 1.0;   ///< att_i
+    double spot = 1.0;          ///< spot_i
+    double nDotL = 0.0;         ///< n.l_i (unclamped; f_i = 1 where it is > 0)
+    double specularTerm = 0.0;  ///< spec_i where f_i = 1 and the variant has a specular term
+    glm::dvec3 ambient{0.0};    ///< att spot a_i
+    glm::dvec3 diffuse{0.0};    ///< att spot max(n.l, 0) d_i
+    glm::dvec3 specular{0.0};   ///< att spot f_i spec_i s_m s_i (complete)
 };
 
 glm::dvec3 safeNormalize(const glm::dvec3& v);
 double safeLength(const glm::dvec3& v);
-double powSafe(double x, double e);
 /// max(a.b, 0)^s for unit a, b (s = 0 gives 1), exactly: exp(s log1p(-|a-b|^2/2)).
 double lobe(const glm::dvec3& a, const glm::dvec3& b, double s);
+/// GL's spot factor for the unit vector from the light towards the point: x^e inside the
+/// cone, 0 outside, with 1 - x = |towardsPoint - axis|^2 / 2 compared with 1 - cos(cutoff).
+double glSpotFactor(const glm::dvec3& towardsPoint, const glm::dvec3& axis,
+                    double oneMinusCosCutoff, double exponent);
 double specularTerm(const glm::dvec3& n, const glm::dvec3& l, const glm::dvec3& v,
                     double shininess, SpecularModel model);
 glm::dvec3 viewVector(const glm::dvec3& V, bool localViewer);
@@ -65,6 +74,16 @@ LightSums evaluateLighting(const glm::dvec3& V, const glm::dvec3& n, const Mater
                            const std::vector<EyeLight>& lights, const Settings& settings,
                            std::vector<LightContribution>* contributions = nullptr);
 
+/// The material's ambient and diffuse colours and alpha at a point (materialColours in the
+/// shaders): a vertex colour replaces ambient and diffuse, or scales them when `scales` (unlit
+/// and PBR-mapped materials), and multiplies alpha.
+struct MaterialColours {
+    glm::dvec3 ambient{0.0}, diffuse{0.0};
+    double alpha = 1.0;
+};
+MaterialColours materialColours(const MaterialSide& m, const glm::dvec4* vertexColour,
+                                bool scales);
+
 /// colour = base + texel * textured, as splitColour in the shaders.
 struct SplitColour {
     glm::dvec3 base{0.0}, textured{0.0};
@@ -72,12 +91,12 @@ struct SplitColour {
 SplitColour splitColour(const LightSums& s, const glm::dvec3& ambientM,
                         const glm::dvec3& diffuseM, bool ambientFollowsDiffuse, bool glClamp);
 
-/// The full colour at a point without textures: e + a A + ... with optional clamp.
+/// The full colour at a point without textures or vertex colours (unclamped).
 glm::dvec3 shade(const glm::dvec3& V, const glm::dvec3& n, const MaterialSide& m,
                  const std::vector<EyeLight>& lights, const Settings& settings);
 
 /// Eye-space lights of a scene at a pose, as the renderer places them (GL's light 0 when the
-/// scene has none). `glCompat` limits spot exponents to 128.
+/// scene has none), in the renderer's order. `glCompat` limits spot exponents to 128.
 std::vector<EyeLight> eyeLights(const Scene& scene, const Pose& pose,
                                 const glm::dmat4& viewFromWorld, bool glCompat);
 

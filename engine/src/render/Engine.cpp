@@ -174,6 +174,11 @@ Result<void> Engine::checkOptions(const RenderOptions& o) const {
                          "the device does not support " + std::to_string(o.msaa) +
                              " samples per pixel for float colour and depth",
                          "--msaa");
+    if (o.aovs.any() && !m_ctx->capabilities().primitiveIdInFragment)
+        return makeError(ErrorCode::Unsupported,
+                         "the device lacks the geometryShader feature that the AOV shaders "
+                         "need (gl_PrimitiveID in the fragment stage)",
+                         "--aov");
     // Memory estimate for one frame slot, refused before anything is allocated.
     const double pixels = double(o.width) * double(o.height);
     double perPixel = 16 + 16 + 4 * o.msaa;              // colour, readback, depth

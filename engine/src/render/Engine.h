@@ -27,7 +27,8 @@ struct FrameResult {
     double gpuMs = -1.0;            ///< render pass time from GPU timestamps (-1: unavailable)
     std::uint64_t nonFinite = 0;    ///< NaN/Inf values found (and zeroed) at readback
     std::size_t draws = 0;
-    /// With AOVs: per pixel (draw index + 1, primitive id) of the view's draw list; 0 = none.
+    /// With AOVs: per pixel (draw index + 1, primitive id); draw indices run over the whole
+    /// frame (every view); 0 = none.
     std::vector<std::uint32_t> ids;
 };
 

@@ -2,6 +2,8 @@
 // All composition is in double precision; only camera-relative results become float.
 #include "render/FramePlan.h"
 
+#include "math/Robust.h"
+
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_access.hpp>
 #include <glm/matrix.hpp>
@@ -79,8 +81,20 @@ ResolvedCamera framingCamera(const Scene& scene, int root, const CameraSpec& spe
     if (spec.framingOrthographic) {
         const double d = 2.0 * r;
         rc.viewFromWorld = lookAt(c - dir * d, c, up);
-        double h = r * margin, w = h;
-        if (aspect >= 1.0) w = h * aspect; else h = w / aspect;
+        // Fit the bounds' box as seen from this direction (a modeller's top, front and side
+        // views), not its bounding sphere: a flat ground seen edge-on must not shrink the
+        // objects standing on it. The box is centred on the view axis.
+        double hw = 0.0, hh = 0.0;
+        for (int i = 0; i < 8 && !b.empty(); ++i) {
+            const glm::dvec3 corner((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y,
+                                    (i & 4) ? b.max.z : b.min.z);
+            const glm::dvec4 p = rc.viewFromWorld * glm::dvec4(corner, 1.0);
+            hw = std::max(hw, std::abs(p.x));
+            hh = std::max(hh, std::abs(p.y));
+        }
+        if (!(hw > 1e-6 * r) && !(hh > 1e-6 * r)) hw = hh = r;
+        double h = std::max(hh, 1e-6 * r) * margin, w = std::max(hw, 1e-6 * r) * margin;
+        if (w / h < aspect) w = h * aspect; else h = w / aspect;
         rc.projection = Projection::makeOrtho(-w, w, -h, h, d - 1.5 * r, d + 1.5 * r);
         rc.description = "automatic framing (orthographic)";
     } else {
@@ -122,6 +136,11 @@ ResolvedLighting resolveLighting(const Scene& scene, int root, const RenderOptio
     if (o.specular) r.model.specular = *o.specular;
     if (o.localViewer) r.model.localViewer = *o.localViewer;
     if (o.twoSided) r.model.twoSided = *o.twoSided;
+    // GL's default shading is GL_SMOOTH: with --gl-compat a scene that does not choose a mode
+    // (no LANTERN_lighting) is shaded per vertex, as OpenGL would.
+    const bool sceneChoosesShading =
+        ri >= 0 && ri < int(scene.roots.size()) && scene.roots[ri].lighting.has_value();
+    if (o.glCompat && !o.shading && !sceneChoosesShading) r.model.shading = ShadingMode::Gouraud;
     r.glCompat = o.glCompat;
     r.clamp = o.glCompat ? LANTERN_CLAMP_GL : o.clamp ? LANTERN_CLAMP_FRAGMENT : LANTERN_CLAMP_NONE;
     switch (r.model.shading) {
@@ -284,8 +303,10 @@ LightData packLight(const Light& l, const glm::dmat4& viewFromLight, bool glComp
     d.ambient = vec4(l.ambient);
     d.diffuse = vec4(l.diffuse);
     d.specular = vec4(l.specular);
-    const double cutoff = std::min(l.spotCutoffDeg, 90.0) * kPi / 180.0;
-    d.spotDirection = vec4(axis, std::cos(cutoff));
+    // 1 - cos(cutoff) as 2 sin^2(cutoff / 2): exact for small cutoffs (lighting.glsl's
+    // glSpotFactor compares 1 - cos(angle) with it).
+    const double halfCutoff = std::min(l.spotCutoffDeg, 90.0) * kPi / 360.0;
+    d.spotDirection = vec4(axis, 2.0 * std::sin(halfCutoff) * std::sin(halfCutoff));
     const double invRange = std::isinf(l.range) ? 0.0 : 1.0 / l.range;
     d.attenuation = vec4(glm::dvec4(l.attenuation, invRange));
     const double exponent = glCompat ? std::min(l.spotExponent, 128.0) : l.spotExponent;
@@ -385,7 +406,6 @@ Result<FramePlan> buildFramePlan(const Scene& scene, const RenderOptions& o, dou
     if (gltfFalloff) f.push_back("falloff:gltf");
     f.push_back(std::string("shading:") + toString(lit.model.shading) +
                 (lit.program == Program::GlFlat ? " (provoking vertex)" : ""));
-    f.push_back(std::string("specular-model:") + toString(lit.model.specular));
     if (lit.model.localViewer) f.push_back("local-viewer");
     if (lit.model.twoSided) f.push_back("two-sided");
     if (lit.clamp == LANTERN_CLAMP_GL) f.push_back("clamp:gl (per vertex)");
@@ -400,6 +420,7 @@ Result<FramePlan> buildFramePlan(const Scene& scene, const RenderOptions& o, dou
 
     bool anyVertexColor = false, anyTexture = false, anyMask = false, anyBlend = false,
          anyUnlit = false, anySpecular = false;
+    std::uint32_t drawCount = 0;
     for (std::size_t vi = 0; vi < views.size(); ++vi) {
         const View& v = views[vi];
         const std::string viewObject = o.views.empty() ? std::string("camera")
@@ -441,7 +462,9 @@ Result<FramePlan> buildFramePlan(const Scene& scene, const RenderOptions& o, dou
             if (!plan.pose.visible[ni] || node.mesh < 0) continue;
             const glm::dmat4 viewFromModel = viewFromWorld * plan.pose.worldFromNode[ni];
             const glm::dmat3 normals = normalMatrix(viewFromModel);
-            const bool mirrored = glm::determinant(glm::dmat3(viewFromModel)) < 0.0;
+            // Accurate: glm::determinant gets the sign wrong for scales 1e-6 and 1e6 under a
+            // rotation, which would cull the visible faces.
+            const bool mirrored = math::accurateDeterminant(glm::dmat3(viewFromModel)) < 0.0;
             const Mesh& mesh = scene.meshes[node.mesh];
             for (std::size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
                 const Primitive& prim = mesh.primitives[pi];
@@ -525,10 +548,14 @@ Result<FramePlan> buildFramePlan(const Scene& scene, const RenderOptions& o, dou
         vp.draws = std::move(opaque);
         vp.draws.insert(vp.draws.end(), std::make_move_iterator(blended.begin()),
                         std::make_move_iterator(blended.end()));
-        for (std::size_t i = 0; i < vp.draws.size(); ++i) vp.draws[i].block.drawIndex = std::uint32_t(i);
+        // Numbered across the frame, so the ids AOV names a draw of any view (--probe).
+        for (DrawItem& d : vp.draws) d.block.drawIndex = drawCount++;
         plan.views.push_back(std::move(vp));
     }
-    if (anySpecular) f.push_back("specular");
+    // The specular model only matters when some draw has a specular term at all.
+    f.push_back(anySpecular ? std::string("specular:") + toString(lit.model.specular)
+                            : std::string("specular:none (no specular light on a specular "
+                                          "material)"));
     if (anyVertexColor) f.push_back("vertex-colors");
     if (anyTexture) f.push_back("texture");
     if (anyMask) f.push_back("alpha-mask");

@@ -2,6 +2,7 @@
 #include <lantern/Renderer.h>
 #include <lantern/Version.h>
 
+#include "render/Probe.h"
 #include "render/RendererImpl.h"
 
 #include <chrono>
@@ -121,24 +122,23 @@ Result<PreparedScene> Renderer::prepare(std::shared_ptr<const Scene> scene) {
     return prepared;
 }
 
-Result<Image> Renderer::render(const PreparedScene& prepared, const RenderOptions& options,
-                               double time) {
-    if (!prepared) return makeError(ErrorCode::Usage, "render() needs a prepared scene");
-    render::Engine& engine = *m_impl->engine;
-    LANTERN_TRY(engine.checkOptions(options));
-    const auto t0 = Clock::now();
-    auto plan = render::buildFramePlan(prepared.scene(), options, time);
-    if (!plan) return std::move(plan).error();
+namespace {
+// Submits a planned frame and waits for it (synchronous rendering), recording its stats.
+Result<render::FrameResult> renderPlanned(render::Engine& engine,
+                                          const std::shared_ptr<render::GpuScene>& scene,
+                                          const render::FramePlan& plan,
+                                          const RenderOptions& options, Clock::time_point t0,
+                                          FrameStats& stats) {
     const std::size_t pipelinesBefore = engine.pipelineCount();
-    // Synchronous: drain any slot still in flight from a sequence before reusing it.
+    // Drain any slot still in flight from a sequence before reusing it.
     const std::uint32_t next = engine.nextSlot();
     if (engine.busy(next)) {
         auto drained = engine.collect(next, options);
         if (!drained) return std::move(drained).error();
     }
-    auto slot = engine.submit(prepared.m_gpu, *plan, options);
+    auto slot = engine.submit(scene, plan, options);
     if (!slot) return std::move(slot).error();
-    FrameStats stats;
+    stats = FrameStats{};
     stats.cpuMs = msSince(t0);
     const auto t1 = Clock::now();
     auto frame = engine.collect(*slot, options);
@@ -148,7 +148,20 @@ Result<Image> Renderer::render(const PreparedScene& prepared, const RenderOption
     stats.draws = frame->draws;
     stats.nonFinite = frame->nonFinite;
     stats.pipelinesCreated = engine.pipelineCount() - pipelinesBefore;
-    m_impl->stats = stats;
+    return frame;
+}
+} // namespace
+
+Result<Image> Renderer::render(const PreparedScene& prepared, const RenderOptions& options,
+                               double time) {
+    if (!prepared) return makeError(ErrorCode::Usage, "render() needs a prepared scene");
+    render::Engine& engine = *m_impl->engine;
+    LANTERN_TRY(engine.checkOptions(options));
+    const auto t0 = Clock::now();
+    auto plan = render::buildFramePlan(prepared.scene(), options, time);
+    if (!plan) return std::move(plan).error();
+    auto frame = renderPlanned(engine, prepared.m_gpu, *plan, options, t0, m_impl->stats);
+    if (!frame) return std::move(frame).error();
 
     Image image = std::move(frame->image);
     attachMetadata(image, *plan, m_impl->info, time);
@@ -162,8 +175,50 @@ Result<Image> Renderer::render(const Scene& scene, const RenderOptions& options,
     return render(*prepared, options, time);
 }
 
+Result<render::ExplainedFrame> render::RendererAccess::renderExplained(
+    Renderer& renderer, const Scene& scene, const RenderOptions& options, double time,
+    const std::function<void(FramePlan&)>& edit) {
+    render::ExplainedFrame f;
+    f.options = options;
+    f.options.aovs.depth = f.options.aovs.normal = true;
+    render::Engine& engine = *renderer.m_impl->engine;
+    LANTERN_TRY(engine.checkOptions(f.options));
+    auto prepared = renderer.prepare(borrow(scene));
+    if (!prepared) return std::move(prepared).error();
+    const auto t0 = Clock::now();
+    auto plan = render::buildFramePlan(scene, f.options, time);
+    if (!plan) return std::move(plan).error();
+    if (edit) edit(*plan);
+    auto frame =
+        renderPlanned(engine, prepared->m_gpu, *plan, f.options, t0, renderer.m_impl->stats);
+    if (!frame) return std::move(frame).error();
+    f.plan = std::move(*plan);
+    f.frame = std::move(*frame);
+    return f;
+}
+
+Result<ProbeReport> Renderer::probe(const Scene& scene, const RenderOptions& options,
+                                    double time, int x, int y) {
+    if (x < 0 || y < 0 || x >= options.width || y >= options.height)
+        return makeError(ErrorCode::InvalidInput,
+                         "pixel " + std::to_string(x) + "," + std::to_string(y) +
+                             " is outside the " + std::to_string(options.width) + "x" +
+                             std::to_string(options.height) + " image",
+                         "--probe");
+    // One sample per pixel: the probe explains the surface at the pixel centre.
+    RenderOptions single = options;
+    single.msaa = 1;
+    auto f = render::RendererAccess::renderExplained(*this, scene, single, time);
+    if (!f) return std::move(f).error();
+    return render::probePixel(scene, *f, x, y);
+}
+
 Result<FeatureReport> Renderer::explain(const Scene& scene, const RenderOptions& options,
                                         double time) {
+    return explainScene(scene, options, time);
+}
+
+Result<FeatureReport> explainScene(const Scene& scene, const RenderOptions& options, double time) {
     LANTERN_TRY(scene.validate());
     auto plan = render::buildFramePlan(scene, options, time);
     if (!plan) return std::move(plan).error();

@@ -1,0 +1,309 @@
+// The glTF loader's first pass, on the bytes before tinygltf sees them: the GLB container's
+// chunk structure, the JSON nesting depth, external URIs confined to the scene's folder, and
+// the facts tinygltf discards (optional numbers' presence, primitives it would drop).
+#include "io/GltfInternal.h"
+
+#include <cstring>
+#include <nlohmann/json.hpp>
+
+namespace lantern::gltf {
+namespace {
+
+constexpr std::uint32_t kGlbMagic = 0x46546C67;  // "glTF"
+constexpr std::uint32_t kChunkJson = 0x4E4F534A; // "JSON"
+constexpr std::uint32_t kChunkBin = 0x004E4942;  // "BIN\0"
+
+std::uint32_t readU32(const std::vector<unsigned char>& b, std::size_t offset) {
+    // GLB is little-endian; assemble byte by byte so the host's order does not matter.
+    return std::uint32_t(b[offset]) | std::uint32_t(b[offset + 1]) << 8 |
+           std::uint32_t(b[offset + 2]) << 16 | std::uint32_t(b[offset + 3]) << 24;
+}
+
+std::string chunkName(std::uint32_t type) {
+    std::string s;
+    for (int i = 0; i < 4; ++i) {
+        const char c = char((type >> (8 * i)) & 0xFF);
+        s += (c >= 32 && c < 127) ? c : '?';
+    }
+    return "\"" + s + "\"";
+}
+
+int hexValue(char c) {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+}
+
+bool isDataUri(std::string_view uri) {
+    return uri.substr(0, 5) == "data:";
+}
+
+} // namespace
+
+void Diagnostics::warn(const std::string& object, const std::string& message) const {
+    if (!m_log) return;
+    std::string line = m_file + ": ";
+    if (!object.empty()) line += object + ": ";
+    line += message;
+    m_log(LogLevel::Warning, line);
+}
+
+std::string at(std::string_view array, std::size_t index) {
+    return std::string(array) + "[" + std::to_string(index) + "]";
+}
+
+bool isGlb(const std::vector<unsigned char>& bytes) {
+    return bytes.size() >= 4 && readU32(bytes, 0) == kGlbMagic;
+}
+
+Result<GlbLayout> parseGlb(const std::vector<unsigned char>& bytes, const Diagnostics& diag) {
+    const std::size_t size = bytes.size();
+    if (size < 12)
+        return diag.error("GLB header", "file is " + std::to_string(size) +
+                                            " bytes, shorter than the 12-byte GLB header");
+    if (readU32(bytes, 0) != kGlbMagic) return diag.error("GLB header", "magic is not \"glTF\"");
+    const std::uint32_t version = readU32(bytes, 4);
+    if (version != 2)
+        return diag.error("GLB header", "container version " + std::to_string(version) +
+                                            " is not supported (only 2)");
+    const std::uint32_t length = readU32(bytes, 8);
+    if (length != size)
+        return diag.error("GLB header", "declared length " + std::to_string(length) +
+                                            " differs from the file size " + std::to_string(size));
+    if (size < 20)
+        return diag.error("GLB header", "no JSON chunk (the file ends after the header)");
+
+    GlbLayout layout;
+    bool haveJson = false;
+    std::size_t chunkIndex = 0;
+    std::size_t offset = 12;
+    std::size_t understoodEnd = 0;
+    while (offset < size) {
+        const std::string object = "GLB " + at("chunks", chunkIndex);
+        if (size - offset < 8)
+            return diag.error(object, "truncated chunk header (" + std::to_string(size - offset) +
+                                          " bytes left, 8 needed)");
+        const std::uint32_t chunkLength = readU32(bytes, offset);
+        const std::uint32_t chunkType = readU32(bytes, offset + 4);
+        const std::size_t dataOffset = offset + 8;
+        if (chunkLength > size - dataOffset)
+            return diag.error(object, "chunk length " + std::to_string(chunkLength) +
+                                          " runs past the end of the file");
+        if (chunkLength % 4 != 0)
+            return diag.error(object, "chunk length " + std::to_string(chunkLength) +
+                                          " is not a multiple of 4");
+        if (chunkIndex == 0) {
+            if (chunkType != kChunkJson)
+                return diag.error(object, "first chunk is " + chunkName(chunkType) +
+                                              ", not the JSON chunk");
+            if (chunkLength == 0) return diag.error(object, "JSON chunk is empty");
+            layout.jsonOffset = dataOffset;
+            layout.jsonLength = chunkLength;
+            haveJson = true;
+            understoodEnd = dataOffset + chunkLength;
+        } else if (chunkType == kChunkJson) {
+            return diag.error(object, "second JSON chunk (only one is allowed)");
+        } else if (chunkType == kChunkBin) {
+            if (layout.hasBin) return diag.error(object, "second BIN chunk (only one is allowed)");
+            if (chunkIndex != 1)
+                return diag.error(object, "BIN chunk must directly follow the JSON chunk");
+            layout.hasBin = true;
+            layout.binOffset = dataOffset;
+            layout.binLength = chunkLength;
+            understoodEnd = dataOffset + chunkLength;
+        } else {
+            diag.warn(object, "unknown chunk type " + chunkName(chunkType) + " ignored");
+        }
+        offset = dataOffset + chunkLength;
+        ++chunkIndex;
+    }
+    if (!haveJson) return diag.error("GLB", "no JSON chunk");
+    layout.tinygltfLength = understoodEnd;
+    return layout;
+}
+
+Result<void> checkJsonNesting(std::string_view json, const Diagnostics& diag) {
+    int depth = 0;
+    bool inString = false, escaped = false;
+    for (std::size_t i = 0; i < json.size(); ++i) {
+        const char c = json[i];
+        if (inString) {
+            if (escaped)
+                escaped = false;
+            else if (c == '\\')
+                escaped = true;
+            else if (c == '"')
+                inString = false;
+            continue;
+        }
+        if (c == '"')
+            inString = true;
+        else if (c == '{' || c == '[') {
+            if (++depth > kMaxJsonDepth)
+                return diag.error("JSON", "nested more than " + std::to_string(kMaxJsonDepth) +
+                                              " levels deep (at byte " + std::to_string(i) + ")");
+        } else if (c == '}' || c == ']') {
+            --depth;
+        }
+    }
+    return {};
+}
+
+std::string percentDecode(std::string_view text) {
+    std::string out;
+    out.reserve(text.size());
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        if (text[i] == '%' && i + 2 < text.size()) {
+            const int hi = hexValue(text[i + 1]), lo = hexValue(text[i + 2]);
+            if (hi >= 0 && lo >= 0) {
+                out += char(hi * 16 + lo);
+                i += 2;
+                continue;
+            }
+        }
+        out += text[i];
+    }
+    return out;
+}
+
+Result<std::string> checkRelativeUri(std::string_view uri, const std::string& object,
+                                     const Diagnostics& diag) {
+    const std::string path = percentDecode(uri);
+    const std::string shown = "\"" + std::string(uri) + "\"";
+    if (path.empty()) return diag.error(object, "URI is empty");
+    if (path.find('\0') != std::string::npos)
+        return diag.error(object, "URI " + shown + " contains a NUL character");
+    // A scheme ("http:", "file:") is a colon before the first slash. Only relative paths and
+    // data: URIs are read: a scene file must not make the loader fetch or open anything else.
+    const std::size_t colon = path.find(':'), slash = path.find('/');
+    if (colon != std::string::npos && (slash == std::string::npos || colon < slash))
+        return diag.error(object, "URI " + shown +
+                                      " has a scheme; only relative paths and data: URIs are read");
+    if (path[0] == '/' || path[0] == '\\')
+        return diag.error(object, "URI " + shown +
+                                      " is an absolute path; external files must lie in the "
+                                      "scene's folder");
+    // ".." anywhere as a path component (either separator) could leave the folder.
+    std::size_t start = 0;
+    while (start <= path.size()) {
+        std::size_t end = path.find_first_of("/\\", start);
+        if (end == std::string::npos) end = path.size();
+        if (path.compare(start, end - start, "..") == 0)
+            return diag.error(object, "URI " + shown +
+                                          " contains \"..\"; external files must lie in the "
+                                          "scene's folder");
+        start = end + 1;
+    }
+    return path;
+}
+
+Result<RawFacts> inspectJson(std::string_view text, const Source& source, const Diagnostics& diag) {
+    using nlohmann::json;
+    json doc;
+    try {
+        doc = json::parse(text.begin(), text.end());
+    } catch (const json::exception& e) {
+        // nlohmann's message names the line and column ("parse error at line 1, column 2").
+        std::string what = e.what();
+        if (const std::size_t bracket = what.find("] "); bracket != std::string::npos)
+            what = what.substr(bracket + 2);
+        return diag.error("JSON", what);
+    }
+    if (!doc.is_object()) return diag.error("JSON", "the top level is not a JSON object");
+    RawFacts facts;
+
+    auto array = [&](const char* name) -> const json* {
+        auto it = doc.find(name);
+        return (it != doc.end() && it->is_array()) ? &*it : nullptr;
+    };
+    // External files: the URI must stay inside the folder; buffers must exist and fit the
+    // size bound (tinygltf's own message would be a bare "file not found").
+    for (const char* kind : {"buffers", "images"}) {
+        const json* items = array(kind);
+        if (!items) continue;
+        const bool buffers = std::string_view(kind) == "buffers";
+        for (std::size_t i = 0; i < items->size(); ++i) {
+            const json& item = (*items)[i];
+            if (!item.is_object()) continue;
+            const std::string object = at(kind, i);
+            auto uri = item.find("uri");
+            if (uri == item.end() || !uri->is_string()) {
+                if (!buffers) continue;
+                if (!source.glb)
+                    return diag.error(object, "has no uri: a .gltf buffer's data must come from "
+                                              "a file or a data: URI");
+                if (i != 0)
+                    return diag.error(object, "has no uri: only buffer 0 can refer to the GLB's "
+                                              "BIN chunk");
+                if (!source.glbHasBin)
+                    return diag.error(object, "refers to the GLB's BIN chunk, but the file has "
+                                              "none");
+                continue;
+            }
+            const std::string& value = uri->get_ref<const std::string&>();
+            if (isDataUri(value)) {
+                // tinygltf would take a data: URI it cannot decode for a file name.
+                if (!tinygltf::IsDataURI(value))
+                    return diag.error(object + ".uri",
+                                      "data: URI with an unsupported MIME type or encoding "
+                                      "(read: base64 with application/octet-stream, "
+                                      "application/gltf-buffer or an image type)");
+                continue;
+            }
+            auto relative = checkRelativeUri(value, object + ".uri", diag);
+            if (!relative) return std::move(relative).error();
+            const std::filesystem::path file = source.folder / *relative;
+            std::error_code ec;
+            std::string problem;
+            if (!std::filesystem::is_regular_file(file, ec))
+                problem = "\"" + *relative + "\" does not exist in the scene's folder";
+            else if (const auto size = std::filesystem::file_size(file, ec);
+                     !ec && size > source.maxBytes)
+                problem = "\"" + *relative + "\" is " + std::to_string(size) +
+                          " bytes, more than --max-size (" + std::to_string(source.maxBytes) +
+                          " bytes)";
+            if (problem.empty()) continue;
+            if (buffers || problem.find("--max-size") != std::string::npos)
+                return diag.error(object + ".uri", problem);
+            facts.imageProblems[int(i)] = problem; // an error only if a material uses it
+        }
+    }
+    if (const json* cameras = array("cameras")) {
+        for (const json& c : *cameras) {
+            bool hasZfar = false;
+            if (c.is_object()) {
+                auto p = c.find("perspective");
+                if (p != c.end() && p->is_object()) hasZfar = p->contains("zfar");
+            }
+            facts.perspectiveHasZfar.push_back(hasZfar);
+        }
+    }
+    if (const json* meshes = array("meshes")) {
+        for (std::size_t m = 0; m < meshes->size(); ++m) {
+            const json& mesh = (*meshes)[m];
+            std::size_t count = 0;
+            if (mesh.is_object()) {
+                auto prims = mesh.find("primitives");
+                if (prims != mesh.end() && prims->is_array()) {
+                    count = prims->size();
+                    // tinygltf drops a primitive without an attributes object silently, which
+                    // would shift every later primitive's index: refuse instead.
+                    for (std::size_t p = 0; p < prims->size(); ++p) {
+                        const json& prim = (*prims)[p];
+                        const std::string object = at("meshes", m) + "." + at("primitives", p);
+                        if (!prim.is_object()) return diag.error(object, "is not an object");
+                        auto attrs = prim.find("attributes");
+                        if (attrs == prim.end() || !attrs->is_object())
+                            return diag.error(object + ".attributes",
+                                              "is missing or not an object");
+                    }
+                }
+            }
+            facts.primitiveCounts.push_back(count);
+        }
+    }
+    return facts;
+}
+
+} // namespace lantern::gltf

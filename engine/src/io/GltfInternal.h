@@ -1,0 +1,235 @@
+// GltfInternal.h: the glTF loader's internal interfaces, shared by its passes:
+// container checks (GLB, JSON nesting, URIs), structural validation, bounds-checked accessor
+// reading, geometry and scene conversion. Only engine/src/io/Gltf*.cpp include this.
+//
+// The passes, in order (GltfImport.cpp runs them):
+//   1. GltfContainer.cpp  the bytes: size bound, GLB chunks, JSON nesting depth, external URIs
+//                         (relative, inside the scene's folder), facts tinygltf discards.
+//   2. tinygltf           JSON -> tinygltf::Model, buffers read through confined callbacks.
+//   3. GltfValidate.cpp   every reference, buffer view, accessor, index, count and enum, with
+//                         the glTF object path in each message, before any data is read.
+//   4. GltfGeometry.cpp,  data -> Scene: meshes (strips/fans to lists, normals computed),
+//      GltfConvert.cpp    materials, textures, lights, cameras, nodes, animations, extensions.
+//   5. Scene::validate()  the scene model's own checks, as a final net.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <lantern/Io.h>
+#include <lantern/Scene.h>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <tiny_gltf.h>
+#include <vector>
+
+namespace lantern::gltf {
+
+/// glTF accessor component types by name (INT and DOUBLE are not glTF 2.0 accessor types).
+inline constexpr int kByte = TINYGLTF_COMPONENT_TYPE_BYTE;
+inline constexpr int kUnsignedByte = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+inline constexpr int kShort = TINYGLTF_COMPONENT_TYPE_SHORT;
+inline constexpr int kUnsignedShort = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+inline constexpr int kUnsignedInt = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+inline constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT;
+
+/// Deepest JSON nesting accepted. Real glTF files nest about 8 levels; tinygltf converts
+/// `extensions` and `extras` recursively, so a hostile file nested millions of levels deep
+/// would overflow the stack without this bound.
+inline constexpr int kMaxJsonDepth = 256;
+
+/// Largest texture side accepted (Vulkan guarantees 4096; lavapipe and desktop GPUs 16384).
+inline constexpr int kMaxTextureSide = 16384;
+
+/// The finite ceiling of the PBR roughness -> shininess mapping 2/r^4 - 2 (reached for
+/// roughness <= 0.1189). Above ~1e4 float32 pow(n.h, s) loses accuracy (numerics.md 3.3), and
+/// the lobe (half-width 0.68 degrees at 1e4) is already narrower than a pixel in most views.
+inline constexpr double kMaxPbrShininess = 1.0e4;
+
+/// Extensions the loader understands (anything else listed in extensionsRequired is refused).
+inline constexpr const char* kSupportedExtensions[] = {
+    "KHR_lights_punctual",     "KHR_materials_unlit",  "KHR_materials_emissive_strength",
+    "LANTERN_materials_phong", "LANTERN_lights_phong", "LANTERN_lighting",
+    "LANTERN_camera",
+};
+
+/// Where a load's errors and warnings come from: every message names the file.
+class Diagnostics {
+public:
+    Diagnostics(std::string file, LogSink log) : m_file(std::move(file)), m_log(std::move(log)) {}
+    const std::string& file() const { return m_file; }
+    /// An InvalidInput error naming the file and `object`.
+    Error error(std::string object, std::string message) const {
+        return makeError(ErrorCode::InvalidInput, std::move(message), std::move(object), m_file);
+    }
+    /// An error of another kind (IoError).
+    Error error(ErrorCode code, std::string object, std::string message) const {
+        return makeError(code, std::move(message), std::move(object), m_file);
+    }
+    /// A warning: something skipped or repaired. "file: object: message".
+    void warn(const std::string& object, const std::string& message) const;
+
+private:
+    std::string m_file;
+    LogSink m_log;
+};
+
+/// "name[i]": the glTF object path convention of every message.
+std::string at(std::string_view array, std::size_t index);
+
+// --- Pass 1: the bytes (GltfContainer.cpp) ----------------------------------------------------
+
+/// Where the chunks of a GLB container lie. `tinygltfLength` is the length to hand to
+/// tinygltf: the header's, cut after the last chunk it understands (JSON, BIN).
+struct GlbLayout {
+    std::size_t jsonOffset = 0, jsonLength = 0;
+    std::size_t binOffset = 0, binLength = 0;
+    bool hasBin = false;
+    std::size_t tinygltfLength = 0;
+};
+
+/// True when the bytes start with the GLB magic "glTF".
+bool isGlb(const std::vector<unsigned char>& bytes);
+
+/// Checks the GLB header and chunk structure (the validator's GLB_* rules).
+Result<GlbLayout> parseGlb(const std::vector<unsigned char>& bytes, const Diagnostics& diag);
+
+/// Refuses JSON text nested deeper than kMaxJsonDepth (a scan that respects strings).
+Result<void> checkJsonNesting(std::string_view json, const Diagnostics& diag);
+
+/// Decodes %XX escapes (as tinygltf does before opening a file).
+std::string percentDecode(std::string_view text);
+
+/// Checks an external (non-data) URI: it must be a relative path inside the scene's folder
+/// (no scheme, no absolute path, no ".." component). Returns the decoded relative path, or
+/// the reason it is refused as the error message.
+Result<std::string> checkRelativeUri(std::string_view uri, const std::string& object,
+                                     const Diagnostics& diag);
+
+/// What the JSON says that tinygltf does not keep: presence of optional numbers, the number
+/// of primitives written (tinygltf silently drops malformed ones), and why an external image
+/// cannot be read (tinygltf only warns; it is an error once a material uses the image).
+struct RawFacts {
+    std::vector<bool> perspectiveHasZfar;     ///< per camera
+    std::vector<std::size_t> primitiveCounts; ///< per mesh, as written
+    std::map<int, std::string> imageProblems; ///< per image index
+};
+
+/// Where the JSON came from, for the checks on buffers and external files.
+struct Source {
+    std::filesystem::path folder; ///< the scene's folder (absolute)
+    bool glb = false;
+    bool glbHasBin = false;
+    std::uint64_t maxBytes = 0;
+};
+
+/// Parses the JSON text (already depth-checked) and collects RawFacts. Refuses syntax errors,
+/// a root that is not an object, buffers without data, external URIs that leave the scene's
+/// folder, missing buffer files, files over the size bound, and primitives tinygltf would
+/// silently drop.
+Result<RawFacts> inspectJson(std::string_view json, const Source& source, const Diagnostics& diag);
+
+// --- Pass 3: structure (GltfValidate.cpp) ------------------------------------------------------
+
+/// Checks every reference, buffer view, accessor (bounds, alignment, sparse parts), enum and
+/// count the conversion relies on. After it succeeds, reading any accessor cannot go out of
+/// bounds (the readers check again regardless).
+Result<void> validateModel(const tinygltf::Model& model, const RawFacts& raw,
+                           const LoadOptions& options, const Diagnostics& diag);
+
+// --- Accessors (GltfAccessors.cpp) -------------------------------------------------------------
+
+/// Bytes per element of an accessor, including the column padding glTF requires for
+/// MAT2/MAT3 of 1- and 2-byte components; 0 for an invalid type/componentType.
+std::size_t elementSize(int type, int componentType);
+/// Components per element (1..16); 0 for an invalid type.
+int componentCount(int type);
+/// Bytes per component; 0 for an invalid componentType.
+int componentSize(int componentType);
+/// "FLOAT", "UNSIGNED_SHORT", ... for messages.
+std::string componentTypeName(int componentType);
+/// "VEC3", ... for messages.
+std::string typeName(int type);
+
+/// Checks buffer view `index`: its buffer exists and it lies inside it; a valid byteStride.
+Result<void> checkBufferView(const tinygltf::Model& model, int index, const Diagnostics& diag);
+
+/// Checks accessor `index` against its buffer views and buffers (and its sparse parts).
+Result<void> checkAccessor(const tinygltf::Model& model, int index, const LoadOptions& options,
+                           const Diagnostics& diag);
+
+/// Reads an accessor as numbers: count x components values, normalised integers mapped to
+/// [0,1] / [-1,1] as glTF specifies, sparse substitutions applied. Refuses non-finite floats.
+/// `object` names the use in messages ("meshes[0].primitives[1].attributes.NORMAL").
+Result<std::vector<float>> readFloats(const tinygltf::Model& model, int index,
+                                      const std::string& object, const Diagnostics& diag);
+Result<std::vector<double>> readDoubles(const tinygltf::Model& model, int index,
+                                        const std::string& object, const Diagnostics& diag);
+/// Reads an index accessor (UNSIGNED_BYTE/SHORT/INT scalars) and checks every index is below
+/// `vertexCount`.
+Result<std::vector<std::uint32_t>> readIndices(const tinygltf::Model& model, int index,
+                                               std::size_t vertexCount, const std::string& object,
+                                               const Diagnostics& diag);
+
+// --- Pass 4: conversion (GltfGeometry.cpp, GltfConvert.cpp) ----------------------------------
+
+/// Encoded image bytes kept by the image callback (decoding waits until a material uses the
+/// image), per image index.
+struct ImageStore {
+    std::map<int, std::vector<unsigned char>> encoded;
+};
+
+/// One mesh: triangle primitives (strips and fans converted), other modes skipped with a
+/// warning; missing normals computed.
+Result<Mesh> convertMesh(const tinygltf::Model& model, std::size_t meshIndex,
+                         const Diagnostics& diag);
+
+/// The whole scene: everything except meshes is converted here; meshes via convertMesh.
+Result<Scene> convertModel(const tinygltf::Model& model, const RawFacts& raw,
+                           const ImageStore& images, const LoadOptions& options,
+                           const Diagnostics& diag);
+
+/// Reads an extension's members (tinygltf::Value) with checks and object paths. A member of the
+/// wrong type or length, or a non-finite number, is recorded (the first one counts) and its
+/// fallback returned, so a block of reads is checked once with status(); readers made by child()
+/// record into the same place.
+class ExtensionReader {
+public:
+    ExtensionReader(const tinygltf::Value& value, std::string object, const Diagnostics& diag)
+        : m_value(value), m_object(std::move(object)), m_diag(diag),
+          m_error(std::make_shared<std::optional<Error>>()) {}
+    const std::string& object() const { return m_object; }
+    bool has(const std::string& key) const { return m_value.Has(key); }
+    /// A finite number; `fallback` when absent.
+    double number(const std::string& key, double fallback) const;
+    /// Three finite numbers.
+    glm::dvec3 vec3(const std::string& key, const glm::dvec3& fallback) const;
+    /// Four finite numbers, or three (an RGB colour given for an RGBA one: alpha 1).
+    glm::dvec4 rgba(const std::string& key, const glm::dvec4& fallback) const;
+    bool boolean(const std::string& key, bool fallback) const;
+    std::string string(const std::string& key, const std::string& fallback) const;
+    /// A member object (for nested blocks like "back" or "lookAt"); nothing when absent or not
+    /// an object.
+    std::optional<ExtensionReader> child(const std::string& key) const;
+    /// Records an error about member `key` (unless one is recorded already).
+    void fail(const std::string& key, const std::string& message) const;
+    /// The first error recorded by this reader or its children.
+    Result<void> status() const;
+    /// Warns about members the extension does not define (typos should not pass silently).
+    void warnUnknown(std::initializer_list<const char*> known) const;
+
+private:
+    std::string path(const std::string& key) const { return m_object + "." + key; }
+    /// The numbers of an array member of `n` (or `alsoN` when nonzero) elements, or nothing
+    /// (absent, or recorded as an error).
+    std::optional<std::vector<double>> numbers(const std::string& key, std::size_t n,
+                                               std::size_t alsoN) const;
+    const tinygltf::Value& m_value;
+    std::string m_object;
+    const Diagnostics& m_diag;
+    std::shared_ptr<std::optional<Error>> m_error;
+};
+
+} // namespace lantern::gltf

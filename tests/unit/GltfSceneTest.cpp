@@ -1,0 +1,500 @@
+// The glTF loader's scene mapping: LANTERN_materials_phong and the PBR fallback, unlit and alpha
+// modes, base-colour textures, KHR_lights_punctual with and without LANTERN_lights_phong,
+// cameras (perspective with and without zfar, orthographic, LANTERN_camera), LANTERN_lighting,
+// nodes and scenes; each bad value refused with its object path and reason.
+#include "GltfTestSupport.h"
+
+#include "io/GltfInternal.h"
+
+#include <lantern/Renderer.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace {
+
+using namespace lantern;
+using lantern::test::GltfBuilder;
+using lantern::test::loadCapturing;
+using lantern::test::refusedWith;
+using lantern::test::testOutputDir;
+using json = nlohmann::json;
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// A triangle using material 0 = `material`.
+Result<Scene> loadMaterial(const json& material, const std::string& name = "m") {
+    GltfBuilder b;
+    b.doc["materials"] = json::array({material});
+    b.addTriangle({{"material", 0}});
+    return loadCapturing(b.write(testOutputDir(), name)).scene;
+}
+
+void expectNear(const glm::dvec3& a, const glm::dvec3& b, const char* what) {
+    EXPECT_LT(glm::length(a - b), 1e-12) << what << ": (" << a.x << "," << a.y << "," << a.z << ") vs ("
+                                         << b.x << "," << b.y << "," << b.z << ")";
+}
+
+// --- Materials ------------------------------------------------------------------------------
+
+TEST(GltfScene, PbrFallbackMapsAsTheSpecSays) {
+    struct Case {
+        glm::dvec4 base;
+        double metallic, roughness;
+        double shininess;  ///< 2/r^4 - 2, clamped
+        const char* why;
+    };
+    const Case cases[] = {
+        {{0.8, 0.4, 0.2, 1.0}, 0.0, 1.0, 0.0, "dielectric, roughness 1: shininess 2/1-2 = 0"},
+        {{0.8, 0.4, 0.2, 0.5}, 1.0, 0.5, 30.0, "metal: diffuse 0, specular = base; 2/0.0625-2 = 30"},
+        {{0.5, 0.5, 0.5, 1.0}, 0.25, 0.2, 2.0 / 0.0016 - 2.0, "mixed"},
+        {{1.0, 1.0, 1.0, 1.0}, 0.0, 0.0, gltf::kMaxPbrShininess, "roughness 0 clamps to the maximum"},
+        {{1.0, 1.0, 1.0, 1.0}, 0.0, 0.05, gltf::kMaxPbrShininess, "2/r^4-2 = 319998 above the maximum"},
+    };
+    for (const Case& c : cases) {
+        auto s = loadMaterial({{"pbrMetallicRoughness",
+                                {{"baseColorFactor", {c.base.r, c.base.g, c.base.b, c.base.a}},
+                                 {"metallicFactor", c.metallic},
+                                 {"roughnessFactor", c.roughness}}},
+                               {"emissiveFactor", {0.1, 0.2, 0.3}}});
+        ASSERT_TRUE(s) << s.error().describe();
+        const Material& m = s->materials[0];
+        const glm::dvec3 base(c.base);
+        expectNear(glm::dvec3(m.front.diffuse), base * (1.0 - c.metallic), c.why);
+        EXPECT_DOUBLE_EQ(m.front.diffuse.a, c.base.a) << c.why;
+        expectNear(m.front.specular, glm::dvec3(0.04) * (1.0 - c.metallic) + base * c.metallic, c.why);
+        expectNear(m.front.ambient, glm::dvec3(m.front.diffuse), c.why);
+        expectNear(m.front.emission, {0.1, 0.2, 0.3}, c.why);
+        EXPECT_NEAR(m.front.shininess, c.shininess, 1e-9 * c.shininess) << c.why;
+        EXPECT_TRUE(std::isfinite(m.front.shininess));
+        EXPECT_TRUE(m.ambientFollowsDiffuse) << c.why;
+        EXPECT_FALSE(m.back);
+    }
+}
+
+TEST(GltfScene, LanternPhongMaterialsTakeGlDefaultsAndBackSides) {
+    auto s = loadMaterial({{"extensions",
+                            {{"LANTERN_materials_phong",
+                              {{"diffuse", {0.1, 0.2, 0.3}},
+                               {"shininess", 200.0},
+                               {"back", {{"emission", {0.5, 0.5, 0.5}}, {"diffuse", {1, 0, 0, 0.5}}}}}}}}});
+    ASSERT_TRUE(s) << s.error().describe();
+    const Material& m = s->materials[0];
+    expectNear(m.front.ambient, {0.2, 0.2, 0.2}, "GL default ambient");
+    EXPECT_EQ(m.front.diffuse, glm::dvec4(0.1, 0.2, 0.3, 1.0));  // RGB given: alpha 1
+    expectNear(m.front.specular, {0, 0, 0}, "GL default specular");
+    EXPECT_DOUBLE_EQ(m.front.shininess, 200.0);  // not limited to GL's 128
+    EXPECT_FALSE(m.ambientFollowsDiffuse);
+    ASSERT_TRUE(m.back);
+    EXPECT_EQ(m.back->diffuse, glm::dvec4(1, 0, 0, 0.5));
+    expectNear(m.back->emission, {0.5, 0.5, 0.5}, "back emission");
+    expectNear(m.back->ambient, {0.2, 0.2, 0.2}, "back default ambient");
+}
+
+TEST(GltfScene, UnlitAlphaModesAndTheDefaultMaterial) {
+    auto unlit = loadMaterial({{"pbrMetallicRoughness", {{"baseColorFactor", {1, 0.5, 0, 0.5}}, {"metallicFactor", 1.0}}},
+                               {"alphaMode", "BLEND"},
+                               {"extensions", {{"KHR_materials_unlit", json::object()}}}});
+    ASSERT_TRUE(unlit) << unlit.error().describe();
+    EXPECT_TRUE(unlit->materials[0].unlit);
+    EXPECT_EQ(unlit->materials[0].front.diffuse, glm::dvec4(1, 0.5, 0, 0.5));  // base colour, not (1-metallic)
+    EXPECT_EQ(unlit->materials[0].alphaMode, AlphaMode::Blend);
+
+    auto mask = loadMaterial({{"alphaMode", "MASK"}, {"alphaCutoff", 0.25}, {"doubleSided", true}});
+    ASSERT_TRUE(mask);
+    EXPECT_EQ(mask->materials[0].alphaMode, AlphaMode::Mask);
+    EXPECT_DOUBLE_EQ(mask->materials[0].alphaCutoff, 0.25);
+    EXPECT_TRUE(mask->materials[0].doubleSided);
+
+    GltfBuilder b;
+    b.addTriangle();
+    auto none = loadCapturing(b.write(testOutputDir(), "nomaterial"));
+    ASSERT_TRUE(none.scene);
+    EXPECT_EQ(none.scene->meshes[0].primitives[0].material, -1);  // GL's default material
+}
+
+TEST(GltfScene, BadMaterialValuesAreRefusedWithTheirPath) {
+    const std::string ext = "materials[0].extensions.LANTERN_materials_phong";
+    struct Case {
+        json material;
+        std::string object, fragment;
+    };
+    const Case cases[] = {
+        {{{"extensions", {{"LANTERN_materials_phong", {{"shininess", -1}}}}}}, ext + ".shininess", "must be >= 0"},
+        {{{"extensions", {{"LANTERN_materials_phong", {{"back", {{"shininess", -0.5}}}}}}}}, ext + ".back.shininess",
+         "must be >= 0"},
+        {{{"extensions", {{"LANTERN_materials_phong", {{"ambient", {1, 2}}}}}}}, ext + ".ambient",
+         "array of 3 numbers"},
+        {{{"extensions", {{"LANTERN_materials_phong", {{"diffuse", "red"}}}}}}, ext + ".diffuse", "array of 4"},
+        {{{"extensions", {{"LANTERN_materials_phong", {{"shininess", "shiny"}}}}}}, ext + ".shininess",
+         "must be a finite number"},
+        {{{"pbrMetallicRoughness", {{"roughnessFactor", 1.5}}}}, "materials[0].pbrMetallicRoughness.roughnessFactor",
+         "in [0, 1]"},
+        {{{"alphaMode", "CUTOUT"}}, "materials[0].alphaMode", "not OPAQUE, MASK or BLEND"},
+        {{{"alphaCutoff", -1}}, "materials[0].alphaCutoff", ">= 0"},
+        {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 2}}}}}},
+         "materials[0].pbrMetallicRoughness.baseColorTexture.index", "texture 2 does not exist"},
+    };
+    GltfBuilder b;
+    b.addTriangle({{"material", 0}});
+    for (const Case& c : cases) {
+        b.doc["materials"] = json::array({c.material});
+        EXPECT_TRUE(refusedWith(loadCapturing(b.write(testOutputDir(), "bad")), c.object, c.fragment))
+            << c.material.dump();
+    }
+}
+
+/// A 2x1 RGBA PNG: red, then blue at alpha 128 (encoded with zlib, checksums included).
+std::vector<unsigned char> tinyPng() {
+    return {0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44, 0x52,
+            0x00, 0x00, 0x00, 0x02, 0x00, 0x00, 0x00, 0x01, 0x08, 0x06, 0x00, 0x00, 0x00, 0xf4, 0x22, 0x7f,
+            0x8a, 0x00, 0x00, 0x00, 0x0e, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9c, 0x63, 0xf8, 0xcf, 0xc0, 0x00,
+            0x42, 0x0d, 0x00, 0x0f, 0x7a, 0x03, 0x7e, 0x77, 0xe9, 0x7f, 0x97, 0x00, 0x00, 0x00, 0x00, 0x49,
+            0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
+}
+
+TEST(GltfScene, BaseColourTexturesDecodeToRgba8WithSamplerFlags) {
+    const auto dir = testOutputDir();
+    const auto png = tinyPng();
+    GltfBuilder b;
+    b.addTriangle({{"material", 0}, {"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}});
+    b.addFloats({0, 0, 1, 0, 0, 1}, "VEC2");
+    b.doc["images"] = json::array({{{"uri", "data:image/png;base64," + GltfBuilder::base64(png)}}});
+    b.doc["samplers"] = json::array({{{"magFilter", 9728}, {"wrapS", 33071}}});
+    b.doc["textures"] = json::array({{{"source", 0}, {"sampler", 0}}});
+    b.doc["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+    auto o = loadCapturing(b.write(dir, "textured"));
+    ASSERT_TRUE(o.scene) << o.scene.error().describe();
+    ASSERT_EQ(o.scene->textures.size(), 1u);
+    const Texture& t = o.scene->textures[0];
+    EXPECT_EQ(t.width, 2);
+    EXPECT_EQ(t.height, 1);
+    EXPECT_EQ(t.rgba8, (std::vector<std::uint8_t>{255, 0, 0, 255, 0, 0, 255, 128}));
+    EXPECT_TRUE(t.nearest);
+    EXPECT_TRUE(t.clampToEdge);
+    EXPECT_EQ(o.scene->materials[0].baseColorTexture, 0);
+    EXPECT_EQ(o.scene->meshes[0].primitives[0].texcoords.size(), 3u);
+
+    // The same image from a buffer view (as in a GLB).
+    GltfBuilder v = b;
+    const int view = v.addView(png.data(), png.size());
+    v.doc["images"] = json::array({{{"bufferView", view}, {"mimeType", "image/png"}}});
+    auto fromView = loadCapturing(v.write(dir, "view", GltfBuilder::Storage::Glb));
+    ASSERT_TRUE(fromView.scene) << fromView.scene.error().describe();
+    EXPECT_EQ(fromView.scene->textures.at(0).rgba8, t.rgba8);
+
+    // An image that cannot be decoded, or is missing, is an error naming it once a material
+    // uses it; unused, it costs nothing and only tinygltf's warning remains.
+    GltfBuilder bad = b;
+    bad.doc["images"] = json::array({{{"uri", "data:image/png;base64," + GltfBuilder::base64({1, 2, 3, 4, 5, 6})}}});
+    EXPECT_TRUE(refusedWith(loadCapturing(bad.write(dir, "bad")), "images[0]", "cannot be decoded"));
+    bad.doc["images"] = json::array({{{"uri", "missing.png"}}});
+    EXPECT_TRUE(refusedWith(loadCapturing(bad.write(dir, "missing")), "images[0].uri", "does not exist"));
+    bad.doc["materials"] = json::array({json::object()});
+    EXPECT_TRUE(loadCapturing(bad.write(dir, "unused")).scene);
+    // A PNG header claiming 100000 x 100000 pixels is refused before decoding.
+    std::vector<unsigned char> huge = png;
+    for (int i = 0; i < 2; ++i) {
+        const std::uint32_t side = 100000;
+        for (int k = 0; k < 4; ++k) huge[16 + std::size_t(i * 4 + k)] = (side >> (24 - 8 * k)) & 0xFF;
+    }
+    bad.doc["materials"] = b.doc["materials"];
+    bad.doc["images"] = json::array({{{"uri", "data:image/png;base64," + GltfBuilder::base64(huge)}}});
+    auto hugeResult = loadCapturing(bad.write(dir, "huge"));
+    ASSERT_FALSE(hugeResult.scene);
+    EXPECT_EQ(hugeResult.scene.error().object, "images[0]") << hugeResult.scene.error().describe();
+}
+
+TEST(GltfScene, MetallicRoughnessTexturesScaleTheFactorsByTheirMean) {
+    // One texel: G (roughness) 128, B (metallic) 255 -> metallic 1.0, roughness 128/255.
+    GltfBuilder b;
+    b.addTriangle({{"material", 0}});
+    // A 1x1 RGBA PNG (0, 128, 255, 255), encoded with zlib.
+    const std::vector<unsigned char> png = {
+        0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44, 0x52, 0x00, 0x00,
+        0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x06, 0x00, 0x00, 0x00, 0x1f, 0x15, 0xc4, 0x89, 0x00, 0x00, 0x00,
+        0x0d, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9c, 0x63, 0x60, 0x68, 0xf8, 0xff, 0x1f, 0x00, 0x04, 0x82, 0x02, 0x7f,
+        0xe7, 0xd8, 0x5a, 0x6c, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
+    b.doc["images"] = json::array({{{"uri", "data:image/png;base64," + GltfBuilder::base64(png)}}});
+    b.doc["textures"] = json::array({{{"source", 0}}});
+    b.doc["materials"] = json::array(
+        {{{"pbrMetallicRoughness",
+           {{"baseColorFactor", {0.5, 0.5, 0.5, 1}}, {"metallicFactor", 0.5}, {"metallicRoughnessTexture", {{"index", 0}}}}}}});
+    auto o = loadCapturing(b.write(testOutputDir(), "mr"));
+    ASSERT_TRUE(o.scene) << o.scene.error().describe();
+    const Material& m = o.scene->materials[0];
+    const double metallic = 0.5 * 1.0, roughness = 1.0 * 128.0 / 255.0;
+    expectNear(glm::dvec3(m.front.diffuse), glm::dvec3(0.5 * (1 - metallic)), "diffuse");
+    EXPECT_NEAR(m.front.shininess, 2.0 / std::pow(roughness, 4) - 2.0, 1e-9);
+    EXPECT_TRUE(o.scene->textures.empty());  // averaged, not kept as a texture
+}
+
+// --- Lights ---------------------------------------------------------------------------------
+
+Result<Scene> loadLights(const json& lights, const std::string& name = "lights") {
+    GltfBuilder b;
+    b.addTriangle();
+    b.doc["extensionsUsed"] = {"KHR_lights_punctual"};
+    b.doc["extensions"]["KHR_lights_punctual"]["lights"] = lights;
+    for (std::size_t i = 0; i < lights.size(); ++i)
+        b.addNode({{"translation", {double(i), 2.0, 0.0}}, {"extensions", {{"KHR_lights_punctual", {{"light", i}}}}}});
+    return loadCapturing(b.write(testOutputDir(), name)).scene;
+}
+
+TEST(GltfScene, PunctualLightsMapToGltfFalloffOrToGlWithTheExtension) {
+    auto s = loadLights(json::array(
+        {{{"type", "point"}, {"color", {1, 0.5, 0.25}}, {"intensity", 4.0}, {"range", 10.0}},
+         {{"type", "spot"}, {"spot", {{"innerConeAngle", 0.1}, {"outerConeAngle", 0.5}}}},
+         {{"type", "directional"}, {"intensity", 2.0}},
+         {{"type", "spot"},
+          {"spot", json::object()},
+          {"extensions",
+           {{"LANTERN_lights_phong",
+             {{"ambient", {0.1, 0.1, 0.1}},
+              {"diffuse", {0.9, 0.8, 0.7}},
+              {"specular", {0.5, 0.5, 0.5}},
+              {"attenuation", {1.0, 0.5, 0.25}},
+              {"spotExponent", 16.0},
+              {"spotCutoffDeg", 30.0}}}}}},
+         {{"type", "point"}, {"extensions", {{"LANTERN_lights_phong", json::object()}}}}}));
+    ASSERT_TRUE(s) << s.error().describe();
+    ASSERT_EQ(s->lights.size(), 5u);
+    const Light& point = s->lights[0];
+    EXPECT_EQ(point.type, LightType::Point);
+    EXPECT_EQ(point.falloff, LightFalloff::Gltf);
+    expectNear(point.diffuse, {4, 2, 1}, "diffuse = color * intensity");
+    expectNear(point.specular, {4, 2, 1}, "specular = color * intensity");
+    expectNear(point.ambient, {0, 0, 0}, "ambient 0");
+    EXPECT_DOUBLE_EQ(point.range, 10.0);
+    const Light& spot = s->lights[1];
+    EXPECT_EQ(spot.type, LightType::Spot);
+    EXPECT_TRUE(std::isinf(spot.range));  // no range: unlimited
+    EXPECT_DOUBLE_EQ(spot.innerConeAngle, 0.1);
+    EXPECT_DOUBLE_EQ(spot.outerConeAngle, 0.5);
+    expectNear(spot.diffuse, {1, 1, 1}, "default colour white, intensity 1");
+    expectNear(s->lights[2].diffuse, {2, 2, 2}, "directional");
+    const Light& gl = s->lights[3];
+    EXPECT_EQ(gl.falloff, LightFalloff::Gl);
+    expectNear(gl.ambient, {0.1, 0.1, 0.1}, "GL ambient");
+    expectNear(gl.diffuse, {0.9, 0.8, 0.7}, "GL diffuse");
+    expectNear(gl.attenuation, {1.0, 0.5, 0.25}, "attenuation");
+    EXPECT_DOUBLE_EQ(gl.spotExponent, 16.0);
+    EXPECT_DOUBLE_EQ(gl.spotCutoffDeg, 30.0);
+    const Light& glDefaults = s->lights[4];
+    EXPECT_EQ(glDefaults.falloff, LightFalloff::Gl);
+    expectNear(glDefaults.attenuation, {1, 0, 0}, "GL default attenuation");
+    expectNear(glDefaults.diffuse, {1, 1, 1}, "GL default diffuse");
+    EXPECT_DOUBLE_EQ(glDefaults.spotCutoffDeg, 180.0);
+    // Each light is placed by its node.
+    EXPECT_EQ(s->nodes[1].light, 0);
+    EXPECT_EQ(s->nodes[5].light, 4);
+}
+
+TEST(GltfScene, BadLightValuesAreRefusedWithTheReason) {
+    const std::string ext = "extensions.KHR_lights_punctual.lights[0].extensions.LANTERN_lights_phong";
+    struct Case {
+        json light;
+        std::string object, fragment;
+    };
+    auto phong = [](json values) {
+        return json{{"type", "spot"}, {"spot", json::object()}, {"extensions", {{"LANTERN_lights_phong", values}}}};
+    };
+    const Case cases[] = {
+        {phong({{"spotCutoffDeg", 95.0}}), ext + ".spotCutoffDeg", "outside [0, 90] and not 180"},
+        {phong({{"spotCutoffDeg", -0.1}}), ext + ".spotCutoffDeg", "not 180 (GL's no-cone value)"},
+        {phong({{"spotCutoffDeg", 90.0001}}), ext + ".spotCutoffDeg", "outside [0, 90]"},
+        {phong({{"attenuation", {0, 0, 0}}}), ext + ".attenuation", "all zero"},
+        {phong({{"attenuation", {1, -0.5, 0}}}), ext + ".attenuation", "must be >= 0"},
+        {phong({{"spotExponent", -1}}), ext + ".spotExponent", "must be >= 0"},
+        {{{"type", "spot"}, {"spot", {{"innerConeAngle", 0.5}, {"outerConeAngle", 0.4}}}},
+         "extensions.KHR_lights_punctual.lights[0].spot", "innerConeAngle"},
+        {{{"type", "spot"}, {"spot", {{"outerConeAngle", 2.0}}}}, "extensions.KHR_lights_punctual.lights[0].spot",
+         "<= pi/2"},
+        {{{"type", "area"}}, "extensions.KHR_lights_punctual.lights[0].type", "not directional, point or spot"},
+        {{{"type", "point"}, {"intensity", -1}}, "extensions.KHR_lights_punctual.lights[0].intensity", ">= 0"},
+        {{{"type", "point"}, {"range", -1}}, "extensions.KHR_lights_punctual.lights[0].range", "> 0"},
+        {{{"type", "point"}, {"color", {1, 1}}}, "extensions.KHR_lights_punctual.lights[0].color", "3 finite"},
+    };
+    for (const Case& c : cases) {
+        GltfBuilder b;
+        b.addTriangle();
+        b.doc["extensions"]["KHR_lights_punctual"]["lights"] = json::array({c.light});
+        b.addNode({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+        EXPECT_TRUE(refusedWith(loadCapturing(b.write(testOutputDir(), "bad")), c.object, c.fragment))
+            << c.light.dump();
+    }
+    // The accepted edge values: 0, 90 and 180 degrees.
+    for (double cutoff : {0.0, 90.0, 180.0})
+        EXPECT_TRUE(loadLights(json::array({phong({{"spotCutoffDeg", cutoff}})}))) << cutoff;
+}
+
+// --- Cameras ----------------------------------------------------------------------------------
+
+Result<Scene> loadCamera(const json& camera, const std::string& name = "camera") {
+    GltfBuilder b;
+    b.addTriangle();
+    b.doc["cameras"] = json::array({camera});
+    b.addNode({{"camera", 0}, {"translation", {0, 0, 5}}});
+    return loadCapturing(b.write(testOutputDir(), name)).scene;
+}
+
+TEST(GltfScene, CamerasMapEveryForm) {
+    auto finite = loadCamera({{"type", "perspective"},
+                              {"perspective", {{"yfov", 0.8}, {"znear", 0.5}, {"zfar", 50.0}, {"aspectRatio", 1.5}}}});
+    ASSERT_TRUE(finite) << finite.error().describe();
+    const Projection& p = finite->cameras[0].projection;
+    EXPECT_EQ(p.kind, ProjectionKind::Perspective);
+    EXPECT_DOUBLE_EQ(p.yfov, 0.8);
+    EXPECT_DOUBLE_EQ(p.aspect, 1.5);
+    EXPECT_DOUBLE_EQ(p.znear, 0.5);
+    EXPECT_DOUBLE_EQ(p.zfar, 50.0);
+
+    auto infinite = loadCamera({{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.5}}}});
+    ASSERT_TRUE(infinite);
+    EXPECT_TRUE(std::isinf(infinite->cameras[0].projection.zfar));  // glTF: no zfar is infinite
+    EXPECT_DOUBLE_EQ(infinite->cameras[0].projection.aspect, 0.0);  // the viewport's aspect
+
+    auto ortho = loadCamera({{"type", "orthographic"},
+                             {"orthographic", {{"xmag", 2.0}, {"ymag", 1.5}, {"znear", 0.0}, {"zfar", 20.0}}}});
+    ASSERT_TRUE(ortho);
+    const Projection& o = ortho->cameras[0].projection;
+    EXPECT_EQ(o.kind, ProjectionKind::Orthographic);
+    EXPECT_EQ(std::vector<double>({o.left, o.right, o.bottom, o.top, o.znear, o.zfar}),
+              std::vector<double>({-2.0, 2.0, -1.5, 1.5, 0.0, 20.0}));
+
+    const json base = {{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.5}}}};
+    json frustum = base;
+    frustum["extensions"]["LANTERN_camera"] = {
+        {"frustum", {{"left", -1}, {"right", 2}, {"bottom", -0.5}, {"top", 1}, {"near", 1}, {"far", 100}}},
+        {"lookAt", {{"eye", {0, 0, 5}}, {"target", {0, 0, 0}}, {"up", {0, 1, 0}}}}};
+    auto f = loadCamera(frustum);
+    ASSERT_TRUE(f) << f.error().describe();
+    const Projection& fp = f->cameras[0].projection;
+    EXPECT_EQ(fp.kind, ProjectionKind::Frustum);
+    EXPECT_EQ(std::vector<double>({fp.left, fp.right, fp.bottom, fp.top, fp.znear, fp.zfar}),
+              std::vector<double>({-1, 2, -0.5, 1, 1, 100}));
+    ASSERT_TRUE(f->cameras[0].lookAt);
+    EXPECT_EQ(f->cameras[0].lookAt->eye, glm::dvec3(0, 0, 5));
+
+    json farless = base;
+    farless["extensions"]["LANTERN_camera"] = {
+        {"frustum", {{"left", -1}, {"right", 1}, {"bottom", -1}, {"top", 1}, {"near", 1}}}};
+    auto fl = loadCamera(farless);
+    ASSERT_TRUE(fl) << fl.error().describe();
+    EXPECT_TRUE(std::isinf(fl->cameras[0].projection.zfar));
+
+    json glOrtho = base;
+    glOrtho["extensions"]["LANTERN_camera"] = {
+        {"ortho", {{"left", -2}, {"right", 2}, {"bottom", -2}, {"top", 2}, {"near", -10}, {"far", 10}}}};
+    auto go = loadCamera(glOrtho);
+    ASSERT_TRUE(go) << go.error().describe();
+    EXPECT_EQ(go->cameras[0].projection.kind, ProjectionKind::Orthographic);
+    EXPECT_DOUBLE_EQ(go->cameras[0].projection.znear, -10.0);  // glOrtho: near may be negative
+}
+
+TEST(GltfScene, BadCamerasAreRefusedWithTheirPath) {
+    const json base = {{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.5}}}};
+    auto with = [&](json lantern) {
+        json c = base;
+        c["extensions"]["LANTERN_camera"] = lantern;
+        return c;
+    };
+    const json box = {{"left", -1}, {"right", 1}, {"bottom", -1}, {"top", 1}, {"near", 1}, {"far", 10}};
+    struct Case {
+        json camera;
+        std::string object, fragment;
+    };
+    const std::string ext = "cameras[0].extensions.LANTERN_camera";
+    const Case cases[] = {
+        {{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 2.0}, {"zfar", 1.0}}}},
+         "cameras[0].perspective.zfar", "> znear"},
+        {{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.0}}}}, "cameras[0].perspective.znear",
+         "> 0"},
+        {{{"type", "perspective"}, {"perspective", {{"yfov", 3.2}, {"znear", 1.0}}}}, "cameras[0].perspective.yfov",
+         "(0, pi)"},
+        {{{"type", "orthographic"}, {"orthographic", {{"xmag", 0.0}, {"ymag", 1.0}, {"znear", 0.0}, {"zfar", 1.0}}}},
+         "cameras[0].orthographic.xmag", "non-zero"},
+        {with({{"frustum", box}, {"ortho", box}}), ext, "at most one"},
+        {with({{"frustum", {{"left", -1}, {"right", 1}, {"bottom", -1}, {"top", 1}, {"near", 0}}}}),
+         ext + ".frustum", "near"},
+        {with({{"ortho", {{"left", -1}, {"right", 1}, {"bottom", -1}, {"top", 1}, {"near", 1}}}}), ext + ".ortho.far",
+         "is missing"},
+        {with({{"lookAt", {{"eye", {0, 0, 5}}, {"target", {0, 0, 0}}, {"up", {0, 0, 1}}}}}), ext + ".lookAt",
+         "parallel"},
+        {with({{"lookAt", {{"eye", {0, 0, 5}}, {"target", {0, 0, 0}}, {"up", {0, 0, 0}}}}}), ext + ".lookAt", "up"},
+    };
+    for (const Case& c : cases) {
+        GltfBuilder b;
+        b.addTriangle();
+        b.doc["cameras"] = json::array({c.camera});
+        auto o = loadCapturing(b.write(testOutputDir(), "bad"));
+        EXPECT_TRUE(refusedWith(o, c.object, c.fragment)) << c.camera.dump();
+    }
+}
+
+// --- Scenes and nodes -------------------------------------------------------------------------
+
+TEST(GltfScene, LightingScenesAndNodeTransforms) {
+    GltfBuilder b;
+    const int tri = b.addTriangle();
+    b.doc["nodes"][tri]["matrix"] = {2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 1, 2, 3, 1};
+    b.addNode({{"mesh", 0}, {"translation", {1, 0, 0}}, {"rotation", {0, 0, 2, 0}}, {"scale", {1, 2, 3}}});
+    b.doc["scenes"].push_back({{"name", "second"},
+                               {"nodes", {1}},
+                               {"extensions",
+                                {{"LANTERN_lighting",
+                                  {{"globalAmbient", {0, 0.1, 0.2}},
+                                   {"localViewer", true},
+                                   {"twoSided", true},
+                                   {"shading", "gouraud"},
+                                   {"specular", "phong"}}}}}});
+    b.doc["scenes"][0]["nodes"] = {0};
+    b.doc["scene"] = 1;
+    auto o = loadCapturing(b.write(testOutputDir(), "scenes"));
+    ASSERT_TRUE(o.scene) << o.scene.error().describe();
+    const Scene& s = *o.scene;
+    EXPECT_EQ(s.defaultRoot, 1);
+    ASSERT_EQ(s.roots.size(), 2u);
+    EXPECT_FALSE(s.roots[0].lighting);
+    ASSERT_TRUE(s.roots[1].lighting);
+    const LightingModel& l = *s.roots[1].lighting;
+    EXPECT_EQ(l.globalAmbient, glm::dvec3(0, 0.1, 0.2));
+    EXPECT_TRUE(l.localViewer);
+    EXPECT_TRUE(l.twoSided);
+    EXPECT_EQ(l.shading, ShadingMode::Gouraud);
+    EXPECT_EQ(l.specular, SpecularModel::Phong);
+    ASSERT_TRUE(s.nodes[0].matrix);
+    EXPECT_EQ((*s.nodes[0].matrix)[3], glm::dvec4(1, 2, 3, 1));  // column-major, as glTF
+    EXPECT_EQ(s.nodes[1].rotation, glm::dquat(0, 0, 0, 1));      // (0,0,2,0) normalised
+    EXPECT_TRUE(o.warned("nodes[1].rotation: quaternion length 2")) << o.allWarnings();
+    EXPECT_EQ(s.nodes[1].scale, glm::dvec3(1, 2, 3));
+
+    b.doc["scenes"][1]["extensions"]["LANTERN_lighting"]["shading"] = "toon";
+    EXPECT_TRUE(refusedWith(loadCapturing(b.write(testOutputDir(), "toon")),
+                            "scenes[1].extensions.LANTERN_lighting.shading", "not flat, gouraud or phong"));
+    b.doc["scenes"][1]["extensions"]["LANTERN_lighting"] = {{"globalAmbient", {0, 0}}};
+    EXPECT_TRUE(refusedWith(loadCapturing(b.write(testOutputDir(), "ambient")),
+                            "scenes[1].extensions.LANTERN_lighting.globalAmbient", "array of 3"));
+}
+
+TEST(GltfScene, ExplainSceneNeedsNoDevice) {
+    GltfBuilder b;
+    b.addTriangle({{"material", 0}});
+    b.doc["materials"] = json::array({{{"alphaMode", "BLEND"}}});
+    auto o = loadCapturing(b.write(testOutputDir(), "explain"));
+    ASSERT_TRUE(o.scene);
+    auto report = explainScene(*o.scene, RenderOptions{}, 0.0);
+    ASSERT_TRUE(report) << report.error().describe();
+    auto has = [&](const std::string& f) {
+        return std::find(report->features.begin(), report->features.end(), f) != report->features.end();
+    };
+    EXPECT_TRUE(has("light:gl-default (headlight, directional)"));
+    EXPECT_TRUE(has("alpha-blend"));
+    EXPECT_EQ(report->variants.size(), 1u);
+    RenderOptions badRoot;
+    badRoot.root = 3;
+    EXPECT_FALSE(explainScene(*o.scene, badRoot, 0.0));
+}
+
+} // namespace
