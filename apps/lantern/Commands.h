@@ -13,5 +13,6 @@ using Runner = std::function<int()>;
 Runner addRenderCommand(CLI::App& app);
 Runner addInfoCommand(CLI::App& app);
 Runner addBenchCommand(CLI::App& app);
+Runner addViewCommand(CLI::App& app);
 
 } // namespace lantern::cli
