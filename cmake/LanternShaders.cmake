@@ -49,5 +49,6 @@ function(lantern_shader_registry target)
     add_library(${target} OBJECT "${gen}/ShaderBlobs.cpp" ${headers})
     target_include_directories(${target} PUBLIC "${gen}" PRIVATE "${CMAKE_CURRENT_BINARY_DIR}")
     target_compile_features(${target} PUBLIC cxx_std_20)
-    set_target_properties(${target} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+    set_target_properties(${target} PROPERTIES POSITION_INDEPENDENT_CODE ON
+        CXX_VISIBILITY_PRESET hidden)
 endfunction()

@@ -5,21 +5,9 @@
 
 namespace lantern::cli {
 
-double ViewerState::startTime() const {
-    double t = 0.0;
-    bool any = false;
-    for (const Animation& a : scene->animations) {
-        t = any ? std::min(t, a.startTime()) : a.startTime();
-        any = true;
-    }
-    return t;
-}
+double ViewerState::startTime() const { return animationRange(*scene).start; }
 
-double ViewerState::endTime() const {
-    double t = startTime();
-    for (const Animation& a : scene->animations) t = std::max(t, a.endTime());
-    return t;
-}
+double ViewerState::endTime() const { return animationRange(*scene).end; }
 
 void ViewerState::applyAnimationChoice() {
     if (animation < 0 || animation >= int(animations.size()))

@@ -8,6 +8,7 @@
 // Vulkan's 0..1 (optionally reversed) and flips y, computed in double so no precision is lost.
 #pragma once
 
+#include <lantern/Export.h>
 #include <lantern/Result.h>
 
 #include <glm/mat4x4.hpp>
@@ -26,39 +27,44 @@ inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // --- GL/GLU matrices (unchecked: arguments must be valid; see the check* functions) ---------
 
 /// gluLookAt: viewFromWorld for an eye at `eye` looking at `target` with `up` roughly up.
-glm::dmat4 lookAt(const glm::dvec3& eye, const glm::dvec3& target, const glm::dvec3& up);
+LANTERN_API glm::dmat4 lookAt(const glm::dvec3& eye, const glm::dvec3& target,
+                              const glm::dvec3& up);
 /// glOrtho: clipFromView (GL clip space) for the box [l,r]x[b,t] between depths n and f
 /// (n and f are distances along -Z and may be negative).
-glm::dmat4 ortho(double l, double r, double b, double t, double n, double f);
+LANTERN_API glm::dmat4 ortho(double l, double r, double b, double t, double n, double f);
 /// glFrustum: clipFromView (GL clip space); n > 0, f > n, f may be +infinity.
-glm::dmat4 frustum(double l, double r, double b, double t, double n, double f);
+LANTERN_API glm::dmat4 frustum(double l, double r, double b, double t, double n, double f);
 /// gluPerspective: clipFromView (GL clip space); fovy in degrees in (0, 180), aspect = w/h,
 /// n > 0, f > n, f may be +infinity (the limit f -> infinity of GLU's matrix).
-glm::dmat4 perspective(double fovyDegrees, double aspect, double n, double f);
+LANTERN_API glm::dmat4 perspective(double fovyDegrees, double aspect, double n, double f);
 /// glViewport (with glDepthRange n..f): windowFromNdc, mapping NDC x,y,z in -1..1 to window
 /// x in [x, x+w], y in [y, y+h] (GL's origin: bottom-left) and depth in [n, f].
-glm::dmat4 viewport(double x, double y, double w, double h, double depthNear = 0.0,
-                    double depthFar = 1.0);
+LANTERN_API glm::dmat4 viewport(double x, double y, double w, double h, double depthNear = 0.0,
+                                double depthFar = 1.0);
 /// The vertical field of view in degrees of a physical lens: 2 atan(filmHeight / (2 focal)).
 /// Any unit works as long as both lengths use it (millimetres by convention).
-double fovyFromLens(double focalLengthMm, double filmHeightMm);
+LANTERN_API double fovyFromLens(double focalLengthMm, double filmHeightMm);
 
 /// gluProject: window coordinates (GL's: origin bottom-left, depth in 0..1 for glDepthRange
 /// 0..1) of `object` seen through GL matrices and `viewport` (x, y, width, height). The
 /// homogeneous divide is by clip w; a point with w == 0 has no image and gives nullopt.
-std::optional<glm::dvec3> project(const glm::dvec3& object, const glm::dmat4& viewFromModel,
-                                  const glm::dmat4& clipFromView, const glm::dvec4& viewport);
+LANTERN_API std::optional<glm::dvec3> project(const glm::dvec3& object,
+                                              const glm::dmat4& viewFromModel,
+                                              const glm::dmat4& clipFromView,
+                                              const glm::dvec4& viewport);
 /// gluUnProject: the model-space point whose window coordinates are `window` (the inverse of
 /// project()); nullopt when the matrices are singular or the point is at infinity.
-std::optional<glm::dvec3> unProject(const glm::dvec3& window, const glm::dmat4& viewFromModel,
-                                    const glm::dmat4& clipFromView, const glm::dvec4& viewport);
+LANTERN_API std::optional<glm::dvec3> unProject(const glm::dvec3& window,
+                                                const glm::dmat4& viewFromModel,
+                                                const glm::dmat4& clipFromView,
+                                                const glm::dvec4& viewport);
 
 /// How depth is stored: Vulkan's 0..1 with near at 0 (Standard) or near at 1 (ReversedZ,
 /// the default: with a float depth buffer its precision is nearly uniform in distance).
 enum class DepthMode { ReversedZ, Standard };
-const char* toString(DepthMode mode) noexcept;  ///< "reversed", "standard"
+LANTERN_API const char* toString(DepthMode mode) noexcept;  ///< "reversed", "standard"
 /// Parses "reversed" or "standard" (as the command line's --depth spells them).
-std::optional<DepthMode> parseDepthMode(std::string_view text) noexcept;
+LANTERN_API std::optional<DepthMode> parseDepthMode(std::string_view text) noexcept;
 
 /// The one matrix that converts GL clip space to Vulkan clip space: y flipped (Vulkan's y
 /// points down the framebuffer) and z mapped from -w..w to 0..w (Standard) or w..0 (ReversedZ):
@@ -67,7 +73,7 @@ std::optional<DepthMode> parseDepthMode(std::string_view text) noexcept;
 /// The y flip happens in clip space and Vulkan measures winding in its y-down framebuffer, so
 /// a face counter-clockwise in GL's window is counter-clockwise for Vulkan too: front faces are
 /// counter-clockwise, as in GL (clockwise for mirroring transforms, whose winding reverses).
-glm::dmat4 vulkanFromGlClip(DepthMode mode);
+LANTERN_API glm::dmat4 vulkanFromGlClip(DepthMode mode);
 
 // --- Camera description ---------------------------------------------------------------------
 
@@ -79,7 +85,7 @@ enum class ProjectionKind {
 
 /// A projection in GL's terms, kept symbolic so that it can be rebuilt for any viewport aspect
 /// and depth mode.
-struct Projection {
+struct LANTERN_API Projection {
     ProjectionKind kind = ProjectionKind::Perspective;
     double yfov = 0.7853981633974483;  ///< Perspective: vertical field of view, radians
     double aspect = 0.0;  ///< Perspective: width/height; 0 means "the viewport's aspect"
@@ -105,16 +111,16 @@ struct Projection {
 };
 
 /// The GL clip-from-view matrix of a projection for a viewport of the given aspect (w/h).
-glm::dmat4 glClipFromView(const Projection& projection, double viewportAspect);
+LANTERN_API glm::dmat4 glClipFromView(const Projection& projection, double viewportAspect);
 
 /// The projection as drawn in a viewport of the given aspect: `projection` itself, or with
 /// fitViewportAspect its box widened to that aspect.
-Projection fittedProjection(const Projection& projection, double viewportAspect);
+LANTERN_API Projection fittedProjection(const Projection& projection, double viewportAspect);
 
 /// The Vulkan clip-from-view matrix: vulkanFromGlClip(mode) * glClipFromView(...), evaluated
 /// in closed form in double precision (no cancellation for far/near ratios up to 1e300).
-glm::dmat4 vulkanClipFromView(const Projection& projection, double viewportAspect,
-                              DepthMode mode);
+LANTERN_API glm::dmat4 vulkanClipFromView(const Projection& projection, double viewportAspect,
+                                          DepthMode mode);
 
 /// gluLookAt parameters, world space.
 struct LookAt {
@@ -133,13 +139,13 @@ struct Camera {
 
 /// The GL default camera: at the origin looking down -Z, orthographic 2x2x2 cube
 /// (glOrtho(-1,1,-1,1,-1,1)) and an identity view.
-Camera glDefaultCamera();
+LANTERN_API Camera glDefaultCamera();
 
 // --- Checked construction (for user input) ------------------------------------------------
 
 /// Refuses eye == target, a zero up, an up parallel to the view direction and non-finite
 /// values; `object` names the input in the error ("--look-at", "cameras[2].extensions...").
-Result<void> checkLookAt(const LookAt& lookAt, const std::string& object);
+LANTERN_API Result<void> checkLookAt(const LookAt& lookAt, const std::string& object);
 /// Refuses what GL refuses or what cannot render: near <= 0 for perspective and frustum,
 /// far == near (far <= near for perspective), left == right, bottom == top, fovy outside
 /// (0, 180) degrees, aspect < 0 (0 stands for the viewport's), any non-finite value except a
@@ -147,14 +153,14 @@ Result<void> checkLookAt(const LookAt& lookAt, const std::string& object);
 /// precision (the GPU's): an entry that overflows float, or a scale or near term that would
 /// flush to zero. Extreme valid values (fovy 1e-4 or 179.9 degrees, aspect 1e-4 or 1e4, near
 /// 1e-6 with far 1e12) pass and render.
-Result<void> checkProjection(const Projection& projection, const std::string& object);
+LANTERN_API Result<void> checkProjection(const Projection& projection, const std::string& object);
 
 // --- GL's matrix stack ----------------------------------------------------------------------
 
 /// GL's modelview stack: each transformation multiplies the current matrix on the right,
 /// so the transformation specified last is the first applied to a vertex
 /// (translate(); rotate(); draws a vertex rotated, then translated). Double precision.
-class TransformStack {
+class LANTERN_API TransformStack {
 public:
     TransformStack();
     void push();          ///< glPushMatrix
@@ -177,6 +183,6 @@ private:
 /// its upper 3x3 (proportional to the inverse transpose, but defined for singular matrices),
 /// divided by its largest absolute entry so that it stays finite for scales from 1e-300 to
 /// 1e300. Normals must be renormalised after applying it. Zero matrix in, zero matrix out.
-glm::dmat3 normalMatrix(const glm::dmat4& viewFromModel);
+LANTERN_API glm::dmat3 normalMatrix(const glm::dmat4& viewFromModel);
 
 } // namespace lantern

@@ -3,6 +3,7 @@
 // is renamed into place, so a file is either complete or absent.
 #pragma once
 
+#include <lantern/Export.h>
 #include <lantern/Image.h>
 #include <lantern/Log.h>
 #include <lantern/Result.h>
@@ -27,23 +28,25 @@ struct LoadOptions {
 
 /// Loads a .gltf or .glb file (external buffers and images may not leave the file's folder),
 /// validates it completely and returns the scene. Errors name the file, object and problem.
-Result<Scene> loadGltf(const std::filesystem::path& path, const LoadOptions& options = {});
+LANTERN_API Result<Scene> loadGltf(const std::filesystem::path& path,
+                                   const LoadOptions& options = {});
 
 /// The names accepted by builtinScene(), e.g. "spheres", "teapots".
-std::vector<std::string> builtinSceneNames();
+LANTERN_API std::vector<std::string> builtinSceneNames();
 
 /// A built-in scene by name (without the "builtin:" prefix).
-Result<Scene> builtinScene(std::string_view name);
+LANTERN_API Result<Scene> builtinScene(std::string_view name);
 
 /// Loads "builtin:NAME" or a glTF/GLB path.
-Result<Scene> loadScene(std::string_view pathOrBuiltin, const LoadOptions& options = {});
+LANTERN_API Result<Scene> loadScene(std::string_view pathOrBuiltin,
+                                    const LoadOptions& options = {});
 
 // --- Images ---------------------------------------------------------------------------------
 
 enum class ExrCompression { None, Rle, Zips, Zip, Piz, Pxr24, B44, B44a, Dwaa, Dwab };
 
-const char* toString(ExrCompression compression) noexcept;  ///< "none", "zip", ...
-std::optional<ExrCompression> parseExrCompression(std::string_view text) noexcept;
+LANTERN_API const char* toString(ExrCompression compression) noexcept;  ///< "none", "zip", ...
+LANTERN_API std::optional<ExrCompression> parseExrCompression(std::string_view text) noexcept;
 
 struct ExrOptions {
     bool half = false;  ///< 16-bit half RGBA (values beyond +-65504 clamp to +-65504)
@@ -54,18 +57,18 @@ struct ExrOptions {
 
 /// Writes R, G, B, A (and Z, N.X, N.Y, N.Z when the image has those AOVs; Z and N always as
 /// 32-bit float) plus the image's metadata as string attributes.
-Result<void> writeExr(const std::filesystem::path& path, const Image& image,
-                      const ExrOptions& options = {});
+LANTERN_API Result<void> writeExr(const std::filesystem::path& path, const Image& image,
+                                  const ExrOptions& options = {});
 
 /// Reads an EXR written by Lantern or any other tool: R, G, B, A (A = 1 when absent) and the
 /// Z / N.X N.Y N.Z planes when present.
-Result<Image> readExr(const std::filesystem::path& path);
+LANTERN_API Result<Image> readExr(const std::filesystem::path& path);
 
 /// Writes an 8-bit sRGB PNG (colour un-premultiplied, clamped to [0,1], sRGB-encoded).
-Result<void> writePng(const std::filesystem::path& path, const Image& image);
+LANTERN_API Result<void> writePng(const std::filesystem::path& path, const Image& image);
 
 /// Writes .exr or .png by extension (anything else is an InvalidInput error).
-Result<void> writeImage(const std::filesystem::path& path, const Image& image,
-                        const ExrOptions& exrOptions = {});
+LANTERN_API Result<void> writeImage(const std::filesystem::path& path, const Image& image,
+                                    const ExrOptions& exrOptions = {});
 
 } // namespace lantern

@@ -1,6 +1,8 @@
 // Log sinks: Lantern never prints; everything it has to say goes to a sink the host provides.
 #pragma once
 
+#include <lantern/Export.h>
+
 #include <functional>
 #include <string_view>
 
@@ -9,7 +11,7 @@ namespace lantern {
 enum class LogLevel { Debug, Info, Warning, Error };
 
 /// A stable lower-case name for a level ("debug", "info", "warning", "error").
-const char* logLevelName(LogLevel level) noexcept;
+LANTERN_API const char* logLevelName(LogLevel level) noexcept;
 
 /// Receives every message Lantern emits (loader warnings, validation-layer messages, device
 /// choice). Called from the thread that made the Lantern call, or, for validation messages,

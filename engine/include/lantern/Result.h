@@ -3,6 +3,8 @@
 // aborts or exits the host process.
 #pragma once
 
+#include <lantern/Export.h>
+
 #include <cassert>
 #include <string>
 #include <type_traits>
@@ -25,13 +27,13 @@ enum class ErrorCode {
 };
 
 /// A stable lower-case name for an ErrorCode ("invalid-input", "no-device", ...).
-const char* errorCodeName(ErrorCode code) noexcept;
+LANTERN_API const char* errorCodeName(ErrorCode code) noexcept;
 
 /// The `lantern` command's exit status for an error: 1 input refused, 2 usage, 3 renderer failed.
-int exitCodeFor(ErrorCode code) noexcept;
+LANTERN_API int exitCodeFor(ErrorCode code) noexcept;
 
 /// A failure: what went wrong, in which file, at which object.
-struct Error {
+struct LANTERN_API Error {
     ErrorCode code = ErrorCode::Internal;
     std::string message;  ///< what is wrong, one line, no trailing period needed
     std::string file;     ///< the file concerned, if any ("" otherwise)

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <lantern/Camera.h>
+#include <lantern/Export.h>
 #include <lantern/Result.h>
 
 #include <glm/gtc/quaternion.hpp>
@@ -35,10 +36,10 @@ enum class ShadingMode {
 /// The specular term: Blinn's halfway vector (GL's) or Phong's reflection vector.
 enum class SpecularModel { Blinn, Phong };
 
-const char* toString(ShadingMode mode) noexcept;    ///< "flat", "gouraud", "phong"
-const char* toString(SpecularModel model) noexcept; ///< "blinn", "phong"
-std::optional<ShadingMode> parseShadingMode(std::string_view text) noexcept;
-std::optional<SpecularModel> parseSpecularModel(std::string_view text) noexcept;
+LANTERN_API const char* toString(ShadingMode mode) noexcept;     ///< "flat", "gouraud", "phong"
+LANTERN_API const char* toString(SpecularModel model) noexcept;  ///< "blinn", "phong"
+LANTERN_API std::optional<ShadingMode> parseShadingMode(std::string_view text) noexcept;
+LANTERN_API std::optional<SpecularModel> parseSpecularModel(std::string_view text) noexcept;
 
 /// LANTERN_lighting: scene-wide lighting-model switches (GL's glLightModel).
 struct LightingModel {
@@ -141,7 +142,7 @@ struct Texture {
 
 // --- Nodes and animation --------------------------------------------------------------------
 
-struct Node {
+struct LANTERN_API Node {
     std::string name;
     glm::dvec3 translation{0.0, 0.0, 0.0};
     glm::dquat rotation{1.0, 0.0, 0.0, 0.0};  ///< unit quaternion (w, x, y, z)
@@ -173,7 +174,7 @@ struct AnimationChannel {
     int sampler = -1;
 };
 
-struct Animation {
+struct LANTERN_API Animation {
     std::string name;
     std::vector<AnimationSampler> samplers;
     std::vector<AnimationChannel> channels;
@@ -184,7 +185,8 @@ struct Animation {
 
 /// Samples one sampler at `time` (seconds): times before the first key and after the last
 /// clamp; rotations use shortest-arc slerp (Linear) and are normalised (CubicSpline).
-glm::dvec4 sampleAnimation(const AnimationSampler& sampler, AnimationPath path, double time);
+LANTERN_API glm::dvec4 sampleAnimation(const AnimationSampler& sampler, AnimationPath path,
+                                       double time);
 
 /// A glTF scene: the root nodes to draw and the scene's lighting model (LANTERN_lighting).
 struct SceneRoot {
@@ -196,7 +198,7 @@ struct SceneRoot {
 // --- The scene ------------------------------------------------------------------------------
 
 /// Everything a file (or a host) describes. Indices refer into the vectors of the same Scene.
-struct Scene {
+struct LANTERN_API Scene {
     std::string sourcePath;  ///< the file it came from ("builtin:NAME" for built-in scenes)
     std::vector<Mesh> meshes;
     std::vector<Material> materials;
@@ -213,7 +215,7 @@ struct Scene {
 };
 
 /// Axis-aligned bounds in world space.
-struct Bounds {
+struct LANTERN_API Bounds {
     glm::dvec3 min{kInfinity};
     glm::dvec3 max{-kInfinity};
     bool empty() const { return !(min.x <= max.x && min.y <= max.y && min.z <= max.z); }
@@ -233,10 +235,27 @@ struct Pose {
 
 /// Evaluates every animation of the scene at `time` (seconds) and composes node transforms.
 /// `root` -1 means scene.defaultRoot. Assumes scene.validate() succeeded.
-Pose evaluatePose(const Scene& scene, int root, double time);
+LANTERN_API Pose evaluatePose(const Scene& scene, int root, double time);
+
+/// A span of animation time, in seconds.
+struct TimeRange {
+    double start = 0.0;
+    double end = 0.0;
+    double duration() const { return end - start; }
+};
+
+/// The key times that animation `animation` of `scene` spans, or with -1 all its animations
+/// together ({0, 0} when there are none): the range a host plays. Stepping an animation is
+/// choosing the time passed to Renderer::render() (or evaluatePose()); nothing in Lantern
+/// keeps a clock. An index out of range gives {0, 0}.
+LANTERN_API TimeRange animationRange(const Scene& scene, int animation = -1);
+
+/// `time` wrapped into `range` for looping playback: range.start + (time - range.start) modulo
+/// the duration, in [start, end); range.start for an empty range or a non-finite time.
+LANTERN_API double loopTime(double time, const TimeRange& range);
 
 /// World-space bounds of everything drawn in a pose.
-Bounds computeBounds(const Scene& scene, const Pose& pose);
+LANTERN_API Bounds computeBounds(const Scene& scene, const Pose& pose);
 
 /// What a scene contains, for `lantern info` and --explain.
 struct SceneSummary {
@@ -245,22 +264,22 @@ struct SceneSummary {
     std::size_t roots = 0;
     Bounds bounds;  ///< at time 0, default root
 };
-SceneSummary summarize(const Scene& scene);
+LANTERN_API SceneSummary summarize(const Scene& scene);
 
 // --- Building blocks ------------------------------------------------------------------------
 
 /// Angle-weighted vertex normals (each face contributes its unit normal times the angle it
 /// makes at the vertex): the classic smooth "mesh shading" normals. Degenerate faces add
 /// nothing; a vertex with no usable face gets the zero vector.
-std::vector<glm::vec3> computeSmoothNormals(const std::vector<glm::vec3>& positions,
-                                            const std::vector<std::uint32_t>& indices);
+LANTERN_API std::vector<glm::vec3> computeSmoothNormals(const std::vector<glm::vec3>& positions,
+                                                        const std::vector<std::uint32_t>& indices);
 
 /// A UV sphere of radius r centred at the origin with analytic normals: `segments` around
 /// (>= 3) and `rings` from pole to pole (>= 2).
-Primitive makeSphere(double radius, int segments, int rings);
+LANTERN_API Primitive makeSphere(double radius, int segments, int rings);
 /// A square in the XY plane, side `size`, normal +Z, split into n x n quads.
-Primitive makePlane(double size, int subdivisions = 1);
+LANTERN_API Primitive makePlane(double size, int subdivisions = 1);
 /// An axis-aligned cube of side `size` with flat faces (24 vertices).
-Primitive makeCube(double size);
+LANTERN_API Primitive makeCube(double size);
 
 } // namespace lantern

@@ -3,6 +3,7 @@
 // Renderer::renderSequence (the headless double buffer with parallel encoding).
 #pragma once
 
+#include <lantern/Export.h>
 #include <lantern/Io.h>
 #include <lantern/Result.h>
 
@@ -22,7 +23,7 @@ struct FrameRange {
 };
 
 /// Parses "A-B" (or a single "A"); frames are >= 0 and first <= last.
-Result<FrameRange> parseFrameRange(std::string_view text);
+LANTERN_API Result<FrameRange> parseFrameRange(std::string_view text);
 
 /// A shard: frames k with k mod count == index.
 struct Shard {
@@ -32,16 +33,16 @@ struct Shard {
 };
 
 /// Parses "I/N" with 0 <= I < N.
-Result<Shard> parseShard(std::string_view text);
+LANTERN_API Result<Shard> parseShard(std::string_view text);
 
 /// The frames of `range` that `shard` renders, in order.
-std::vector<int> shardFrames(const FrameRange& range, const Shard& shard);
+LANTERN_API std::vector<int> shardFrames(const FrameRange& range, const Shard& shard);
 
 /// Replaces each run of '#' in `pattern` by `frame` zero-padded to the run's length
 /// ("out/f_####.exr", 7 -> "out/f_0007.exr"); frames wider than the run are written in full.
-std::string expandFramePattern(std::string_view pattern, int frame);
+LANTERN_API std::string expandFramePattern(std::string_view pattern, int frame);
 /// True when `pattern` contains at least one '#'.
-bool hasFramePattern(std::string_view pattern);
+LANTERN_API bool hasFramePattern(std::string_view pattern);
 
 /// Progress of a sequence, reported after each frame is written.
 struct SequenceProgress {

@@ -15,6 +15,7 @@
 // semaphore.
 #pragma once
 
+#include <lantern/Export.h>
 #include <lantern/Image.h>
 #include <lantern/Renderer.h>
 #include <lantern/Result.h>
@@ -35,8 +36,8 @@ enum class PresentMode {
     Mailbox,    ///< vsync, the newest frame replaces a waiting one (falls back to Fifo)
     Immediate,  ///< no vsync, may tear (falls back to Mailbox, then Fifo)
 };
-const char* toString(PresentMode mode) noexcept;  ///< "fifo", "mailbox", "immediate"
-std::optional<PresentMode> parsePresentMode(std::string_view text) noexcept;
+LANTERN_API const char* toString(PresentMode mode) noexcept;  ///< "fifo", "mailbox", "immediate"
+LANTERN_API std::optional<PresentMode> parsePresentMode(std::string_view text) noexcept;
 
 struct WindowTargetDesc {
     /// Created by the host on windowInstance(renderer); must outlive the target unless
@@ -102,7 +103,7 @@ using OverlayRecorder = std::function<void(VkCommandBuffer commandBuffer)>;
 /// A swapchain on a host-owned surface, presenting a Renderer's frames. Move-only. Must be
 /// destroyed before the Renderer it was created from. Not thread-safe: use it from the thread
 /// that uses its Renderer.
-class WindowTarget {
+class LANTERN_API WindowTarget {
 public:
     /// The instance the host creates its surface on (glfwCreateWindowSurface).
     static VkInstance windowInstance(const Renderer& renderer);

@@ -93,6 +93,26 @@ double Animation::endTime() const {
     return std::isinf(t) ? 0.0 : t;
 }
 
+TimeRange animationRange(const Scene& scene, int animation) {
+    TimeRange range;
+    bool any = false;
+    for (std::size_t i = 0; i < scene.animations.size(); ++i) {
+        if (animation >= 0 && std::size_t(animation) != i) continue;
+        const Animation& a = scene.animations[i];
+        range.start = any ? std::min(range.start, a.startTime()) : a.startTime();
+        range.end = any ? std::max(range.end, a.endTime()) : a.endTime();
+        any = true;
+    }
+    return range;
+}
+
+double loopTime(double time, const TimeRange& range) {
+    const double length = range.duration();
+    if (!(length > 0.0) || !std::isfinite(time)) return range.start;
+    const double wrapped = std::fmod(time - range.start, length);
+    return range.start + (wrapped < 0.0 ? wrapped + length : wrapped);
+}
+
 void Bounds::extend(const glm::dvec3& p) {
     min = glm::min(min, p);
     max = glm::max(max, p);

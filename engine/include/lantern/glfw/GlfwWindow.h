@@ -12,6 +12,7 @@
 // from the main thread only (GLFW's rule).
 #pragma once
 
+#include <lantern/Export.h>
 #include <lantern/Window.h>
 
 #include <string>
@@ -31,11 +32,11 @@ struct WindowDesc {
 /// `desc` with presentation on and the instance extensions GLFW's surfaces need. Initialises
 /// GLFW: fails with NoDevice when no display can be opened (the message names $DISPLAY) or
 /// GLFW finds no Vulkan loader.
-Result<RendererDesc> forPresentation(RendererDesc desc);
+LANTERN_API Result<RendererDesc> forPresentation(RendererDesc desc);
 
 /// A GLFW window (no client API), its surface and the WindowTarget presenting to it.
 /// Move-only; must be destroyed before the Renderer it was created with.
-class Window {
+class LANTERN_API Window {
 public:
     static Result<Window> create(Renderer& renderer, const WindowDesc& desc);
 
