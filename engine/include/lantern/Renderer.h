@@ -3,6 +3,7 @@
 #pragma once
 
 #include <lantern/Camera.h>
+#include <lantern/Export.h>
 #include <lantern/Image.h>
 #include <lantern/Log.h>
 #include <lantern/Result.h>
@@ -24,6 +25,7 @@ class GpuScene;
 struct RendererAccess;
 }
 class WindowTarget;
+struct ExternalDevice;  // lantern/ExternalDevice.h (includes vulkan.h)
 
 /// Which camera a view uses, and optional overrides of its parts.
 struct CameraSpec {
@@ -111,7 +113,7 @@ struct RendererDesc {
 /// A scene uploaded to a renderer's device: geometry and textures stay on the device for as
 /// many frames as the host renders. Holds a reference to the (immutable) Scene and keeps the
 /// device alive; cheap to copy (shared).
-class PreparedScene {
+class LANTERN_API PreparedScene {
 public:
     PreparedScene() = default;
     const Scene& scene() const;
@@ -160,15 +162,15 @@ struct CameraPlacement {
 /// Resolves `spec` for a view of aspect `aspect` (width / height) of `scene` (which must have
 /// passed Scene::validate()) at `timeSeconds`: a host that lets the user move the camera starts
 /// from here. InvalidInput when the spec names a camera that does not exist or is not placed.
-Result<CameraPlacement> resolveCameraPlacement(const Scene& scene, const CameraSpec& spec,
-                                               double aspect, int root = -1,
-                                               double timeSeconds = 0.0);
+LANTERN_API Result<CameraPlacement> resolveCameraPlacement(const Scene& scene,
+                                                           const CameraSpec& spec, double aspect,
+                                                           int root = -1, double timeSeconds = 0.0);
 
 /// The features `scene` needs under `options` at `timeSeconds` and the pipeline variants a
 /// renderer would choose for them, computed on the CPU without any device (what `lantern info`
 /// and Renderer::explain print). InvalidInput when the scene or the options are refused.
-Result<FeatureReport> explainScene(const Scene& scene, const RenderOptions& options,
-                                   double timeSeconds = 0.0);
+LANTERN_API Result<FeatureReport> explainScene(const Scene& scene, const RenderOptions& options,
+                                               double timeSeconds = 0.0);
 
 /// One light's share of a probed colour (see ProbeReport). Linear RGB.
 struct ProbeLight {
@@ -235,11 +237,18 @@ struct ProbeReport {
 };
 
 /// The headless renderer. Move-only; one per thread (see docs/library.md for thread rules).
-class Renderer {
+class LANTERN_API Renderer {
 public:
     /// Creates the Vulkan instance and device. Fails with NoDevice when no device exists (or
     /// none matches RendererDesc::deviceName; the message lists the devices present).
     static Result<Renderer> create(const RendererDesc& desc = {});
+
+    /// Creates a renderer on the host's own Vulkan instance, device and queue (include
+    /// lantern/ExternalDevice.h, which lists what the device must have enabled). Lantern never
+    /// destroys them. Fails with Unsupported naming a missing feature or extension, or with
+    /// Usage for null or mismatched handles. RendererDesc's deviceName, validation and
+    /// instanceExtensions do not apply (the host chose them).
+    static Result<Renderer> create(const ExternalDevice& device, const RendererDesc& desc = {});
 
     Renderer(Renderer&&) noexcept;
     Renderer& operator=(Renderer&&) noexcept;

@@ -250,14 +250,7 @@ Result<std::shared_ptr<Context>> Context::create(const ContextDesc& desc) {
         return makeError(ErrorCode::NoDevice, msg.str());
     }
     ctx->m_physical = chosen->device;
-    ctx->m_properties = chosen->props;
     ctx->m_queueFamily = chosen->queueFamily;
-    vkGetPhysicalDeviceMemoryProperties(ctx->m_physical, &ctx->m_memory);
-
-    VkPhysicalDeviceVulkan12Properties p12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_PROPERTIES};
-    VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &p12, {}};
-    vkGetPhysicalDeviceProperties2(ctx->m_physical, &props2);
-    ctx->m_driverInfo = std::string(p12.driverName) + " " + p12.driverInfo;
 
     // Optional features.
     const auto exts = deviceExtensions(ctx->m_physical);
@@ -281,11 +274,6 @@ Result<std::shared_ptr<Context>> Context::create(const ContextDesc& desc) {
     ctx->m_caps.wideLines = core.wideLines;
     ctx->m_caps.shaderFloat64 = core.shaderFloat64;
     ctx->m_caps.provokingVertexLast = haveProvoking && provoking.provokingVertexLast;
-    const auto& lim = ctx->m_properties.limits;
-    // The integer AOV attachments are never multisampled (the AOV pass is single-sampled), so
-    // only float colour and depth bound the sample counts.
-    ctx->m_caps.colorDepthSampleCounts = lim.framebufferColorSampleCounts &
-                                         lim.framebufferDepthSampleCounts;
 
     VkPhysicalDeviceVulkan13Features enable13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     enable13.dynamicRendering = VK_TRUE;
@@ -313,30 +301,202 @@ Result<std::shared_ptr<Context>> Context::create(const ContextDesc& desc) {
     dci.ppEnabledExtensionNames = devExts.data();
     LANTERN_VK_TRY(vkCreateDevice(ctx->m_physical, &dci, nullptr, &ctx->m_device));
     vkGetDeviceQueue(ctx->m_device, ctx->m_queueFamily, 0, &ctx->m_queue);
-
-    VkPipelineCacheCreateInfo pcci{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
-    VkPipelineCache cache = VK_NULL_HANDLE;
-    LANTERN_VK_TRY(vkCreatePipelineCache(ctx->m_device, &pcci, nullptr, &cache));
-    ctx->m_pipelineCache = UniquePipelineCache(ctx->m_device, cache);
-
-    VkCommandPoolCreateInfo cpci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    cpci.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-    cpci.queueFamilyIndex = ctx->m_queueFamily;
-    VkCommandPool pool = VK_NULL_HANDLE;
-    LANTERN_VK_TRY(vkCreateCommandPool(ctx->m_device, &cpci, nullptr, &pool));
-    ctx->m_oneShotPool = UniqueCommandPool(ctx->m_device, pool);
-
-    ctx->log(LogLevel::Info, std::string("device: ") + ctx->m_properties.deviceName + " (" +
-                                 typeName(ctx->m_properties.deviceType) + ", " +
-                                 ctx->m_driverInfo + ")" +
-                                 (ctx->m_validation ? ", validation on" : ""));
+    LANTERN_TRY(ctx->finishSetup());
     return ctx;
 }
 
+namespace {
+
+// The features a host enabled on its device, gathered from what it gave vkCreateDevice.
+struct EnabledFeatures {
+    VkPhysicalDeviceFeatures core{};
+    bool dynamicRendering = false;
+    bool synchronization2 = false;
+    bool provokingVertexLast = false;
+};
+
+EnabledFeatures readEnabledFeatures(const ExternalDevice& e) {
+    EnabledFeatures f;
+    if (e.enabledCoreFeatures) f.core = *e.enabledCoreFeatures;
+    // Every feature structure starts with sType and pNext (VkBaseInStructure).
+    for (auto* s = static_cast<const VkBaseInStructure*>(e.enabledFeatures); s; s = s->pNext) {
+        switch (s->sType) {
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2:
+            f.core = reinterpret_cast<const VkPhysicalDeviceFeatures2*>(s)->features;
+            break;
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES: {
+            const auto* v = reinterpret_cast<const VkPhysicalDeviceVulkan13Features*>(s);
+            f.dynamicRendering = f.dynamicRendering || v->dynamicRendering;
+            f.synchronization2 = f.synchronization2 || v->synchronization2;
+            break;
+        }
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES:
+            f.dynamicRendering =
+                f.dynamicRendering ||
+                reinterpret_cast<const VkPhysicalDeviceDynamicRenderingFeatures*>(s)
+                    ->dynamicRendering;
+            break;
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES:
+            f.synchronization2 =
+                f.synchronization2 ||
+                reinterpret_cast<const VkPhysicalDeviceSynchronization2Features*>(s)
+                    ->synchronization2;
+            break;
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROVOKING_VERTEX_FEATURES_EXT:
+            f.provokingVertexLast =
+                reinterpret_cast<const VkPhysicalDeviceProvokingVertexFeaturesEXT*>(s)
+                    ->provokingVertexLast;
+            break;
+        default:
+            break;
+        }
+    }
+    return f;
+}
+
+std::string versionText(std::uint32_t v) {
+    return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v));
+}
+
+} // namespace
+
+Result<std::shared_ptr<Context>> Context::adopt(const ExternalDevice& e, bool swapchain,
+                                                LogSink log) {
+    armFaultsFromEnvironment();
+    const char* object = "ExternalDevice";
+    if (!e.instance || !e.physicalDevice || !e.device || !e.queue)
+        return makeError(ErrorCode::Usage,
+                         "instance, physicalDevice, device and queue must all be set", object);
+    if (e.instanceApiVersion < VK_API_VERSION_1_3)
+        return makeError(ErrorCode::Unsupported,
+                         "the instance was created for Vulkan " +
+                             versionText(e.instanceApiVersion) +
+                             " (VkApplicationInfo::apiVersion); Lantern records Vulkan 1.3 "
+                             "commands and needs an instance created for 1.3 or newer",
+                         "ExternalDevice.instanceApiVersion");
+
+    // The physical device must be one of the instance's (handles from two instances mix badly).
+    std::uint32_t nd = 0;
+    LANTERN_VK_TRY(vkEnumeratePhysicalDevices(e.instance, &nd, nullptr));
+    std::vector<VkPhysicalDevice> devices(nd);
+    const VkResult listed = vkEnumeratePhysicalDevices(e.instance, &nd, devices.data());
+    if (listed != VK_SUCCESS && listed != VK_INCOMPLETE)
+        return vkError(listed, "vkEnumeratePhysicalDevices");
+    if (std::find(devices.begin(), devices.end(), e.physicalDevice) == devices.end())
+        return makeError(ErrorCode::Usage, "physicalDevice is not one of the instance's devices",
+                         "ExternalDevice.physicalDevice");
+
+    VkPhysicalDeviceProperties props{};
+    vkGetPhysicalDeviceProperties(e.physicalDevice, &props);
+    if (props.apiVersion < VK_API_VERSION_1_3)
+        return makeError(ErrorCode::Unsupported,
+                         std::string(props.deviceName) + " supports Vulkan " +
+                             versionText(props.apiVersion) + ", Lantern needs 1.3",
+                         "ExternalDevice.physicalDevice");
+
+    std::uint32_t nq = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(e.physicalDevice, &nq, nullptr);
+    std::vector<VkQueueFamilyProperties> families(nq);
+    vkGetPhysicalDeviceQueueFamilyProperties(e.physicalDevice, &nq, families.data());
+    if (e.queueFamily >= nq)
+        return makeError(ErrorCode::Usage,
+                         "queue family " + std::to_string(e.queueFamily) +
+                             " does not exist (the "
+                             "device has " +
+                             std::to_string(nq) + ")",
+                         "ExternalDevice.queueFamily");
+    if (!(families[e.queueFamily].queueFlags & VK_QUEUE_GRAPHICS_BIT))
+        return makeError(ErrorCode::Unsupported,
+                         "queue family " + std::to_string(e.queueFamily) +
+                             " has no VK_QUEUE_GRAPHICS_BIT; Lantern draws on a graphics queue",
+                         "ExternalDevice.queueFamily");
+
+    const EnabledFeatures f = readEnabledFeatures(e);
+    std::string missing;
+    if (!f.dynamicRendering) missing += " dynamicRendering";
+    if (!f.synchronization2) missing += " synchronization2";
+    if (!missing.empty())
+        return makeError(ErrorCode::Unsupported,
+                         "the device was created without" + missing +
+                             " (VkPhysicalDeviceVulkan13Features in VkDeviceCreateInfo::pNext); "
+                             "Lantern renders with both",
+                         "ExternalDevice.enabledFeatures");
+    const auto enabled = [&](const char* name) {
+        return std::find(e.enabledExtensions.begin(), e.enabledExtensions.end(), name) !=
+               e.enabledExtensions.end();
+    };
+    if (swapchain && !enabled(VK_KHR_SWAPCHAIN_EXTENSION_NAME))
+        return makeError(ErrorCode::Unsupported,
+                         "RendererDesc::presentation needs VK_KHR_swapchain enabled on the device",
+                         "ExternalDevice.enabledExtensions");
+
+    std::shared_ptr<Context> ctx(new Context());
+    ctx->m_log = std::move(log);
+    ctx->m_external = true;
+    ctx->m_instance = e.instance;
+    ctx->m_physical = e.physicalDevice;
+    ctx->m_device = e.device;
+    ctx->m_queue = e.queue;
+    ctx->m_queueFamily = e.queueFamily;
+    if (e.queueMutex) ctx->m_queueLock = e.queueMutex;
+    // Optional capabilities are what the host enabled, not what the device could do.
+    ctx->m_caps.primitiveIdInFragment = f.core.geometryShader && f.core.independentBlend;
+    ctx->m_caps.fillModeNonSolid = f.core.fillModeNonSolid;
+    ctx->m_caps.wideLines = f.core.wideLines;
+    ctx->m_caps.shaderFloat64 = f.core.shaderFloat64;
+    ctx->m_caps.provokingVertexLast =
+        f.provokingVertexLast && enabled(VK_EXT_PROVOKING_VERTEX_EXTENSION_NAME);
+    LANTERN_TRY(ctx->finishSetup());
+    return ctx;
+}
+
+Result<void> Context::finishSetup() {
+    vkGetPhysicalDeviceProperties(m_physical, &m_properties);
+    vkGetPhysicalDeviceMemoryProperties(m_physical, &m_memory);
+    VkPhysicalDeviceVulkan12Properties p12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_PROPERTIES};
+    VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &p12, {}};
+    vkGetPhysicalDeviceProperties2(m_physical, &props2);
+    m_driverInfo = std::string(p12.driverName) + " " + p12.driverInfo;
+    const auto& lim = m_properties.limits;
+    // The integer AOV attachments are never multisampled (the AOV pass is single-sampled), so
+    // only float colour and depth bound the sample counts.
+    m_caps.colorDepthSampleCounts =
+        lim.framebufferColorSampleCounts & lim.framebufferDepthSampleCounts;
+
+    VkPipelineCacheCreateInfo pcci{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
+    VkPipelineCache cache = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkCreatePipelineCache(m_device, &pcci, nullptr, &cache));
+    m_pipelineCache = UniquePipelineCache(m_device, cache);
+
+    VkCommandPoolCreateInfo cpci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    cpci.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+    cpci.queueFamilyIndex = m_queueFamily;
+    VkCommandPool pool = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkCreateCommandPool(m_device, &cpci, nullptr, &pool));
+    m_oneShotPool = UniqueCommandPool(m_device, pool);
+
+    log(LogLevel::Info, std::string("device: ") + m_properties.deviceName + " (" +
+                            typeName(m_properties.deviceType) + ", " + m_driverInfo + ")" +
+                            (m_external ? ", the host's" : "") +
+                            (m_validation ? ", validation on" : ""));
+    return {};
+}
+
+void Context::waitIdle() {
+    if (!m_device) return;
+    if (!m_external) {
+        vkDeviceWaitIdle(m_device);
+        return;
+    }
+    std::lock_guard lock(*m_queueLock);
+    vkQueueWaitIdle(m_queue);
+}
+
 Context::~Context() {
-    if (m_device) vkDeviceWaitIdle(m_device);
+    waitIdle();
     m_oneShotPool.reset();
     m_pipelineCache.reset();
+    if (m_external) return;  // the host's instance and device: never destroyed here
     if (m_device) vkDestroyDevice(m_device, nullptr);
     if (m_messenger) {
         auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
@@ -390,7 +550,7 @@ Result<void> Context::submitAndWait(const std::function<void(VkCommandBuffer)>& 
     si.commandBufferInfoCount = 1;
     si.pCommandBufferInfos = &cbi;
     {
-        std::lock_guard qlock(m_queueMutex);
+        std::lock_guard qlock(*m_queueLock);
         LANTERN_VK_TRY(vkQueueSubmit2(m_queue, 1, &si, fence));
     }
     LANTERN_VK_TRY(vkWaitForFences(m_device, 1, &fence, VK_TRUE, UINT64_MAX));

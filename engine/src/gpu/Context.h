@@ -2,11 +2,14 @@
 // installed), the chosen physical device, the logical device, its graphics queue, a pipeline
 // cache and helpers for one-off submissions. Shared (std::shared_ptr) by everything that owns
 // device objects, so the device outlives them whatever order a host destroys things in.
+// Either Lantern creates and owns the instance and device (create), or the host lends its own
+// (adopt): then they are checked, used and never destroyed.
 #pragma once
 
 #include "gpu/Handles.h"
 #include "gpu/Vk.h"
 
+#include <lantern/ExternalDevice.h>
 #include <lantern/Log.h>
 #include <lantern/Result.h>
 
@@ -43,6 +46,11 @@ struct Capabilities {
 class Context {
 public:
     static Result<std::shared_ptr<Context>> create(const ContextDesc& desc);
+    /// A context on the host's objects (lantern/ExternalDevice.h): checks that the device has
+    /// what Lantern needs (Unsupported or Usage naming what is missing) and never destroys
+    /// them. `swapchain`: presentation was asked for (VK_KHR_swapchain must be enabled).
+    static Result<std::shared_ptr<Context>> adopt(const ExternalDevice& external, bool swapchain,
+                                                  LogSink log);
     ~Context();
     Context(const Context&) = delete;
     Context& operator=(const Context&) = delete;
@@ -57,12 +65,19 @@ public:
     const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return m_memory; }
     const Capabilities& capabilities() const { return m_caps; }
     bool validationEnabled() const { return m_validation; }
+    /// True when the instance and device are the host's (adopt()).
+    bool external() const { return m_external; }
     std::string driverInfo() const { return m_driverInfo; }
 
     /// A memory type index with all `required` flags among `typeBits`, preferring one that
     /// also has `preferred`; -1 when none.
     int findMemoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required,
                        VkMemoryPropertyFlags preferred = 0) const;
+
+    /// Waits until Lantern's work on the device is done: vkDeviceWaitIdle on a device Lantern
+    /// owns; on the host's device only the queue Lantern uses (under the queue lock), so the
+    /// host's other queues are neither waited for nor raced.
+    void waitIdle();
 
     /// Records `record` into a fresh command buffer, submits it and waits for it.
     Result<void> submitAndWait(const std::function<void(VkCommandBuffer)>& record);
@@ -80,10 +95,11 @@ public:
     std::uint64_t validationMessageCount() const { return m_validationMessages.load(); }
 
     /// Queue submissions must be externally synchronised (one queue, many users).
-    std::mutex& queueMutex() { return m_queueMutex; }
+    std::mutex& queueMutex() { return *m_queueLock; }
 
 private:
     Context() = default;
+    Result<void> finishSetup();
     static VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(
         VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
         const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
@@ -99,11 +115,13 @@ private:
     VkPhysicalDeviceMemoryProperties m_memory{};
     Capabilities m_caps;
     bool m_validation = false;
+    bool m_external = false;
     std::string m_driverInfo;
     UniquePipelineCache m_pipelineCache;
     UniqueCommandPool m_oneShotPool;
     std::mutex m_oneShotMutex;
     std::mutex m_queueMutex;
+    std::mutex* m_queueLock = &m_queueMutex;  ///< m_queueMutex, or the host's
     std::atomic<std::uint64_t> m_validationMessages{0};
     PFN_vkSetDebugUtilsObjectNameEXT m_setObjectName = nullptr;
 };

@@ -147,7 +147,7 @@ Result<std::unique_ptr<Engine>> Engine::create(std::shared_ptr<gpu::Context> ctx
 
 Engine::~Engine() {
     if (!m_ctx) return;
-    vkDeviceWaitIdle(m_ctx->device());
+    m_ctx->waitIdle();
     for (Slot& s : m_slots)
         if (s.queries) vkDestroyQueryPool(m_ctx->device(), s.queries, nullptr);
 }
@@ -322,6 +322,9 @@ Result<void> Engine::ensureTarget(Slot& slot, const RenderOptions& o) {
 
 Result<std::uint32_t> Engine::submit(const std::shared_ptr<GpuScene>& scene, const FramePlan& plan,
                                      const RenderOptions& o, const SubmitHooks& hooks) {
+    if (scene->context() != m_ctx.get())
+        return makeError(ErrorCode::Usage, "the scene was prepared by another Renderer (a "
+                                           "PreparedScene lives on its renderer's device)");
     const std::uint32_t index = m_next;
     Slot& slot = m_slots[index];
     if (slot.busy)

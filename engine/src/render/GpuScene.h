@@ -37,6 +37,8 @@ public:
     ~GpuScene();
 
     const Scene& scene() const { return *m_scene; }
+    /// The context (device) the scene lives on: only its own Renderer may draw it.
+    const gpu::Context* context() const { return m_ctx.get(); }
     const std::shared_ptr<const Scene>& sharedScene() const { return m_scene; }
     const GpuPrimitive& primitive(std::uint32_t mesh, std::uint32_t prim) const {
         return m_primitives[m_meshFirst[mesh] + prim];

@@ -26,6 +26,8 @@ struct ExplainedFrame {
 
 /// The engine-internal door into a Renderer (a friend of it).
 struct RendererAccess {
+    /// A Renderer on a context (Lantern's own device or the host's).
+    static Result<Renderer> create(std::shared_ptr<gpu::Context> context, const RendererDesc& desc);
     /// Renders `scene` with the depth, normal and id AOVs on. `edit` may change the plan before
     /// it is submitted (tests inject what validation refuses, e.g. a NaN, to see it reported).
     static Result<ExplainedFrame> renderExplained(Renderer& renderer, const Scene& scene,

@@ -65,9 +65,17 @@ Renderer::Renderer(Renderer&&) noexcept = default;
 Renderer& Renderer::operator=(Renderer&&) noexcept = default;
 Renderer::~Renderer() = default;
 
-Result<Renderer> Renderer::create(const RendererDesc& desc) {
+namespace {
+Result<void> checkDesc(const RendererDesc& desc) {
     if (desc.framesInFlight < 1 || desc.framesInFlight > 8)
-        return makeError(ErrorCode::Usage, "framesInFlight must be between 1 and 8");
+        return makeError(ErrorCode::Usage, "framesInFlight must be between 1 and 8",
+                         "RendererDesc.framesInFlight");
+    return {};
+}
+} // namespace
+
+Result<Renderer> Renderer::create(const RendererDesc& desc) {
+    LANTERN_TRY(checkDesc(desc));
     gpu::ContextDesc cd;
     cd.deviceName = desc.deviceName;
     cd.validation = desc.validation;
@@ -77,11 +85,23 @@ Result<Renderer> Renderer::create(const RendererDesc& desc) {
     cd.swapchain = desc.presentation;
     auto ctx = gpu::Context::create(cd);
     if (!ctx) return std::move(ctx).error();
-    auto engine = render::Engine::create(*ctx, std::uint32_t(desc.framesInFlight));
+    return render::RendererAccess::create(std::move(*ctx), desc);
+}
+
+Result<Renderer> Renderer::create(const ExternalDevice& device, const RendererDesc& desc) {
+    LANTERN_TRY(checkDesc(desc));
+    auto ctx = gpu::Context::adopt(device, desc.presentation, desc.log);
+    if (!ctx) return std::move(ctx).error();
+    return render::RendererAccess::create(std::move(*ctx), desc);
+}
+
+Result<Renderer> render::RendererAccess::create(std::shared_ptr<gpu::Context> context,
+                                                const RendererDesc& desc) {
+    auto engine = render::Engine::create(context, std::uint32_t(desc.framesInFlight));
     if (!engine) return std::move(engine).error();
 
-    auto impl = std::make_unique<Impl>();
-    impl->ctx = std::move(*ctx);
+    auto impl = std::make_unique<Renderer::Impl>();
+    impl->ctx = std::move(context);
     impl->engine = std::move(*engine);
     impl->presentation = desc.presentation;
     const auto& p = impl->ctx->properties();
