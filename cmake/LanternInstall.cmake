@@ -1,40 +1,84 @@
-# Install rules: headers, the library, the CMake package (Lantern::lantern) and a pkg-config
-# file. A consumer writes find_package(Lantern CONFIG REQUIRED) and links Lantern::lantern.
+# Install rules: the public headers, the library (static, or shared with -DBUILD_SHARED_LIBS=ON),
+# the CMake package and pkg-config files. A consumer writes
+#   find_package(Lantern CONFIG REQUIRED)            # COMPONENTS glfw for Lantern::glfw
+#   target_link_libraries(app PRIVATE Lantern::lantern)
+# Shaders are embedded in the library, so nothing else is installed for run time.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
+
+get_target_property(_lantern_type lantern TYPE)
+if(_lantern_type STREQUAL "SHARED_LIBRARY")
+    set(LANTERN_SHARED ON)
+    set(LANTERN_LIBRARY_KIND "shared")
+else()
+    set(LANTERN_SHARED OFF)
+    set(LANTERN_LIBRARY_KIND "static")
+endif()
+
+# Installed programs find a shared libLantern in the prefix wherever the prefix is moved:
+# RUNPATH $ORIGIN/../lib for executables, $ORIGIN for libLantern_glfw (RUNPATH is not inherited
+# by a library's own dependencies).
+file(RELATIVE_PATH _lantern_bin_to_lib "${CMAKE_INSTALL_FULL_BINDIR}" "${CMAKE_INSTALL_FULL_LIBDIR}")
+if(LANTERN_SHARED)
+    if(TARGET lantern_cli)
+        set_target_properties(lantern_cli PROPERTIES INSTALL_RPATH "$ORIGIN/${_lantern_bin_to_lib}")
+    endif()
+    if(TARGET lantern_glfw)
+        set_target_properties(lantern_glfw PROPERTIES INSTALL_RPATH "$ORIGIN")
+    endif()
+endif()
+
+set(LANTERN_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/Lantern)
 
 install(TARGETS lantern EXPORT LanternTargets
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
     LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
     RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
     INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-# Lantern::glfw (the GLFW window convenience) when GLFW was found.
+install(EXPORT LanternTargets NAMESPACE Lantern:: DESTINATION ${LANTERN_CMAKE_DIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/include/lantern
+    DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.h" PATTERN "glfw" EXCLUDE)
+install(FILES ${PROJECT_BINARY_DIR}/engine/include/lantern/Version.h
+    DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/lantern)
+
+# Lantern::glfw (the GLFW window convenience), when GLFW was found: the package's `glfw`
+# component, in an export set of its own so that only hosts asking for it need GLFW.
 set(LANTERN_HAS_GLFW OFF)
 if(TARGET lantern_glfw)
     set(LANTERN_HAS_GLFW ON)
-    install(TARGETS lantern_glfw EXPORT LanternTargets
+    install(TARGETS lantern_glfw EXPORT LanternGlfwTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+    install(EXPORT LanternGlfwTargets NAMESPACE Lantern:: DESTINATION ${LANTERN_CMAKE_DIR})
+    install(FILES ${PROJECT_SOURCE_DIR}/engine/include/lantern/glfw/GlfwWindow.h
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/lantern/glfw)
 endif()
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/include/lantern
-    DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.h")
-install(FILES ${PROJECT_BINARY_DIR}/engine/include/lantern/Version.h
-    DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/lantern)
 if(TARGET lantern_cli)
     install(TARGETS lantern_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()
 
-set(LANTERN_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/Lantern)
-install(EXPORT LanternTargets NAMESPACE Lantern:: DESTINATION ${LANTERN_CMAKE_DIR})
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/LanternConfig.cmake.in
     ${PROJECT_BINARY_DIR}/LanternConfig.cmake INSTALL_DESTINATION ${LANTERN_CMAKE_DIR})
+# Before 1.0 a minor version may break the API, as the shared library's SONAME (0.MINOR) says.
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/LanternConfigVersion.cmake
     VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/LanternConfig.cmake ${PROJECT_BINARY_DIR}/LanternConfigVersion.cmake
     DESTINATION ${LANTERN_CMAKE_DIR})
 
-# pkg-config: a static libLantern needs its private dependencies on the link line too.
-set(LANTERN_PC_LIBS_PRIVATE "-lvulkan -lOpenEXR-3_1 -lImath-3_1 -lIex-3_1 -lIlmThread-3_1 -ltinygltf -lstb -lpthread")
+# pkg-config. The files locate the prefix from their own folder (${pcfiledir}), so they stay
+# right under `cmake --install --prefix` and DESTDIR. A static libLantern's dependencies are in
+# Requires.private / Libs.private, which `pkg-config --static` adds.
+if(IS_ABSOLUTE "${CMAKE_INSTALL_LIBDIR}")
+    set(LANTERN_PC_PREFIX "${CMAKE_INSTALL_PREFIX}")
+else()
+    file(RELATIVE_PATH LANTERN_PC_PREFIX "/x/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/x")
+    set(LANTERN_PC_PREFIX "\${pcfiledir}/${LANTERN_PC_PREFIX}")
+endif()
 configure_file(${PROJECT_SOURCE_DIR}/cmake/lantern.pc.in ${PROJECT_BINARY_DIR}/lantern.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/lantern.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+if(LANTERN_HAS_GLFW)
+    configure_file(${PROJECT_SOURCE_DIR}/cmake/lantern-glfw.pc.in ${PROJECT_BINARY_DIR}/lantern-glfw.pc @ONLY)
+    install(FILES ${PROJECT_BINARY_DIR}/lantern-glfw.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+endif()

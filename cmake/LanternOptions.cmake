@@ -1,10 +1,22 @@
 # Every LANTERN_* option in one place. Apps, tests and install default to on only when Lantern
 # is the top-level project, so embedding it with add_subdirectory builds just the library.
 option(LANTERN_BUILD_APPS "Build the lantern command" ${PROJECT_IS_TOP_LEVEL})
-option(LANTERN_BUILD_TESTS "Build the test suite" ${PROJECT_IS_TOP_LEVEL})
+# The test suite looks inside the engine, which a shared libLantern hides (it exports only the
+# public API), so tests build against the static library; a shared build installs and is
+# checked by the install test (tests/install).
+if(BUILD_SHARED_LIBS)
+    set(_lantern_tests_default OFF)
+else()
+    set(_lantern_tests_default ${PROJECT_IS_TOP_LEVEL})
+endif()
+option(LANTERN_BUILD_TESTS "Build the test suite (static library only)" ${_lantern_tests_default})
+if(LANTERN_BUILD_TESTS AND BUILD_SHARED_LIBS)
+    message(FATAL_ERROR "LANTERN_BUILD_TESTS needs a static libLantern (the tests look inside "
+                        "the engine); configure a shared build with -DLANTERN_BUILD_TESTS=OFF")
+endif()
 option(LANTERN_INSTALL "Generate install rules and the CMake package" ${PROJECT_IS_TOP_LEVEL})
 option(LANTERN_WERROR "Treat compiler warnings as errors (CI turns this on)" OFF)
 option(LANTERN_SHADER_DEBUG_INFO "Compile shaders with debug info (-g)" OFF)
 option(LANTERN_FUZZ "Build libFuzzer targets (needs clang)" OFF)
-option(LANTERN_TESTING_HOOKS "Compile fault-injection hooks into the engine (tests only)" ${PROJECT_IS_TOP_LEVEL})
+option(LANTERN_TESTING_HOOKS "Compile fault-injection hooks into the engine (tests only)" ${LANTERN_BUILD_TESTS})
 set(LANTERN_SANITIZE "" CACHE STRING "Sanitizers to build with, e.g. address;undefined")
