@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", std::string("lantern ") + lantern::versionString());
     app.require_subcommand(1);
     std::vector<Runner> runners = {addRenderCommand(app), addInfoCommand(app), addBenchCommand(app)};
+    runners.push_back(addFarmCommand(app));
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
