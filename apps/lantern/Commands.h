@@ -13,6 +13,6 @@ using Runner = std::function<int()>;
 Runner addRenderCommand(CLI::App& app);
 Runner addInfoCommand(CLI::App& app);
 Runner addBenchCommand(CLI::App& app);
-Runner addFarmCommand(CLI::App& app);  // docs/farm.md
+Runner addFarmCommand(CLI::App& app); // docs/farm.md
 
 } // namespace lantern::cli

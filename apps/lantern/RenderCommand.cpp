@@ -95,7 +95,7 @@ struct RenderArgs {
     std::uint64_t maxSize = std::uint64_t(1) << 30;
     std::string background;
     std::string frames;
-    std::string frameList;  // --frame-list: explicit frames, e.g. those a farm job is missing
+    std::string frameList; // --frame-list: explicit frames, e.g. those a farm job is missing
     double fps = 24.0;
     std::string shard;
     int encoderThreads = 0;
@@ -238,7 +238,8 @@ int run(const RenderArgs& a) {
     exr.compression = *compression;
     const bool sequence = !a.frames.empty() || !a.frameList.empty();
     if (!a.frames.empty() && !a.frameList.empty())
-        return report(makeError(ErrorCode::Usage, "--frames and --frame-list cannot be combined", "--frame-list"));
+        return report(makeError(ErrorCode::Usage, "--frames and --frame-list cannot be combined",
+                                "--frame-list"));
     std::vector<std::string> outputs = a.outputs;
     if (outputs.empty()) outputs.push_back(sequence ? "out/frame_####.exr" : "out/render.exr");
     if (sequence && a.timeGiven)
@@ -320,8 +321,7 @@ Runner addRenderCommand(CLI::App& app) {
                     "Background colour R,G,B (opaque) or R,G,B,A, linear (default: transparent)");
     cmd->add_option("--frames", args->frames, "Render the sequence of frames A-B inclusive (frame k at time k/fps)");
     cmd->add_option("--frame-list", args->frameList,
-                    "Render these frames instead of a range: N,A-B,... (--shard then splits the list "
-                    "by position)");
+                    "Render these frames, not a range: N,A-B,... (--shard splits the list by position)");
     cmd->add_option("--fps", args->fps, "Frames per second of the sequence")->capture_default_str()->check(CLI::PositiveNumber);
     cmd->add_option("--shard", args->shard, "Render only frames k with k mod N == I (I/N)");
     cmd->add_option("--encoder-threads", args->encoderThreads, "Threads encoding frames (0: one per core)")

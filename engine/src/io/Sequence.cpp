@@ -54,9 +54,10 @@ Result<std::vector<int>> parseFrameList(std::string_view text) {
         const std::string_view item = text.substr(start, comma - start);
         const std::size_t dash = item.find('-');
         int first = 0, last = 0;
-        const bool ok = dash == std::string_view::npos
-                            ? parseInt(item, first) && parseInt(item, last)
-                            : parseInt(item.substr(0, dash), first) && parseInt(item.substr(dash + 1), last);
+        const bool ok =
+            dash == std::string_view::npos
+                ? parseInt(item, first) && parseInt(item, last)
+                : parseInt(item.substr(0, dash), first) && parseInt(item.substr(dash + 1), last);
         if (!ok || first < 0 || last < first)
             return makeError(ErrorCode::InvalidInput,
                              "\"" + std::string(item) + "\" in \"" + std::string(text) +
@@ -64,9 +65,10 @@ Result<std::vector<int>> parseFrameList(std::string_view text) {
                              "--frame-list");
         // One range may not make the list unreasonably long (a typo like 0-2000000000).
         if (frames.size() + std::size_t(last - first) >= std::size_t(1) << 24)
-            return makeError(ErrorCode::InvalidInput, "more than 16777216 frames in \"" + std::string(text) + "\"",
+            return makeError(ErrorCode::InvalidInput,
+                             "more than 16777216 frames in \"" + std::string(text) + "\"",
                              "--frame-list");
-        for (int k = first;; ++k) {  // not k <= last: last may be INT_MAX
+        for (int k = first;; ++k) { // not k <= last: last may be INT_MAX
             frames.push_back(k);
             if (k == last) break;
         }
@@ -81,7 +83,8 @@ std::string formatFrameList(const std::vector<int>& frames) {
     std::string out;
     for (std::size_t i = 0; i < frames.size();) {
         std::size_t j = i;
-        while (j + 1 < frames.size() && frames[j + 1] == frames[j] + 1) ++j;
+        while (j + 1 < frames.size() && frames[j + 1] == frames[j] + 1)
+            ++j;
         if (!out.empty()) out += ',';
         out += std::to_string(frames[i]);
         if (j > i) out += '-' + std::to_string(frames[j]);
