@@ -307,7 +307,7 @@ cmd_stop() {
     # Job steps still alive (slurmd gone first, say): those started for this cluster only.
     local p
     for p in $(pgrep -x slurmstepd || true); do
-        if tr '\0' '\n' <"/proc/$p/environ" 2>/dev/null | grep -qx "SLURM_CONF=$CONF"; then
+        if { tr '\0' '\n' <"/proc/$p/environ"; } 2>/dev/null | grep -qx "SLURM_CONF=$CONF"; then
             kill -TERM "$p" 2>/dev/null || true
         fi
     done
@@ -315,7 +315,7 @@ cmd_stop() {
     # The watchdog, unless it is what runs this stop.
     if [ -r "$D/run/watch.pid" ]; then
         p=$(tr -dc 0-9 <"$D/run/watch.pid")
-        if [ -n "$p" ] && [ "$p" != "$$" ] && tr '\0' ' ' <"/proc/$p/cmdline" 2>/dev/null | grep -q "_watch"; then
+        if [ -n "$p" ] && [ "$p" != "$$" ] && { tr '\0' ' ' <"/proc/$p/cmdline"; } 2>/dev/null | grep -q "_watch"; then
             kill -TERM "$p" 2>/dev/null || true
         fi
     fi

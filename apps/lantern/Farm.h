@@ -92,8 +92,9 @@ bool hasRenderOption(const Submission& s, const std::string& option);
 std::string slurmScript(const Submission& s, const JobWork& work);
 /// Runs `sbatch --parsable [--hold] SCRIPT` and returns the job id.
 Result<std::string> slurmSubmit(const std::filesystem::path& script, bool hold);
-/// Tasks of the jobs in `ids` that are pending or running (0 when the scheduler forgot them).
-Result<int> slurmActiveTasks(const std::vector<std::string>& ids);
+/// Tasks of the jobs in `ids` named `jobName` that are pending or running (0 when the
+/// scheduler forgot them).
+Result<int> slurmActiveTasks(const std::vector<std::string>& ids, const std::string& jobName);
 /// Follows job `id` to its end with a progress line on stderr (tasks done, frames present);
 /// returns the final state of each task the scheduler still knew ("COMPLETED", ...).
 Result<std::vector<std::string>> slurmFollow(const std::string& id, const Submission& s,

@@ -221,7 +221,7 @@ Result<Submission> makeSubmission(const SubmitArgs& a, const RenderPart& part,
     // Options given on this command line win over the record's.
     auto given = [&](const char* name) { return cmd.count(name) > 0; };
     if (given("--scheduler")) s.scheduler = a.scheduler;
-    if (given("--tasks")) s.tasks = a.tasks;
+    if (given("--tasks") && !a.resume) s.tasks = a.tasks;
     if (given("--lantern")) s.lantern = a.lantern;
     if (given("--job-name")) s.jobName = a.jobName;
     if (given("--partition")) s.partition = a.partition;
@@ -299,7 +299,7 @@ int runSubmit(const SubmitArgs& a, const std::vector<std::string>& extras, const
             std::vector<std::string> ids;
             for (const auto& j : s.jobs)
                 ids.push_back(j.id);
-            auto active = farm::slurmActiveTasks(ids);
+            auto active = farm::slurmActiveTasks(ids, s.jobName);
             if (!active) return report(active.error());
             if (*active > 0)
                 return report(
@@ -322,7 +322,7 @@ int runSubmit(const SubmitArgs& a, const std::vector<std::string>& extras, const
                 std::fprintf(stderr, "lantern: %s is unreadable: rendering it again\n",
                              m.path.c_str());
         work.wholeRange = false;
-        if (!cmd.count("--tasks")) work.tasks = std::min(s.tasks, int(work.frames.size()));
+        work.tasks = cmd.count("--tasks") ? a.tasks : std::min(s.tasks, int(work.frames.size()));
         // The first job is the original submission; each resume gets its own script.
         work.script =
             farm::scriptPath(s.outputs.front(), s.scheduler, std::max(1, int(s.jobs.size())));
@@ -365,6 +365,9 @@ int runSubmit(const SubmitArgs& a, const std::vector<std::string>& extras, const
     s.jobs.push_back({"", framesText, work.script.string()});
     if (auto w = farm::writeRecord(s); !w) return report(w.error());
 
+    if (!slurm && s.pvc.empty())
+        std::fprintf(stderr, "lantern: warning: without --pvc the pods write their frames inside "
+                             "themselves, and they are lost when the pods end\n");
     if (!slurm || a.noSubmit) {
         std::cout << work.script.string() << "\n";
         std::fprintf(stderr, "lantern: wrote %s (%d tasks, frames %s)%s\n", work.script.c_str(),

@@ -131,13 +131,12 @@ Result<std::string> k8sManifest(const Submission& s, const JobWork& work) {
       << "# as a Kubernetes Indexed Job of " << n
       << " pods. Pod I renders shard JOB_COMPLETION_INDEX/" << n << ".\n"
       << "#\n"
-      << "# NOT RUN ON A CLUSTER: Lantern's tests have no Kubernetes; the Slurm path is the one "
-         "tested\n"
-      << "# (docs/farm.md). The image must hold `" << s.lantern
-      << "` and a Vulkan driver, and the scene\n"
-      << "# must be at the same path inside the pod; the frames go to "
-      << (s.pvc.empty() ? "the pod's own filesystem and are LOST\n# when it ends unless the image "
-                          "mounts shared storage there (use --pvc CLAIM).\n"
+      << "# NOT RUN ON A CLUSTER: Lantern's tests have no Kubernetes; the Slurm path is the\n"
+      << "# one tested (docs/farm.md). The image must hold a Vulkan driver and\n"
+      << "#   " << s.lantern << "\n"
+      << "# and the scene must be at the same path inside the pod. The frames go to "
+      << (s.pvc.empty() ? "the pod's\n# own filesystem and are LOST when it ends, unless the image "
+                          "mounts shared storage\n# there (use --pvc CLAIM).\n"
                         : "the claim " + s.pvc + ", mounted at the output folder.\n")
       << "# Submit with:  kubectl apply -f " << work.script.string() << "\n"
       << "# Then:         lantern farm check " << s.outputs.front()

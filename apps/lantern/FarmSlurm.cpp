@@ -112,9 +112,10 @@ struct TaskStates {
     std::map<int, std::string> states;
 };
 
-Result<TaskStates> queryTasks(const std::string& id, bool allStates) {
+// Only tasks named `jobName` count: a controller that lost its state reuses job ids.
+Result<TaskStates> queryTasks(const std::string& id, bool allStates, const std::string& jobName) {
     std::vector<std::string> args = {"squeue", "--noheader", "--array", "--jobs",
-                                     id,       "--format",   "%K %T"};
+                                     id,       "--format",   "%K|%T|%j"};
     if (allStates) args.insert(args.end(), {"--states", "all"});
     auto r = runTool(args);
     if (!r) return std::move(r).error();
@@ -127,12 +128,13 @@ Result<TaskStates> queryTasks(const std::string& id, bool allStates) {
         return makeError(ErrorCode::IoError, "squeue failed: " + firstLine(r->err), "job " + id);
     }
     std::istringstream in(r->out);
-    std::string task, state;
-    while (in >> task >> state) {
+    for (std::string line; std::getline(in, line);) {
+        const auto bar1 = line.find('|'), bar2 = line.find('|', bar1 + 1);
+        if (bar2 == std::string::npos || line.substr(bar2 + 1) != jobName) continue;
         int index = 0;
         // A job submitted without --array shows "N/A"; count it as task 0.
-        if (std::sscanf(task.c_str(), "%d", &index) != 1) index = 0;
-        t.states[index] = state;
+        if (std::sscanf(line.c_str(), "%d", &index) != 1) index = 0;
+        t.states[index] = line.substr(bar1 + 1, bar2 - bar1 - 1);
     }
     return t;
 }
@@ -211,11 +213,11 @@ Result<std::string> slurmSubmit(const std::filesystem::path& script, bool hold) 
     return id;
 }
 
-Result<int> slurmActiveTasks(const std::vector<std::string>& ids) {
+Result<int> slurmActiveTasks(const std::vector<std::string>& ids, const std::string& jobName) {
     int active = 0;
     for (const std::string& id : ids) {
         if (id.empty()) continue;
-        auto t = queryTasks(id, false);
+        auto t = queryTasks(id, false, jobName);
         if (!t) return std::move(t).error();
         for (const auto& [task, state] : t->states)
             active += !finalState(state);
@@ -235,7 +237,7 @@ Result<std::vector<std::string>> slurmFollow(const std::string& id, const Submis
                  "lantern: following job %s (Ctrl-C stops following; the job keeps running)\n",
                  id.c_str());
     for (;;) {
-        auto t = queryTasks(id, true);
+        auto t = queryTasks(id, true, s.jobName);
         if (!t) {
             // The controller may be briefly busy; give up after about half a minute.
             if (++failures > 60) return std::move(t).error();

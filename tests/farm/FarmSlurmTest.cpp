@@ -139,6 +139,12 @@ TEST_F(SlurmCluster, CancelledTaskLosesOnlyItsFramesAndResumeRendersThem) {
     const auto submitted = farm(concat(submitArgs(dir / "farm"), {"--hold"}));
     ASSERT_EQ(submitted.exitCode, 0) << submitted.err;
     const std::string id = submitted.out.substr(0, submitted.out.find('\n'));
+    // Its frames are not missing yet, only not rendered: resume refuses to render them twice.
+    const auto early = farm({"submit", "--resume", "-o", pattern});
+    EXPECT_EQ(early.exitCode, 1) << early.err;
+    EXPECT_NE(early.err.find("4 task(s) of this sequence are still pending or running"),
+              std::string::npos)
+        << early.err;
     ASSERT_EQ(slurm({"scancel", id + "_1"}).exitCode, 0);
     ASSERT_EQ(slurm({"scontrol", "release", id}).exitCode, 0);
     renderReference(dir / "single", "0-10");
