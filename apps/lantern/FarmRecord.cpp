@@ -97,34 +97,53 @@ Result<void> writeTextFile(const fs::path& path, const std::string& text) {
     return {};
 }
 
+namespace {
+
+// The record's plain fields, in the order they are written: text (written when not empty),
+// lists (one line per entry) and counts (written when positive).
+struct TextField {
+    const char* key;
+    std::string Submission::*member;
+};
+struct ListField {
+    const char* key;
+    std::vector<std::string> Submission::*member;
+};
+struct CountField {
+    const char* key;
+    int Submission::*member;
+};
+constexpr TextField kTextFields[] = {{"scheduler", &Submission::scheduler},
+                                     {"lantern", &Submission::lantern},
+                                     {"scene", &Submission::scene},
+                                     {"job-name", &Submission::jobName},
+                                     {"partition", &Submission::partition},
+                                     {"time", &Submission::time},
+                                     {"mem", &Submission::mem},
+                                     {"image", &Submission::image},
+                                     {"namespace", &Submission::k8sNamespace},
+                                     {"pvc", &Submission::pvc}};
+constexpr ListField kListFields[] = {{"output", &Submission::outputs},
+                                     {"render-arg", &Submission::renderArgs},
+                                     {"setup", &Submission::setup},
+                                     {"sbatch-arg", &Submission::sbatchArgs}};
+constexpr CountField kCountFields[] = {{"tasks", &Submission::tasks},
+                                       {"cpus-per-task", &Submission::cpusPerTask},
+                                       {"gpus", &Submission::gpus}};
+
+} // namespace
+
 Result<void> writeRecord(const Submission& s) {
     std::ostringstream o;
     o << kRecordHeader << "lantern-farm 1\n";
-    auto line = [&](const char* key, const std::string& value) {
-        if (!value.empty()) o << key << " " << value << "\n";
-    };
-    line("scheduler", s.scheduler);
-    line("lantern", s.lantern);
-    line("scene", s.scene);
-    line("frames", std::to_string(s.range.first) + "-" + std::to_string(s.range.last));
-    line("tasks", std::to_string(s.tasks));
-    for (const auto& v : s.outputs)
-        line("output", v);
-    for (const auto& v : s.renderArgs)
-        o << "render-arg " << v << "\n"; // may be empty
-    for (const auto& v : s.setup)
-        line("setup", v);
-    line("job-name", s.jobName);
-    line("partition", s.partition);
-    line("time", s.time);
-    line("mem", s.mem);
-    if (s.cpusPerTask > 0) line("cpus-per-task", std::to_string(s.cpusPerTask));
-    if (s.gpus > 0) line("gpus", std::to_string(s.gpus));
-    for (const auto& v : s.sbatchArgs)
-        line("sbatch-arg", v);
-    line("image", s.image);
-    line("namespace", s.k8sNamespace);
-    line("pvc", s.pvc);
+    o << "frames " << s.range.first << "-" << s.range.last << "\n";
+    for (const auto& f : kTextFields)
+        if (!(s.*f.member).empty()) o << f.key << " " << s.*f.member << "\n";
+    for (const auto& f : kCountFields)
+        if (s.*f.member > 0) o << f.key << " " << s.*f.member << "\n";
+    for (const auto& f : kListFields)
+        for (const std::string& v : s.*f.member)
+            o << f.key << " " << v << "\n";
     for (const auto& j : s.jobs)
         o << "job " << (j.id.empty() ? "-" : j.id) << " " << j.frames << " " << j.script << "\n";
     return writeTextFile(recordPath(s.outputs.front()), o.str());
@@ -138,7 +157,6 @@ Result<Submission> readRecord(const fs::path& path) {
                          "submit` and this -o?)",
                          {}, path.string());
     Submission s;
-    s.outputs.clear();
     std::string text;
     int number = 0;
     bool versioned = false;
@@ -152,53 +170,29 @@ Result<Submission> readRecord(const fs::path& path) {
         const auto space = text.find(' ');
         const std::string key = text.substr(0, space);
         const std::string value = space == std::string::npos ? "" : text.substr(space + 1);
-        auto toInt = [&](int& out) {
+        auto is = [&](const auto& field) { return key == field.key; };
+        if (const auto* t = std::find_if(std::begin(kTextFields), std::end(kTextFields), is);
+            t != std::end(kTextFields)) {
+            s.*t->member = value;
+        } else if (const auto* l = std::find_if(std::begin(kListFields), std::end(kListFields), is);
+                   l != std::end(kListFields)) {
+            (s.*l->member).push_back(value);
+        } else if (const auto* c =
+                       std::find_if(std::begin(kCountFields), std::end(kCountFields), is);
+                   c != std::end(kCountFields)) {
+            int& out = s.*c->member;
             const auto r = std::from_chars(value.data(), value.data() + value.size(), out);
-            return r.ec == std::errc() && r.ptr == value.data() + value.size() && out >= 0;
-        };
-        if (key == "lantern-farm") {
+            if (r.ec != std::errc() || r.ptr != value.data() + value.size() || out < 0)
+                return bad(key + " is not a number");
+        } else if (key == "lantern-farm") {
             if (value != "1")
                 return bad("record version " + value + " is not one this lantern reads (1)");
             versioned = true;
-        } else if (key == "scheduler")
-            s.scheduler = value;
-        else if (key == "lantern")
-            s.lantern = value;
-        else if (key == "scene")
-            s.scene = value;
-        else if (key == "frames") {
+        } else if (key == "frames") {
             auto r = parseFrameRange(value);
             if (!r) return bad(r.error().message);
             s.range = *r;
-        } else if (key == "tasks") {
-            if (!toInt(s.tasks) || s.tasks < 1) return bad("tasks is not a positive number");
-        } else if (key == "output")
-            s.outputs.push_back(value);
-        else if (key == "render-arg")
-            s.renderArgs.push_back(value);
-        else if (key == "setup")
-            s.setup.push_back(value);
-        else if (key == "job-name")
-            s.jobName = value;
-        else if (key == "partition")
-            s.partition = value;
-        else if (key == "time")
-            s.time = value;
-        else if (key == "mem")
-            s.mem = value;
-        else if (key == "cpus-per-task") {
-            if (!toInt(s.cpusPerTask)) return bad("cpus-per-task is not a number");
-        } else if (key == "gpus") {
-            if (!toInt(s.gpus)) return bad("gpus is not a number");
-        } else if (key == "sbatch-arg")
-            s.sbatchArgs.push_back(value);
-        else if (key == "image")
-            s.image = value;
-        else if (key == "namespace")
-            s.k8sNamespace = value;
-        else if (key == "pvc")
-            s.pvc = value;
-        else if (key == "job") {
+        } else if (key == "job") {
             std::istringstream in(value);
             Submission::Job j;
             in >> j.id >> j.frames;
@@ -210,6 +204,7 @@ Result<Submission> readRecord(const fs::path& path) {
             return bad("unknown key \"" + key + "\"");
         }
     }
+    if (s.tasks < 1) return bad("tasks must be at least 1");
     if (!versioned) return bad("not a lantern farm record (no \"lantern-farm 1\" line)");
     if (s.outputs.empty() || s.scene.empty() || s.lantern.empty())
         return bad("incomplete record: it needs lantern, scene and output lines");

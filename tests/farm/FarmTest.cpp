@@ -85,43 +85,18 @@ TEST_F(FarmRender, FrameListShardsGiveTheRangeRendersBytes) {
     EXPECT_NE(r.err.find("--frame-list"), std::string::npos) << r.err;
 }
 
-std::string readText(const fs::path& p) {
-    return fileBytes(p);
-}
-
 TEST(FarmSubmit, WritesAReadableScriptAndARecordBesideTheOutputs) {
     const auto dir = testOutputDir();
     const std::string pattern = (dir / "out" / "f_##.exr").string();
-    const auto r = runLantern(concat({"farm",
-                                      "submit",
-                                      "builtin:spheres-animated",
-                                      "--frames",
-                                      "0-10",
-                                      "--tasks",
-                                      "4",
-                                      "-o",
-                                      pattern,
-                                      "--partition",
-                                      "gpu",
-                                      "--time",
-                                      "10:00",
-                                      "--mem",
-                                      "2G",
-                                      "--cpus-per-task",
-                                      "2",
-                                      "--gpus",
-                                      "1",
-                                      "--sbatch-arg=--qos=low",
-                                      "--setup",
-                                      "module load vulkan",
-                                      "--no-submit",
-                                      "--shading",
-                                      "flat"},
-                                     sampleRenderOptions()));
+    const auto r = runLantern(
+        concat(words("farm submit builtin:spheres-animated --frames 0-10 --tasks 4 -o " + pattern +
+                     " --partition gpu --time 10:00 --mem 2G --cpus-per-task 2 --gpus 1"
+                     " --sbatch-arg=--qos=low --no-submit --shading flat"),
+               concat({"--setup", "module load vulkan"}, sampleRenderOptions())));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const fs::path script = dir / "out" / "f.sbatch";
     EXPECT_EQ(r.out, script.string() + "\n");
-    const std::string text = readText(script);
+    const std::string text = fileBytes(script);
     for (const std::string& line : std::vector<std::string>{
              "#SBATCH --array=0-3\n", "#SBATCH --partition=gpu\n", "#SBATCH --time=10:00\n",
              "#SBATCH --mem=2G\n", "#SBATCH --cpus-per-task=2\n", "#SBATCH --gres=gpu:1\n",
@@ -135,7 +110,7 @@ TEST(FarmSubmit, WritesAReadableScriptAndARecordBesideTheOutputs) {
                                                                        << text;
     EXPECT_TRUE(fs::is_directory(dir / "out" / "f-logs"))
         << "Slurm does not create the log folder itself";
-    const std::string record = readText(dir / "out" / "f.farm");
+    const std::string record = fileBytes(dir / "out" / "f.farm");
     for (const std::string& line : std::vector<std::string>{
              "lantern-farm 1\n", "frames 0-10\n", "tasks 4\n", "output " + pattern + "\n",
              std::string("render-arg --shading\nrender-arg flat\n"),
@@ -147,7 +122,7 @@ TEST(FarmSubmit, WritesAReadableScriptAndARecordBesideTheOutputs) {
         runLantern({"farm", "submit", "builtin:spheres-animated", "--frames", "0-2", "--tasks", "8",
                     "-o", (dir / "few" / "g_#.exr").string(), "--no-submit"});
     ASSERT_EQ(few.exitCode, 0) << few.err;
-    EXPECT_NE(readText(dir / "few" / "g.sbatch").find("#SBATCH --array=0-2\n"), std::string::npos);
+    EXPECT_NE(fileBytes(dir / "few" / "g.sbatch").find("#SBATCH --array=0-2\n"), std::string::npos);
 }
 
 TEST(FarmSubmit, RefusesBadInputAndWritesNothing) {
@@ -207,32 +182,12 @@ TEST(FarmSubmit, RefusesBadInputAndWritesNothing) {
 TEST(FarmK8s, ManifestIsAnIndexedJobWhosePodsRenderTheirShard) {
     const auto dir = testOutputDir();
     const std::string pattern = (dir / "k" / "f_##.exr").string();
-    const auto r = runLantern(concat({"farm",
-                                      "submit",
-                                      "--scheduler",
-                                      "k8s",
-                                      "builtin:spheres-animated",
-                                      "--frames",
-                                      "0-6",
-                                      "--tasks",
-                                      "3",
-                                      "-o",
-                                      pattern,
-                                      "--image",
-                                      "registry.example/lantern:1",
-                                      "--namespace",
-                                      "render",
-                                      "--pvc",
-                                      "frames",
-                                      "--time",
-                                      "1:30:00",
-                                      "--mem",
-                                      "2G",
-                                      "--cpus-per-task",
-                                      "2",
-                                      "--gpus",
-                                      "1"},
-                                     sampleRenderOptions()));
+    const auto r = runLantern(concat(
+        words("farm submit --scheduler k8s builtin:spheres-animated --frames 0-6 --tasks 3 -o " +
+              pattern +
+              " --image registry.example/lantern:1 --namespace render --pvc frames"
+              " --time 1:30:00 --mem 2G --cpus-per-task 2 --gpus 1"),
+        sampleRenderOptions()));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const fs::path manifest = dir / "k" / "f.k8s.yaml";
     ASSERT_EQ(r.out, manifest.string() + "\n");
@@ -267,7 +222,7 @@ sys.stdout.write(c["args"][0])
 )";
     const auto parsed =
         runProcess({"python3", "-c", check, manifest.string(), (dir / "k").string()});
-    ASSERT_EQ(parsed.exitCode, 0) << parsed.err << "\n" << readText(manifest);
+    ASSERT_EQ(parsed.exitCode, 0) << parsed.err << "\n" << fileBytes(manifest);
     const std::string podScript = parsed.out;
     EXPECT_NE(podScript.find("--shard \"$JOB_COMPLETION_INDEX/3\""), std::string::npos)
         << podScript;
