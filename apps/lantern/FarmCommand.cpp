@@ -293,22 +293,27 @@ int runSubmit(const SubmitArgs& a, const std::vector<std::string>& extras, const
 
     JobWork work;
     work.tasks = s.tasks;
-    if (a.resume) {
-        // Frames of a job still running are not missing yet: refuse rather than render them twice.
-        if (slurm && !a.noSubmit) {
+    // Two jobs must not render the same frames: refuse while one of this sequence's is active
+    // (for --resume, its frames are not missing, only not rendered yet).
+    if (slurm && !a.noSubmit) {
+        auto previous = a.resume ? Result<Submission>(s)
+                                 : farm::readRecord(farm::recordPath(s.outputs.front()));
+        if (previous) {
             std::vector<std::string> ids;
-            for (const auto& j : s.jobs)
+            for (const auto& j : previous->jobs)
                 ids.push_back(j.id);
-            auto active = farm::slurmActiveTasks(ids, s.jobName);
+            auto active = farm::slurmActiveTasks(ids, previous->jobName);
             if (!active) return report(active.error());
             if (*active > 0)
                 return report(
                     makeError(ErrorCode::InvalidInput,
                               std::to_string(*active) +
-                                  " task(s) of this sequence are still pending or "
-                                  "running: wait for them (or scancel them) before --resume",
-                              "--resume"));
+                                  " task(s) of this sequence are still pending or running: "
+                                  "wait for them (or scancel them) first",
+                              a.resume ? "--resume" : "--output"));
         }
+    }
+    if (a.resume) {
         const auto missing = farm::checkFrames(s.outputs, rangeFrames(s.range));
         work.frames = missingFrames(missing);
         if (work.frames.empty()) {

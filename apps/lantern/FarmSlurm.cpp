@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
 #include <map>
@@ -24,6 +25,12 @@ struct Output {
 
 // Runs a Slurm client (found on PATH) and collects what it prints; kills it after `timeout`.
 Result<Output> runTool(const std::vector<std::string>& args, double timeoutSeconds = 120.0) {
+    // Slurm's clients retry a missing configuration for a minute before failing.
+    if (const char* conf = std::getenv("SLURM_CONF");
+        conf && *conf && !std::filesystem::exists(conf))
+        return makeError(ErrorCode::Unsupported,
+                         std::string("SLURM_CONF names ") + conf + ", which does not exist",
+                         "SLURM_CONF");
     int outPipe[2], errPipe[2];
     if (pipe2(outPipe, O_CLOEXEC) != 0)
         return makeError(ErrorCode::IoError, "pipe: " + std::string(std::strerror(errno)));

@@ -179,6 +179,28 @@ TEST(FarmSubmit, RefusesBadInputAndWritesNothing) {
     }
 }
 
+// Without Slurm's clients (or with a configuration that is not there) submit says so at once
+// instead of hanging; the script stays, to be submitted by hand.
+TEST(FarmSubmit, SaysWhenSlurmIsNotThere) {
+    const auto dir = testOutputDir();
+    const auto args = words("farm submit builtin:spheres --frames 0-3 --tasks 2 -o " +
+                            (dir / "f_#.exr").string());
+    struct Row {
+        std::vector<std::string> environment;
+        const char* expected;
+    };
+    const Row rows[] = {
+        {{"PATH=/nonexistent"}, "sbatch not found"},
+        {{"SLURM_CONF=/nonexistent/slurm.conf"}, "SLURM_CONF names /nonexistent/slurm.conf"},
+    };
+    for (const Row& row : rows) {
+        const auto r = runLantern(args, row.environment);
+        EXPECT_EQ(r.exitCode, 3) << r.err;
+        EXPECT_NE(r.err.find(row.expected), std::string::npos) << r.err;
+        EXPECT_TRUE(fs::exists(dir / "f.sbatch"));
+    }
+}
+
 TEST(FarmK8s, ManifestIsAnIndexedJobWhosePodsRenderTheirShard) {
     const auto dir = testOutputDir();
     const std::string pattern = (dir / "k" / "f_##.exr").string();
