@@ -435,6 +435,10 @@ Runner addFarmCommand(CLI::App& app) {
         farmCmd->add_subcommand("submit", "Write and submit a job array rendering SCENE's frames; "
                                           "other options go to `lantern render`");
     submit->allow_extras(); // the scene and the render options: see splitRenderArguments
+    submit->footer(
+        "\nExample:\n  lantern farm submit scene.glb --frames 0-239 --tasks 16 -o "
+        "/shared/shot/frame_####.exr \\\n      --width 1920 --height 1080 --partition gpu "
+        "--gpus 1 --cpus-per-task 4 --wait\nSee docs/farm.md.");
     submit
         ->add_option("--scheduler", s->scheduler,
                      "slurm (sbatch job array) or k8s (writes an Indexed Job manifest)")
