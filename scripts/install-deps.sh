@@ -15,7 +15,7 @@ build_pkgs=(
     build-essential cmake ninja-build ccache pkg-config git
     libvulkan-dev vulkan-validationlayers mesa-vulkan-drivers glslang-tools
     libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenexr-dev
-    libcli11-dev libfmt-dev libglfw3-dev libimgui-dev
+    libcli11-dev libfmt-dev libglfw3-dev libimgui-dev libx11-dev
     libgtest-dev libgmock-dev libbenchmark-dev
 )
 # The farm tests start a private single-node Slurm (scripts/slurm-single-node.sh).

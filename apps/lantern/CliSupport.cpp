@@ -1,8 +1,10 @@
 // Shared command-line pieces: error reporting, number lists, camera/shading/device options.
 #include "CliSupport.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <mutex>
 #include <sstream>
@@ -54,6 +56,27 @@ Result<std::vector<double>> parseNumbers(const std::string& text, std::size_t co
                              std::to_string(values.size()),
                          option);
     return values;
+}
+
+Result<void> checkImagePaths(const std::vector<std::string>& paths, const std::string& option) {
+    for (const std::string& out : paths) {
+        const std::string ext = std::filesystem::path(out).extension().string();
+        if (ext != ".exr" && ext != ".png")
+            return makeError(ErrorCode::InvalidInput,
+                             "unknown image type \"" + ext + "\" (use .exr or .png)", option, out);
+    }
+    return {};
+}
+
+Result<glm::vec4> parseBackground(const std::string& text) {
+    const bool rgba = std::count(text.begin(), text.end(), ',') == 3;
+    auto v = parseNumbers(text, rgba ? 4 : 3, "--background");
+    if (!v) return std::move(v).error();
+    // Premultiplied: an opaque background is (r, g, b, 1); a translucent one scales rgb.
+    const double alpha = rgba ? (*v)[3] : 1.0;
+    if (alpha < 0.0 || alpha > 1.0)
+        return makeError(ErrorCode::InvalidInput, "alpha must be in [0, 1]", "--background");
+    return glm::vec4(float((*v)[0] * alpha), float((*v)[1] * alpha), float((*v)[2] * alpha), float(alpha));
 }
 
 void CameraOptions::add(CLI::App& app) {
@@ -145,25 +168,27 @@ Result<void> CameraOptions::apply(RenderOptions& o) const {
                                  "--viewport");
         o.views.push_back(View{int(n[0]), int(n[1]), int(n[2]), int(n[3]), withCamera(spec, i)});
     }
-    if (layout == "quad") {
-        // A classic modeller's four views (GL origin bottom-left): top view top-left, front
-        // top-right, side bottom-left, the perspective camera bottom-right.
-        const int w = o.width / 2, h = o.height / 2;
-        auto orthoView = [](glm::dvec3 direction) {
-            CameraSpec s;
-            s.source = CameraSpec::Source::Framing;
-            s.framingDirection = direction;
-            s.framingOrthographic = true;
-            return s;
-        };
-        o.views = {
-            View{0, o.height - h, w, h, orthoView({0, -1, 0})},
-            View{w, o.height - h, o.width - w, h, orthoView({0, 0, -1})},
-            View{0, 0, w, o.height - h, orthoView({-1, 0, 0})},
-            View{w, 0, o.width - w, o.height - h, o.camera},
-        };
-    }
+    if (layout == "quad") o.views = quadLayout(o.width, o.height, o.camera);
     return {};
+}
+
+std::vector<View> quadLayout(int width, int height, const CameraSpec& perspective) {
+    // A classic modeller's four views (GL origin bottom-left): top view top-left, front
+    // top-right, side bottom-left, the perspective camera bottom-right.
+    const int w = width / 2, h = height / 2;
+    auto orthoView = [](glm::dvec3 direction) {
+        CameraSpec s;
+        s.source = CameraSpec::Source::Framing;
+        s.framingDirection = direction;
+        s.framingOrthographic = true;
+        return s;
+    };
+    return {
+        View{0, height - h, w, h, orthoView({0, -1, 0})},
+        View{w, height - h, width - w, h, orthoView({0, 0, -1})},
+        View{0, 0, w, height - h, orthoView({-1, 0, 0})},
+        View{w, 0, width - w, height - h, perspective},
+    };
 }
 
 void ShadingOptions::add(CLI::App& app) {

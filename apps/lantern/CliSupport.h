@@ -27,6 +27,12 @@ Result<std::vector<double>> parseNumbers(const std::string& text, std::size_t co
                                          const std::string& option,
                                          const std::vector<bool>& allowInf = {});
 
+/// Refuses output paths whose extension is neither .exr nor .png (`option` names the option).
+Result<void> checkImagePaths(const std::vector<std::string>& paths, const std::string& option);
+
+/// Parses --background: "R,G,B" (opaque) or "R,G,B,A", linear, into a premultiplied colour.
+Result<glm::vec4> parseBackground(const std::string& text);
+
 /// The camera and view options shared by render and view.
 struct CameraOptions {
     std::vector<int> cameras;  ///< --camera N (repeatable: one per --viewport)
@@ -40,6 +46,10 @@ struct CameraOptions {
     /// Fills options.camera / options.views; refuses bad values with the option named.
     Result<void> apply(RenderOptions& options) const;
 };
+
+/// The four views of --layout quad for a width x height image: top, front and side
+/// (orthographic framing) and `perspective` in the bottom-right quarter.
+std::vector<View> quadLayout(int width, int height, const CameraSpec& perspective);
 
 /// The lighting/shading options shared by render and view.
 struct ShadingOptions {

@@ -209,14 +209,9 @@ int run(const RenderArgs& a) {
     if (auto r = a.shading.apply(options); !r) return report(r.error());
     if (auto r = a.camera.apply(options); !r) return report(r.error());
     if (!a.background.empty()) {
-        const bool rgba = std::count(a.background.begin(), a.background.end(), ',') == 3;
-        auto v = parseNumbers(a.background, rgba ? 4 : 3, "--background");
-        if (!v) return report(v.error());
-        // Premultiplied: an opaque background is (r, g, b, 1); a translucent one scales rgb.
-        const double alpha = rgba ? (*v)[3] : 1.0;
-        if (alpha < 0.0 || alpha > 1.0)
-            return report(makeError(ErrorCode::InvalidInput, "alpha must be in [0, 1]", "--background"));
-        options.background = glm::vec4(float((*v)[0] * alpha), float((*v)[1] * alpha), float((*v)[2] * alpha), float(alpha));
+        auto background = parseBackground(a.background);
+        if (!background) return report(background.error());
+        options.background = *background;
     }
     if (!a.aov.empty()) {
         std::stringstream ss(a.aov);
@@ -244,12 +239,7 @@ int run(const RenderArgs& a) {
     if (outputs.empty()) outputs.push_back(sequence ? "out/frame_####.exr" : "out/render.exr");
     if (sequence && a.timeGiven)
         return report(makeError(ErrorCode::Usage, "--time and --frames cannot be combined", "--time"));
-    for (const std::string& out : outputs) {
-        const std::string ext = std::filesystem::path(out).extension().string();
-        if (ext != ".exr" && ext != ".png")
-            return report(makeError(ErrorCode::InvalidInput,
-                                    "unknown image type \"" + ext + "\" (use .exr or .png)", "--output", out));
-    }
+    if (auto r = checkImagePaths(outputs, "--output"); !r) return report(r.error());
 
     LoadOptions load;
     load.maxBytes = a.maxSize;

@@ -12,7 +12,8 @@ int main(int argc, char** argv) {
     CLI::App app{"Lantern: a Vulkan renderer for the classic camera, light and material model"};
     app.set_version_flag("--version", std::string("lantern ") + lantern::versionString());
     app.require_subcommand(1);
-    std::vector<Runner> runners = {addRenderCommand(app), addInfoCommand(app), addBenchCommand(app)};
+    std::vector<Runner> runners = {addRenderCommand(app), addInfoCommand(app), addBenchCommand(app),
+                                   addViewCommand(app)};
     runners.push_back(addFarmCommand(app));
     try {
         app.parse(argc, argv);

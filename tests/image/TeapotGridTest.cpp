@@ -24,7 +24,7 @@ using lantern::test::GpuTest;
 class TeapotGrid : public GpuTest {};
 
 TEST_F(TeapotGrid, TwentyFourTeapotsEachInItsOwnMaterial) {
-    const int W = 320, H = 180;  // 16:9, as the scene's glOrtho box
+    const int W = 320, H = 180;
     auto loaded = loadScene("builtin:teapots");
     ASSERT_TRUE(loaded) << loaded.error().describe();
     const Scene& scene = *loaded;
@@ -37,8 +37,9 @@ TEST_F(TeapotGrid, TwentyFourTeapotsEachInItsOwnMaterial) {
     ASSERT_TRUE(img) << img.error().describe();
     ASSERT_EQ(test::countNonFinite(*img), 0u);
 
-    // The orthographic box maps pixels straight to world x, y (identity view).
-    const Projection& box = scene.cameras.at(0).projection;
+    // The orthographic box (fitted to the image, as the example's reshape does) maps pixels
+    // straight to world x, y (identity view).
+    const Projection box = fittedProjection(scene.cameras.at(0).projection, double(W) / H);
     const auto materials = scene::redbookMaterials();
     ASSERT_EQ(materials.size(), 24u);
 

@@ -1,6 +1,7 @@
 // Test support: paths, the shared renderer, process running, image comparison.
 #include "TestSupport.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <csignal>
@@ -8,6 +9,7 @@
 #include <cstring>
 #include <fcntl.h>
 #include <iostream>
+#include <limits>
 #include <mutex>
 #include <poll.h>
 #include <sys/wait.h>
@@ -88,6 +90,16 @@ void GpuTest::TearDown() {
         << "the Vulkan validation layer reported messages during this test (see stderr)";
 }
 
+void execChild(const std::vector<std::string>& args, const std::vector<std::string>& environment) {
+    for (const std::string& e : environment) putenv(strdup(e.c_str()));
+    std::vector<char*> argv;
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execvp(argv[0], argv.data());
+    std::fprintf(stderr, "exec %s: %s\n", argv[0], std::strerror(errno));
+    _exit(127);
+}
+
 ProcessResult runProcess(const std::vector<std::string>& args, const std::vector<std::string>& environment,
                          double timeoutSeconds) {
     ProcessResult result;
@@ -100,13 +112,7 @@ ProcessResult runProcess(const std::vector<std::string>& args, const std::vector
         dup2(errPipe[1], 2);
         close(outPipe[0]);
         close(errPipe[0]);
-        for (const std::string& e : environment) putenv(strdup(e.c_str()));
-        std::vector<char*> argv;
-        for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-        argv.push_back(nullptr);
-        execvp(argv[0], argv.data());
-        std::fprintf(stderr, "exec %s: %s\n", argv[0], std::strerror(errno));
-        _exit(127);
+        execChild(args, environment);
     }
     close(outPipe[1]);
     close(errPipe[1]);
@@ -145,6 +151,14 @@ ProcessResult runLantern(const std::vector<std::string>& args, const std::vector
     std::vector<std::string> full{cliPath().string()};
     full.insert(full.end(), args.begin(), args.end());
     return runProcess(full, environment);
+}
+
+float maxAbsDifference(const Image& a, const Image& b) {
+    if (a.width != b.width || a.height != b.height || a.rgba.size() != b.rgba.size())
+        return std::numeric_limits<float>::infinity();
+    float worst = 0.0f;
+    for (std::size_t i = 0; i < a.rgba.size(); ++i) worst = std::max(worst, std::abs(a.rgba[i] - b.rgba[i]));
+    return worst;
 }
 
 std::size_t countNonFinite(const Image& image) {

@@ -54,6 +54,14 @@ ProcessResult runProcess(const std::vector<std::string>& args,
 ProcessResult runLantern(const std::vector<std::string>& args,
                          const std::vector<std::string>& environment = {});
 
+/// The largest difference between two images' colour values (infinity when their sizes differ).
+float maxAbsDifference(const Image& a, const Image& b);
+
+/// In a forked child: adds `environment`, executes `args` (argv[0] searched on $PATH) and, if
+/// that fails, reports it on stderr and exits with 127.
+[[noreturn]] void execChild(const std::vector<std::string>& args,
+                            const std::vector<std::string>& environment);
+
 /// Number of NaN/Inf values in the image's colour and AOV planes.
 std::size_t countNonFinite(const Image& image);
 /// Pixels whose alpha is above `threshold`.

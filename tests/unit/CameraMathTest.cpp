@@ -486,3 +486,25 @@ TEST(CameraMath, ChecksRefuseWithAClearMessage) {
 }
 
 } // namespace
+
+namespace {
+
+TEST(CameraMath, FitViewportAspectWidensTheBoxAboutItsCentre) {
+    lantern::Projection p = lantern::Projection::makeOrtho(0, 16, 0, 19.2, -10, 10);
+    // Off by default: the box is used as given.
+    EXPECT_EQ(lantern::fittedProjection(p, 16.0 / 9.0).right, 16.0);
+    p.fitViewportAspect = true;
+    const auto wide = lantern::fittedProjection(p, 16.0 / 9.0);
+    EXPECT_DOUBLE_EQ(wide.top - wide.bottom, 19.2);
+    EXPECT_NEAR((wide.right - wide.left) / (wide.top - wide.bottom), 16.0 / 9.0, 1e-12);
+    EXPECT_NEAR(0.5 * (wide.left + wide.right), 8.0, 1e-12);
+    const auto tall = lantern::fittedProjection(p, 0.5);
+    EXPECT_DOUBLE_EQ(tall.right - tall.left, 16.0);
+    EXPECT_NEAR((tall.right - tall.left) / (tall.top - tall.bottom), 0.5, 1e-12);
+    EXPECT_NEAR(0.5 * (tall.bottom + tall.top), 9.6, 1e-12);
+    // The matrix uses the fitted box.
+    const glm::dmat4 m = lantern::glClipFromView(p, 16.0 / 9.0);
+    EXPECT_NEAR(m[0][0], 2.0 / (wide.right - wide.left), 1e-15);
+}
+
+} // namespace

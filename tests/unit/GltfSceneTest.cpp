@@ -21,7 +21,6 @@ using lantern::test::refusedWith;
 using lantern::test::testOutputDir;
 using json = nlohmann::json;
 
-constexpr double kPi = 3.14159265358979323846;
 
 /// A triangle using material 0 = `material`.
 Result<Scene> loadMaterial(const json& material, const std::string& name = "m") {

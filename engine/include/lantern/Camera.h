@@ -86,6 +86,10 @@ struct Projection {
     double left = -1.0, right = 1.0, bottom = -1.0, top = 1.0;  ///< Frustum/Orthographic
     double znear = 0.1;   ///< distance to the near plane (>0 for Perspective/Frustum)
     double zfar = kInfinity;  ///< distance to the far plane; +infinity allowed for perspective
+    /// Frustum/Orthographic: widen the left/right or bottom/top range about its centre so the
+    /// box has the viewport's aspect, as a GL program's reshape callback does (the Red Book's
+    /// teapots). Off (the default), the box is used as given and stretches with the viewport.
+    bool fitViewportAspect = false;
 
     static Projection makePerspective(double yfovRadians, double aspect, double znear,
                                       double zfar);
@@ -102,6 +106,10 @@ struct Projection {
 
 /// The GL clip-from-view matrix of a projection for a viewport of the given aspect (w/h).
 glm::dmat4 glClipFromView(const Projection& projection, double viewportAspect);
+
+/// The projection as drawn in a viewport of the given aspect: `projection` itself, or with
+/// fitViewportAspect its box widened to that aspect.
+Projection fittedProjection(const Projection& projection, double viewportAspect);
 
 /// The Vulkan clip-from-view matrix: vulkanFromGlClip(mode) * glClipFromView(...), evaluated
 /// in closed form in double precision (no cancellation for far/near ratios up to 1e300).

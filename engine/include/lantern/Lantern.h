@@ -1,4 +1,5 @@
-// Lantern: the whole public API in one include.
+// Lantern: the whole public API in one include, except presentation in a window:
+// lantern/Window.h (which includes vulkan.h) and lantern/glfw/GlfwWindow.h (Lantern::glfw).
 #pragma once
 
 #include <lantern/Camera.h>

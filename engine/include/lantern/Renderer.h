@@ -23,6 +23,7 @@ namespace render {
 class GpuScene;
 struct RendererAccess;
 }
+class WindowTarget;
 
 /// Which camera a view uses, and optional overrides of its parts.
 struct CameraSpec {
@@ -73,6 +74,17 @@ struct RenderOptions {
     AovSet aovs;
     FeatureMode features = FeatureMode::Specialised;
     glm::vec4 background{0.0f, 0.0f, 0.0f, 0.0f};  ///< linear, premultiplied
+    /// Lights that follow the camera (a headlight rig): when set, every scene light is placed
+    /// in eye space through this viewFromWorld instead of each view's own, so the lights keep
+    /// their place relative to the camera however it moves. The viewer sets it to the camera
+    /// of the moment the mode is switched on. GL's default light 0 is always eye-space.
+    std::optional<glm::dmat4> lightsViewFromWorld;
+    /// Display overlays (for viewers; not combinable with AOVs): every drawn triangle's edges,
+    /// and each vertex normal as a line from its vertex.
+    bool wireframe = false;
+    bool normals = false;
+    /// Length of the normal lines in world units; 0: 3% of the radius of the drawn bounds.
+    double normalLength = 0.0;
 };
 
 /// How the renderer is created.
@@ -88,6 +100,11 @@ struct RendererDesc {
     /// Frames that may be in flight at once (each with its own images, command buffer, fence
     /// and readback buffer): 2 is the classic double buffer.
     int framesInFlight = 2;
+    /// For presenting in a window (lantern/Window.h): the instance extensions the host's
+    /// surface needs (GLFW: glfwGetRequiredInstanceExtensions; lantern/glfw/GlfwWindow.h fills
+    /// them in), and VK_KHR_swapchain on the device (devices without it are passed over).
+    std::vector<std::string> instanceExtensions;
+    bool presentation = false;
     LogSink log;
 };
 
@@ -102,6 +119,7 @@ public:
 
 private:
     friend class Renderer;
+    friend class WindowTarget;
     friend struct render::RendererAccess;
     std::shared_ptr<render::GpuScene> m_gpu;
 };
@@ -131,6 +149,20 @@ struct FeatureReport {
     std::vector<std::string> features;  ///< e.g. "light:directional", "specular:blinn"
     std::vector<std::string> variants;  ///< one line per pipeline variant
 };
+
+/// Where a CameraSpec puts the camera for a view (what a render would use), double precision.
+struct CameraPlacement {
+    glm::dmat4 viewFromWorld{1.0};
+    Projection projection;
+    std::string description;  ///< e.g. "camera 0 \"main\"", "automatic framing"
+};
+
+/// Resolves `spec` for a view of aspect `aspect` (width / height) of `scene` (which must have
+/// passed Scene::validate()) at `timeSeconds`: a host that lets the user move the camera starts
+/// from here. InvalidInput when the spec names a camera that does not exist or is not placed.
+Result<CameraPlacement> resolveCameraPlacement(const Scene& scene, const CameraSpec& spec,
+                                               double aspect, int root = -1,
+                                               double timeSeconds = 0.0);
 
 /// The features `scene` needs under `options` at `timeSeconds` and the pipeline variants a
 /// renderer would choose for them, computed on the CPU without any device (what `lantern info`
@@ -213,7 +245,15 @@ public:
     Renderer& operator=(Renderer&&) noexcept;
     ~Renderer();
 
-    /// Validates `scene` and uploads it. The Scene must not change while prepared.
+    /// Validates `scene` and uploads it. While prepared, the Scene's geometry must not change:
+    /// meshes (their primitives' vertex data and material indices) and textures; nor may
+    /// materials, lights, cameras or nodes be removed (they are referred to by index).
+    /// Everything else is read afresh for every frame, when render() (or a WindowTarget frame)
+    /// is called, so a host may edit it between such calls, on the thread that renders:
+    /// material and light values, node transforms, cameras, animations (added, removed or
+    /// edited) and the roots' lighting models. Edited values must stay within the ranges
+    /// Scene::validate() accepts (they are not checked again); frames already submitted keep
+    /// the values they were built with.
     Result<PreparedScene> prepare(std::shared_ptr<const Scene> scene);
 
     /// Renders a prepared scene at `timeSeconds` and reads the picture back. Options are
@@ -257,6 +297,7 @@ public:
     std::uint64_t validationMessageCount() const;
 
 private:
+    friend class WindowTarget;
     friend struct render::RendererAccess;  ///< the engine's own tests and --probe
     struct Impl;
     explicit Renderer(std::unique_ptr<Impl> impl);

@@ -2,7 +2,7 @@
 // device creation.
 #include "gpu/Context.h"
 
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(LANTERN_ASAN)
 #include "core/SanitizerSupport.h"
 #endif
 
@@ -121,7 +121,7 @@ VKAPI_ATTR VkBool32 VKAPI_CALL Context::debugCallback(
 
 Result<std::shared_ptr<Context>> Context::create(const ContextDesc& desc) {
     armFaultsFromEnvironment();
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(LANTERN_ASAN)
     core::pinVulkanLibraries();
 #endif
     std::shared_ptr<Context> ctx(new Context());

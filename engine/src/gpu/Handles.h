@@ -54,5 +54,8 @@ using UniquePipelineLayout = DeviceHandle<VkPipelineLayout, vkDestroyPipelineLay
 using UniquePipeline = DeviceHandle<VkPipeline, vkDestroyPipeline>;
 using UniquePipelineCache = DeviceHandle<VkPipelineCache, vkDestroyPipelineCache>;
 using UniqueShaderModule = DeviceHandle<VkShaderModule, vkDestroyShaderModule>;
+using UniqueRenderPass = DeviceHandle<VkRenderPass, vkDestroyRenderPass>;
+using UniqueFramebuffer = DeviceHandle<VkFramebuffer, vkDestroyFramebuffer>;
+using UniqueSwapchain = DeviceHandle<VkSwapchainKHR, vkDestroySwapchainKHR>;
 
 } // namespace lantern::gpu

@@ -2,6 +2,7 @@
 // tinygltf through file-system callbacks confined to the scene's folder, then validates and
 // converts it (GltfInternal.h lists the passes). Nothing escapes as an exception.
 #include "io/GltfInternal.h"
+#include "io/GltfLoad.h"
 
 #include <cctype>
 #include <fstream>
@@ -115,10 +116,14 @@ std::string oneLine(const std::string& text) {
     return out.empty() ? "tinygltf refused the file without a reason" : out;
 }
 
-Result<Scene> load(const std::filesystem::path& path, const LoadOptions& options) {
+Result<Scene> loadBytes(std::vector<unsigned char> fileBytes, const std::filesystem::path& path,
+                        const LoadOptions& options) {
     const Diagnostics diag(path.string(), options.log);
-    auto bytes = readBounded(path, options.maxBytes, "", diag);
-    if (!bytes) return std::move(bytes).error();
+    std::vector<unsigned char>* bytes = &fileBytes;
+    if (fileBytes.size() > options.maxBytes)
+        return diag.error("", "\"" + path.filename().string() + "\" is " +
+                                  std::to_string(fileBytes.size()) + " bytes, more than --max-size (" +
+                                  std::to_string(options.maxBytes) + " bytes)");
     if (bytes->empty()) return diag.error("", "the file is empty");
     if (bytes->size() > std::numeric_limits<std::uint32_t>::max())
         return diag.error("", "files of 4 GiB or more cannot be read by tinygltf");
@@ -189,7 +194,27 @@ Result<Scene> load(const std::filesystem::path& path, const LoadOptions& options
     return scene;
 }
 
+Result<Scene> load(const std::filesystem::path& path, const LoadOptions& options) {
+    const Diagnostics diag(path.string(), options.log);
+    auto bytes = readBounded(path, options.maxBytes, "", diag);
+    if (!bytes) return std::move(bytes).error();
+    return loadBytes(std::move(*bytes), path, options);
+}
+
 } // namespace
+
+Result<Scene> loadGltfBytes(std::vector<unsigned char> bytes, const std::filesystem::path& path,
+                            const LoadOptions& options) {
+    try {
+        return loadBytes(std::move(bytes), path, options);
+    } catch (const std::bad_alloc&) {
+        return makeError(ErrorCode::OutOfMemory, "out of memory while loading", {}, path.string());
+    } catch (const std::exception& e) {
+        return makeError(ErrorCode::InvalidInput, std::string("cannot be loaded: ") + e.what(), {},
+                         path.string());
+    }
+}
+
 } // namespace gltf
 
 Result<Scene> loadGltf(const std::filesystem::path& path, const LoadOptions& options) {

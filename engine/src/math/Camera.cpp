@@ -171,7 +171,25 @@ Projection Projection::makeLens(double focalLength, double filmWidth, double fil
                            zfar);
 }
 
-glm::dmat4 glClipFromView(const Projection& p, double viewportAspect) {
+Projection fittedProjection(const Projection& projection, double viewportAspect) {
+    Projection p = projection;
+    if (!p.fitViewportAspect || p.kind == ProjectionKind::Perspective || !(viewportAspect > 0.0))
+        return p;
+    const double w = p.right - p.left, h = p.top - p.bottom;
+    if (!(w != 0.0 && h != 0.0)) return p;
+    const double cx = 0.5 * (p.left + p.right), cy = 0.5 * (p.bottom + p.top);
+    if (std::abs(w / h) < viewportAspect) {
+        const double half = 0.5 * std::abs(h) * viewportAspect * (w < 0 ? -1.0 : 1.0);
+        p.left = cx - half, p.right = cx + half;
+    } else {
+        const double half = 0.5 * std::abs(w) / viewportAspect * (h < 0 ? -1.0 : 1.0);
+        p.bottom = cy - half, p.top = cy + half;
+    }
+    return p;
+}
+
+glm::dmat4 glClipFromView(const Projection& projection, double viewportAspect) {
+    const Projection p = fittedProjection(projection, viewportAspect);
     switch (p.kind) {
     case ProjectionKind::Perspective:
         return perspective(p.yfov * 180.0 / kPi, p.aspect > 0 ? p.aspect : viewportAspect,
@@ -187,7 +205,7 @@ glm::dmat4 glClipFromView(const Projection& p, double viewportAspect) {
 glm::dmat4 vulkanClipFromView(const Projection& p, double viewportAspect, DepthMode mode) {
     // Rows 0, 1 and 3 are GL's with row 1 negated; row 2 is vulkanFromGlClip's depth row
     // applied symbolically, with n/f kept as a ratio so an infinite far plane is exact.
-    glm::dmat4 gl = glClipFromView(p, viewportAspect);
+    glm::dmat4 gl = glClipFromView(p, viewportAspect);  // fits the box to the viewport when asked
     glm::dmat4 m = gl;
     for (int c = 0; c < 4; ++c) m[c][1] = -gl[c][1];
     const double n = p.znear, f = p.zfar;

@@ -197,7 +197,7 @@ Result<void> Engine::checkOptions(const RenderOptions& o) const {
                              " MiB of device memory; the device has " +
                              std::to_string(heap / 1048576) + " MiB",
                          "--width/--height");
-    return {};
+    return DebugDraw::checkOptions(*m_ctx, o);
 }
 
 Result<VkShaderModule> Engine::shader(std::uint32_t id) {
@@ -321,7 +321,7 @@ Result<void> Engine::ensureTarget(Slot& slot, const RenderOptions& o) {
 }
 
 Result<std::uint32_t> Engine::submit(const std::shared_ptr<GpuScene>& scene, const FramePlan& plan,
-                                     const RenderOptions& o) {
+                                     const RenderOptions& o, const SubmitHooks& hooks) {
     const std::uint32_t index = m_next;
     Slot& slot = m_slots[index];
     if (slot.busy)
@@ -353,6 +353,13 @@ Result<std::uint32_t> Engine::submit(const std::shared_ptr<GpuScene>& scene, con
             needFlat |= d.key.program == Program::Flat;
         }
     if (needFlat) LANTERN_TRY(scene->ensureFlatStreams());
+    slot.debug = {};
+    if (o.wireframe || o.normals) {
+        if (!m_debug) m_debug = std::make_unique<DebugDraw>(*m_ctx, m_pipelineLayout.get());
+        auto debug = m_debug->prepare(o, *scene, plan);
+        if (!debug) return std::move(debug).error();
+        slot.debug = *debug;
+    }
 
     // The uniform arena: materials, then per view its FrameBlock and its lights.
     const auto& lim = m_ctx->properties().limits;
@@ -419,7 +426,7 @@ Result<std::uint32_t> Engine::submit(const std::shared_ptr<GpuScene>& scene, con
     slot.clearColor[3] = o.background.a;
     // Reversed-Z clears to 0 (infinitely far), standard depth to 1.
     slot.clearDepth = o.depth == DepthMode::ReversedZ ? 0.0f : 1.0f;
-    record(slot, *scene, plan, frameOffsets, lightOffsets, pipelines, aovPipelines);
+    record(slot, *scene, plan, frameOffsets, lightOffsets, pipelines, aovPipelines, hooks);
     LANTERN_VK_TRY(vkEndCommandBuffer(slot.cmd));
 
     VkFence fence = slot.fence.get();
@@ -429,12 +436,23 @@ Result<std::uint32_t> Engine::submit(const std::shared_ptr<GpuScene>& scene, con
     VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
     si.commandBufferInfoCount = 1;
     si.pCommandBufferInfos = &cbi;
+    VkSemaphoreSubmitInfo waitInfo{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+    waitInfo.semaphore = hooks.wait;
+    waitInfo.stageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+    VkSemaphoreSubmitInfo signalInfo{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+    signalInfo.semaphore = hooks.signal;
+    signalInfo.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    si.waitSemaphoreInfoCount = hooks.wait ? 1 : 0;
+    si.pWaitSemaphoreInfos = &waitInfo;
+    si.signalSemaphoreInfoCount = hooks.signal ? 1 : 0;
+    si.pSignalSemaphoreInfos = &signalInfo;
     {
         std::lock_guard lock(m_ctx->queueMutex());
         LANTERN_VK_TRY(vkQueueSubmit2(m_ctx->queue(), 1, &si, fence));
     }
     slot.scene = scene;
     slot.busy = true;
+    slot.readback = hooks.readback;
     slot.draws = pipelines.size();
     m_next = (m_next + 1) % std::uint32_t(m_slots.size());
     return index;
@@ -444,7 +462,7 @@ void Engine::record(Slot& slot, GpuScene& scene, const FramePlan& plan,
                     const std::vector<VkDeviceSize>& frameOffsets,
                     const std::vector<VkDeviceSize>& lightOffsets,
                     const std::vector<VkPipeline>& pipelines,
-                    const std::vector<VkPipeline>& aovPipelines) {
+                    const std::vector<VkPipeline>& aovPipelines, const SubmitHooks& hooks) {
     const VkCommandBuffer cmd = slot.cmd;
     Target& t = slot.target;
     const bool msaa = t.samples > 1;
@@ -572,6 +590,9 @@ void Engine::record(Slot& slot, GpuScene& scene, const FramePlan& plan,
                     }
                 }
             }
+            // The display overlays never meet the AOV pass (they refuse AOVs).
+            if (slot.debug.any())
+                m_debug->recordView(cmd, scene, v, slot.frameSet, dynamicOffsets, slot.debug);
         }
     };
     auto pass = [&](const std::vector<VkRenderingAttachmentInfo>& colors, const gpu::Image& depthImage,
@@ -607,11 +628,13 @@ void Engine::record(Slot& slot, GpuScene& scene, const FramePlan& plan,
         vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, slot.queries, 1);
 
     auto copyOut = [&](const gpu::Image& img, const gpu::Buffer& buf) {
+        // To the whole transfer stage: a window frame blits the colour image afterwards.
         gpu::imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT,
                           VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                           VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                          VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                          VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                           VK_ACCESS_2_TRANSFER_READ_BIT);
+        if (!hooks.readback) return;
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         region.imageExtent = {t.width, t.height, 1};
@@ -625,6 +648,7 @@ void Engine::record(Slot& slot, GpuScene& scene, const FramePlan& plan,
     }
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    if (hooks.afterRender) hooks.afterRender(cmd, t.color.get(), t.width, t.height);
 }
 
 Result<FrameResult> Engine::collect(std::uint32_t index, const RenderOptions& o) {
@@ -647,6 +671,7 @@ Result<FrameResult> Engine::collect(std::uint32_t index, const RenderOptions& o)
                                   VK_QUERY_RESULT_64_BIT) == VK_SUCCESS)
             r.gpuMs = double(ts[1] - ts[0]) * m_ctx->properties().limits.timestampPeriod * 1e-6;
     }
+    if (!slot.readback) return r;
     const Target& t = slot.target;
     LANTERN_TRY(gpu::invalidate(*m_ctx, t.readColor));
     Image& img = r.image;

@@ -7,12 +7,14 @@
 #include "gpu/Context.h"
 #include "gpu/Pipeline.h"
 #include "gpu/Resources.h"
+#include "render/DebugDraw.h"
 #include "render/FramePlan.h"
 #include "render/GpuScene.h"
 
 #include <lantern/Renderer.h>
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <unordered_map>
 #include <vector>
@@ -28,6 +30,18 @@ struct FrameResult {
     /// With AOVs: per pixel (draw index + 1, primitive id); draw indices run over the whole
     /// frame (every view); 0 = none.
     std::vector<std::uint32_t> ids;
+};
+
+/// What a window frame adds to a submission (render/WindowFrames.cpp): recording after the
+/// scene, semaphores, and whether the picture is read back.
+struct SubmitHooks {
+    bool readback = true;  ///< copy the colour image into the slot's readback buffer
+    /// Records after the scene, with the colour image in TRANSFER_SRC_OPTIMAL, made available
+    /// to the transfer stage (blits included).
+    std::function<void(VkCommandBuffer, VkImage color, std::uint32_t width, std::uint32_t height)>
+        afterRender;
+    VkSemaphore wait = VK_NULL_HANDLE;  ///< waited for at the transfer stage
+    VkSemaphore signal = VK_NULL_HANDLE;
 };
 
 class Engine {
@@ -48,8 +62,9 @@ public:
     /// to be collected first is the caller's job: collect() every submitted slot in order).
     /// Returns the slot index.
     Result<std::uint32_t> submit(const std::shared_ptr<GpuScene>& scene, const FramePlan& plan,
-                                 const RenderOptions& options);
-    /// Waits for the frame in `slot` and reads it back.
+                                 const RenderOptions& options, const SubmitHooks& hooks = {});
+    /// Waits for the frame in `slot` and reads it back (the image stays empty when it was
+    /// submitted without readback).
     Result<FrameResult> collect(std::uint32_t slot, const RenderOptions& options);
     /// True when `slot` holds a submitted frame not collected yet.
     bool busy(std::uint32_t slot) const { return m_slots[slot].busy; }
@@ -79,7 +94,9 @@ private:
         Target target;
         std::shared_ptr<GpuScene> scene;  ///< keeps geometry alive while the GPU uses it
         bool busy = false;
+        bool readback = true;
         std::size_t draws = 0;
+        DebugFrame debug;  ///< this frame's display overlays
         float clearColor[4] = {0, 0, 0, 0};
         float clearDepth = 0.0f;
     };
@@ -90,7 +107,8 @@ private:
     void record(Slot& slot, GpuScene& scene, const FramePlan& plan,
                 const std::vector<VkDeviceSize>& frameOffsets,
                 const std::vector<VkDeviceSize>& lightOffsets,
-                const std::vector<VkPipeline>& pipelines, const std::vector<VkPipeline>& aovPipelines);
+                const std::vector<VkPipeline>& pipelines, const std::vector<VkPipeline>& aovPipelines,
+                const SubmitHooks& hooks);
 
     std::shared_ptr<gpu::Context> m_ctx;
     gpu::UniqueDescriptorSetLayout m_frameLayout, m_textureLayout;
@@ -100,6 +118,7 @@ private:
     std::vector<Slot> m_slots;
     std::uint32_t m_next = 0;
     bool m_timestamps = false;
+    std::unique_ptr<DebugDraw> m_debug;  ///< wireframe and normals overlays, made on first use
 };
 
 } // namespace lantern::render

@@ -412,6 +412,7 @@ Result<FramePlan> buildFramePlan(const Scene& scene, const RenderOptions& o, dou
     if (lit.clamp == LANTERN_CLAMP_FRAGMENT) f.push_back("clamp");
     if (o.aovs.any()) f.push_back("aov");
     if (o.msaa > 1) f.push_back("msaa:" + std::to_string(o.msaa));
+    if (o.lightsViewFromWorld) f.push_back("lights-follow-camera");
 
     // Views: the explicit list, or one covering the image.
     std::vector<View> views = o.views;
@@ -447,9 +448,11 @@ Result<FramePlan> buildFramePlan(const Scene& scene, const RenderOptions& o, dou
             // GL's light 0 is defined in eye space: a headlight along +Z.
             vp.lights.push_back(packLight(kDefaultLight, glm::dmat4(1.0), lit.glCompat));
         } else {
+            // Lights that follow the camera are placed through the camera they were fixed to.
+            const glm::dmat4& lightsView = o.lightsViewFromWorld ? *o.lightsViewFromWorld : viewFromWorld;
             for (const PlacedLight& p : placed)
                 vp.lights.push_back(
-                    packLight(*p.light, viewFromWorld * plan.pose.worldFromNode[p.node], lit.glCompat));
+                    packLight(*p.light, lightsView * plan.pose.worldFromNode[p.node], lit.glCompat));
         }
         vp.frame.lightCount = std::uint32_t(vp.lights.size());
 

@@ -73,6 +73,8 @@ Result<Renderer> Renderer::create(const RendererDesc& desc) {
     cd.validation = desc.validation;
     cd.synchronizationValidation = desc.synchronizationValidation;
     cd.log = desc.log;
+    cd.instanceExtensions = desc.instanceExtensions;
+    cd.swapchain = desc.presentation;
     auto ctx = gpu::Context::create(cd);
     if (!ctx) return std::move(ctx).error();
     auto engine = render::Engine::create(*ctx, std::uint32_t(desc.framesInFlight));
@@ -81,6 +83,7 @@ Result<Renderer> Renderer::create(const RendererDesc& desc) {
     auto impl = std::make_unique<Impl>();
     impl->ctx = std::move(*ctx);
     impl->engine = std::move(*engine);
+    impl->presentation = desc.presentation;
     const auto& p = impl->ctx->properties();
     DeviceInfo& info = impl->info;
     info.name = p.deviceName;

@@ -18,6 +18,7 @@ struct Renderer::Impl {
     std::unique_ptr<render::Engine> engine;
     DeviceInfo info;
     FrameStats stats;
+    bool presentation = false;  ///< created with RendererDesc::presentation (VK_KHR_swapchain)
 };
 
 /// Adds Lantern's metadata (version, device, time, shading, camera) to a rendered image.

@@ -209,15 +209,13 @@ Scene makeTeapotsScene() {
     }
     addRedbookLighting(s, root);
 
-    // The example's reshape for its 500 x 600 window is glOrtho(0, 16, 0, 19.2, -10, 10) with
-    // an identity view. The same 19.2 units of height, widened about x = 8 to 16:9, frame the
-    // classic picture in a 1280 x 720 image (other aspects stretch it: glOrtho is fixed).
-    const double height = 16.0 * 600.0 / 500.0;
-    const double halfWidth = 0.5 * height * 16.0 / 9.0;
+    // The example's window is 500 x 600: glOrtho(0, 16, 0, 19.2, -10, 10) with an identity
+    // view, and its reshape widens the box to the window's aspect; fitViewportAspect does the
+    // same for any image size (at 16:9 the 19.2 units of height are widened about x = 8).
     Camera camera;
     camera.name = "glOrtho";
-    camera.projection =
-        Projection::makeOrtho(8.0 - halfWidth, 8.0 + halfWidth, 0.0, height, -10.0, 10.0);
+    camera.projection = Projection::makeOrtho(0.0, 16.0, 0.0, 16.0 * 600.0 / 500.0, -10.0, 10.0);
+    camera.projection.fitViewportAspect = true;
     camera.lookAt = LookAt{{0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, {0.0, 1.0, 0.0}};
     s.cameras.push_back(camera);
     s.roots = {root};

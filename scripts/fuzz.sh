@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Fuzzes the glTF/GLB loader for a bounded time: builds the asan preset (clang, AddressSanitizer
+# + UndefinedBehaviorSanitizer + libFuzzer), seeds a corpus from ../shared/assets (the samples
+# and the glTF-Validator's invalid files) and the regression inputs, runs, and prints
+# libFuzzer's totals. Usage: scripts/fuzz.sh [SECONDS] (default 120). Exit non-zero on a crash;
+# the input that crashed is left in build/asan/fuzz-findings/ (add it to
+# tests/fuzz/regressions/ with the fix).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-120}
+scripts/build.sh asan >/dev/null
+shared=${LANTERN_SHARED_DIR:-../shared}
+corpus=build/asan/fuzz-corpus
+findings=build/asan/fuzz-findings
+mkdir -p "$corpus" "$findings"
+if [ -d "$shared/assets" ]; then
+    find "$shared/assets" \( -name '*.gltf' -o -name '*.glb' \) -size -1024k -print0 |
+        while IFS= read -r -d '' f; do cp -f "$f" "$corpus/$(echo "$f" | md5sum | cut -c1-16)"; done
+else
+    echo "fuzz: $shared/assets not found; seeding from the regression inputs only" >&2
+fi
+cp -f tests/fuzz/regressions/* "$corpus/" 2>/dev/null || true
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0
+# -jobs/-workers 1: the 2-core CI machine; -timeout: a hang (one input over 10 s) is a finding.
+log=build/asan/fuzz.log
+status=0
+build/asan/tests/fuzz/lantern_fuzz_gltf "$corpus" -max_total_time="$seconds" -timeout=10 \
+    -rss_limit_mb=2048 -max_len=65536 -artifact_prefix="$findings/" -print_final_stats=1 \
+    >"$log" 2>&1 || status=$?
+grep -E '^(#[0-9]+ +(INITED|DONE)|Done|stat::|==[0-9]+==ERROR|SUMMARY|Test unit written)' "$log" || true
+[ "$status" = 0 ] || echo "fuzz: libFuzzer exited with $status; see $log and $findings/" >&2
+exit "$status"

@@ -1,0 +1,7 @@
+// debug.frag: the display overlays' constant colour (opaque, linear).
+#version 460
+
+layout(location = 0) in vec3 vColor;
+layout(location = 0) out vec4 outColor;
+
+void main() { outColor = vec4(vColor, 1.0); }
