@@ -103,12 +103,8 @@ Result<void> checkRenderLine(const Submission& s) {
 Result<void> checkOutputs(const std::vector<std::string>& outputs) {
     if (outputs.empty())
         return usage("name the output frames with -o, e.g. -o out/frame_####.exr", "--output");
+    if (auto r = checkImagePaths(outputs, "--output"); !r) return r;
     for (const std::string& out : outputs) {
-        const std::string ext = fs::path(out).extension().string();
-        if (ext != ".exr" && ext != ".png")
-            return makeError(ErrorCode::InvalidInput,
-                             "unknown image type \"" + ext + "\" (use .exr or .png)", "--output",
-                             out);
         if (!hasFramePattern(out))
             return makeError(ErrorCode::InvalidInput,
                              "a sequence needs '#' in the output name for the frame number (e.g. "
