@@ -18,7 +18,7 @@ build_pkgs=(
 )
 test_pkgs=(
     xvfb xauth xdotool x11-utils openimageio-tools vulkan-tools
-    clang-14 libclang-rt-14-dev valgrind python3
+    clang-14 libclang-rt-14-dev valgrind python3 librsvg2-bin
 )
 
 case "$what" in
