@@ -59,28 +59,25 @@ struct AccuracyArgs {
     std::vector<int> segments{8, 16, 32, 64, 128, 256, 512};
     std::vector<int> msaa{1, 4};
     std::vector<std::string> resolutions{"960x540", "1920x1080"};
-    TimingPlan timing;
+    TimingOptions timing;
     int referenceSamples = 8;
-    bool quick = false, noFloor = false, quiet = false;
-    std::string output = "bench-accuracy";
+    bool noFloor = false;
     DeviceOptions device;
-    // Options given on the command line win over --quick's reduced sweep.
-    CLI::Option *segmentsOption = nullptr, *resolutionsOption = nullptr, *roundsOption = nullptr,
-                *framesOption = nullptr;
+    CLI::Option *segmentsOption = nullptr, *resolutionsOption = nullptr;
 };
 
 // The reduced sweep of --quick: every mode and scene, a few tessellations, small images.
 void applyQuick(AccuracyArgs& a) {
-    if (!a.quick) return;
-    if (!a.segmentsOption->count()) a.segments = {8, 32, 128};
-    if (!a.resolutionsOption->count()) a.resolutions = {"320x180"};
-    if (!a.roundsOption->count()) a.timing.rounds = 2;
-    if (!a.framesOption->count()) a.timing.frames = 3;
+    if (!a.timing.quick) return;
+    if (!a.segmentsOption->count()) a.segments = {8, 16, 32, 64, 128, 256};
+    if (!a.resolutionsOption->count()) a.resolutions = {"480x270"};
+    a.timing.applyQuick(a.timing.plan.rounds, 3);
 }
 
 std::string csvHeader() {
     return "scene,shininess,width,height,shading,segments,triangles,msaa,ms_per_frame,ms_min,"
-           "ms_wall,first_frame_ms,pipelines_compiled,floor_ms,x_floor,rmse,psnr_db,max_error,"
+           "ms_wall,ms_round_spread,first_frame_ms,pipelines_compiled,floor_ms,x_floor,rmse,psnr_"
+           "db,max_error,"
            "interior_pixels,interior_rmse,interior_max,interior_p99,silhouette_pixels,"
            "silhouette_rmse,silhouette_max,silhouette_p99,peak_ratio,nonfinite,pareto_interior,"
            "pareto_whole\n";
@@ -92,8 +89,8 @@ std::string csvRow(const AccuracyRow& r) {
     std::ostringstream s;
     s << r.scene << ',' << num(r.shininess, "%g") << ',' << r.width << ',' << r.height << ','
       << toString(r.shading) << ',' << r.segments << ',' << r.triangles << ',' << r.msaa << ','
-      << num(r.ms) << ',' << num(r.msMin) << ',' << num(r.msWall) << ',' << num(r.firstMs) << ','
-      << r.pipelines << ',' << (floor ? num(r.floorMs) : "") << ','
+      << num(r.ms) << ',' << num(r.msMin) << ',' << num(r.msWall) << ',' << num(r.spread, "%.3f")
+      << ',' << num(r.firstMs) << ',' << r.pipelines << ',' << (floor ? num(r.floorMs) : "") << ','
       << (floor ? num(r.ms / r.floorMs) : "") << ',' << num(e.whole.rmse) << ','
       << num(e.psnr, "%.2f") << ',' << num(e.whole.max) << ',' << e.interior.pixels << ','
       << num(e.interior.rmse) << ',' << num(e.interior.max) << ',' << num(e.interior.p99) << ','
@@ -109,21 +106,23 @@ std::string xFloor(const AccuracyRow& r) {
 }
 
 std::string summaryMarkdown(const std::vector<AccuracyRow>& rows, const AccuracyArgs& a,
-                            const std::string& machine, bool gpuClock, double referenceSeconds) {
+                            const std::string& machine, bool gpuClock, double referenceSeconds,
+                            const std::string& spread) {
     std::ostringstream md;
     md << "# Speed against accuracy: `lantern bench accuracy`\n\n"
        << "Machine: " << machine << ".\n\n"
        << "Reproduce: `" << commandLine() << "`\n\n"
        << "Frame time: "
        << (gpuClock ? "the render pass on the device's timestamps" : "render() wall time")
-       << ", median of " << a.timing.rounds << " rounds' medians of " << a.timing.frames
-       << " frames after " << a.timing.warmup
+       << ", median of " << a.timing.plan.rounds << " rounds' medians of " << a.timing.plan.frames
+       << " frames after " << a.timing.plan.warmup
        << " warm-up frames, every configuration interleaved with the others in each round. "
        << "Errors: linear RGB against a double-precision ray cast of the exact surfaces ("
        << a.referenceSamples << "x" << a.referenceSamples
        << " box filter for the whole image and silhouettes, the pixel centre for the interior; "
        << "references took " << num(referenceSeconds, "%.1f") << " s). "
-       << "x floor: the frame time over the trivial shader's on the same geometry and pixels.\n\n";
+       << "x floor: the frame time over the trivial shader's on the same geometry and pixels. "
+       << spread << "\n\n";
     std::vector<std::string> groups;
     for (const AccuracyRow& r : rows)
         if (std::find(groups.begin(), groups.end(), r.group()) == groups.end())
@@ -218,12 +217,9 @@ int run(AccuracyArgs& a) {
     }
     if (sizes.empty())
         return report(makeError(ErrorCode::InvalidInput, "the list is empty", "--resolutions"));
-    std::error_code ec;
-    std::filesystem::create_directories(a.output, ec);
-    if (ec || !std::filesystem::is_directory(a.output))
-        return report(
-            makeError(ErrorCode::IoError, "cannot create the output folder", "--output", a.output));
+    if (auto f = makeOutputFolder(a.timing.output); !f) return report(f.error());
 
+    coldShaderCacheUnlessSet();
     auto renderer = Renderer::create(a.device.desc());
     if (!renderer) return report(renderer.error());
     std::vector<int> msaa;
@@ -274,7 +270,7 @@ int run(AccuracyArgs& a) {
                 auto ref = raycastReference(b.scene, o, 0.0, ro);
                 if (!ref) return report(ref.error());
                 references[{name, s, w, h}] = std::move(*ref);
-                if (!a.quiet)
+                if (!a.timing.quiet)
                     std::fprintf(stderr, "reference %s, shininess %g, %dx%d: %.1f s\n",
                                  name.c_str(), s, w, h, msSince(t0) / 1000.0);
             }
@@ -339,11 +335,12 @@ int run(AccuracyArgs& a) {
             return {};
         };
     }
-    if (!a.quiet)
+    if (!a.timing.quiet)
         std::fprintf(stderr, "timing %zu configurations, %d rounds of %d + %d frames each\n",
-                     configs.size(), a.timing.rounds, a.timing.warmup, a.timing.frames);
+                     configs.size(), a.timing.plan.rounds, a.timing.plan.warmup,
+                     a.timing.plan.frames);
     bool gpuClock = false;
-    if (auto t = timeInterleaved(*renderer, configs, a.timing, a.quiet, &gpuClock); !t)
+    if (auto t = timeInterleaved(*renderer, configs, a.timing.plan, a.timing.quiet, &gpuClock); !t)
         return report(t.error());
 
     for (std::size_t i = 0; i < configs.size(); ++i) {
@@ -353,6 +350,7 @@ int run(AccuracyArgs& a) {
         row.ms = c.ms();
         row.msMin = c.minMs();
         row.msWall = c.msWall();
+        row.spread = c.roundSpread();
         row.firstMs = c.firstFrameMs;
         row.pipelines = c.pipelinesCreated;
         row.replacedNonFinite = c.nonFinite;
@@ -366,12 +364,16 @@ int run(AccuracyArgs& a) {
     for (const AccuracyRow& r : rows)
         csv += csvRow(r);
     const std::string machine = machineDescription(*renderer);
-    const std::string md = summaryMarkdown(rows, a, machine, gpuClock, referenceSeconds);
-    const std::filesystem::path dir(a.output);
+    std::vector<double> spreads;
+    for (const TimedConfig& c : configs)
+        spreads.push_back(c.roundSpread());
+    const std::string md =
+        summaryMarkdown(rows, a, machine, gpuClock, referenceSeconds, spreadSentence(spreads));
+    const std::filesystem::path dir(a.timing.output);
     for (auto [name, text] : {std::pair{"accuracy.csv", csv}, std::pair{"accuracy.md", md},
                               std::pair{"accuracy.svg", accuracyPlotSvg(rows)}})
         if (auto w = writeTextFile((dir / name).string(), text); !w) return report(w.error());
-    if (!a.quiet) std::fputs(md.c_str(), stdout);
+    if (!a.timing.quiet) std::fputs(md.c_str(), stdout);
     std::printf("wrote %s, %s and %s\n", (dir / "accuracy.csv").c_str(),
                 (dir / "accuracy.svg").c_str(), (dir / "accuracy.md").c_str());
     return kOk;
@@ -401,27 +403,14 @@ Runner addAccuracyBench(CLI::App& bench) {
     a->resolutionsOption = cmd->add_option("--resolutions", a->resolutions, "Image sizes WxH")
                                ->delimiter(',')
                                ->capture_default_str();
-    a->roundsOption = cmd->add_option("--rounds", a->timing.rounds, "Interleaved rounds")
-                          ->capture_default_str()
-                          ->check(CLI::Range(1, 1000));
-    a->framesOption =
-        cmd->add_option("--frames", a->timing.frames, "Timed frames per configuration and round")
-            ->capture_default_str()
-            ->check(CLI::Range(1, 10000));
-    cmd->add_option("--warmup", a->timing.warmup, "Untimed frames before them")
-        ->capture_default_str()
-        ->check(CLI::Range(1, 1000));
     cmd->add_option("--reference-samples", a->referenceSamples,
                     "Reference box filter: N x N rays per pixel")
         ->capture_default_str()
         ->check(CLI::Range(1, 64));
-    cmd->add_flag(
-        "--quick", a->quick,
-        "Reduced sweep: segments 8,32,128, 320x180, 2 rounds of 3 frames (explicit options win)");
     cmd->add_flag("--no-floor", a->noFloor, "Do not time the trivial-shader floor");
-    cmd->add_flag("-q,--quiet", a->quiet, "No progress and no summary on the terminal");
-    cmd->add_option("-o,--output", a->output, "Folder for accuracy.csv, accuracy.svg, accuracy.md")
-        ->capture_default_str();
+    a->timing.output = "bench-accuracy";
+    a->timing.add(*cmd, "Reduced sweep: segments 8 to 256, 480x270, 3 frames per round",
+                  "Folder for accuracy.csv, accuracy.svg, accuracy.md");
     a->device.add(*cmd);
     return [a, cmd]() { return cmd->parsed() ? run(*a) : -1; };
 }

@@ -41,6 +41,7 @@ struct AccuracyRow {
     double ms = 0.0;           ///< median of the rounds' median frame times
     double msMin = 0.0;        ///< fastest timed frame
     double msWall = 0.0;       ///< median render() wall time, readback included
+    double spread = 0.0;       ///< (slowest - fastest round median) / ms: the drift seen
     double firstMs = 0.0;      ///< the first frame (pipeline JIT when it compiled variants)
     std::size_t pipelines = 0; ///< variants the first frame compiled
     double floorMs = -1.0; ///< the trivial shader on the same geometry and pixels; < 0: not timed

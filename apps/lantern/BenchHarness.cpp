@@ -2,6 +2,7 @@
 // speed`: interleaved rounds with warm-up and medians (numerics.md sections 5 and 7.4).
 #include "BenchHarness.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -56,6 +57,53 @@ Result<void> timeInterleaved(Renderer& renderer, std::vector<TimedConfig>& confi
     return {};
 }
 
+void TimingOptions::add(CLI::App& app, const std::string& quickHelp,
+                        const std::string& outputHelp) {
+    m_rounds = app.add_option("--rounds", plan.rounds, "Interleaved rounds")
+                   ->capture_default_str()
+                   ->check(CLI::Range(1, 1000));
+    m_frames = app.add_option("--frames", plan.frames, "Timed frames per configuration and round")
+                   ->capture_default_str()
+                   ->check(CLI::Range(1, 10000));
+    app.add_option("--warmup", plan.warmup,
+                   "Untimed frames before them (at least 1: the first is JIT)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1000));
+    app.add_flag("--quick", quick, quickHelp + " (options given explicitly win)");
+    app.add_flag("-q,--quiet", quiet, "No progress and no summary on the terminal");
+    app.add_option("-o,--output", output, outputHelp)->capture_default_str();
+}
+
+void TimingOptions::applyQuick(int rounds, int frames) {
+    if (!quick) return;
+    if (!m_rounds->count()) plan.rounds = rounds;
+    if (!m_frames->count()) plan.frames = frames;
+}
+
+Result<void> makeOutputFolder(const std::string& path) {
+    std::error_code ec;
+    std::filesystem::create_directories(path, ec);
+    if (ec || !std::filesystem::is_directory(path))
+        return makeError(ErrorCode::IoError, "cannot create the output folder", "--output", path);
+    return {};
+}
+
+double TimedConfig::roundSpread() const {
+    if (roundMedians.empty() || !(ms() > 0.0)) return 0.0;
+    const auto [lo, hi] = std::minmax_element(roundMedians.begin(), roundMedians.end());
+    return (*hi - *lo) / ms();
+}
+
+std::string spreadSentence(std::vector<double> spreads) {
+    return "Round-to-round spread of a configuration's median (slowest minus fastest round, over "
+           "the median), median over the configurations: " +
+           num(100.0 * median(std::move(spreads)), "%.0f") + " %.";
+}
+
+void coldShaderCacheUnlessSet() {
+    setenv("MESA_SHADER_CACHE_DISABLE", "true", 0);
+}
+
 std::string machineDescription(const Renderer& renderer) {
     std::string cpu = "unknown CPU";
     std::ifstream info("/proc/cpuinfo");
@@ -65,9 +113,11 @@ std::string machineDescription(const Renderer& renderer) {
             break;
         }
     const char* threads = std::getenv("LP_NUM_THREADS");
+    const char* cache = std::getenv("MESA_SHADER_CACHE_DISABLE");
     std::ostringstream s;
     s << "CPU " << cpu << ", " << std::thread::hardware_concurrency()
-      << " cores, LP_NUM_THREADS=" << (threads ? threads : "(unset: one per core)") << "; device "
+      << " cores, LP_NUM_THREADS=" << (threads ? threads : "(unset: one per core)")
+      << ", MESA_SHADER_CACHE_DISABLE=" << (cache ? cache : "(unset)") << "; device "
       << renderer.device().name << " (" << renderer.device().driver << ")";
     return s.str();
 }

@@ -25,6 +25,24 @@ struct TimingPlan {
     int frames = 5;
 };
 
+/// The options every timed benchmark shares: --rounds, --frames, --warmup, --quick, --quiet and
+/// --output.
+struct TimingOptions {
+    TimingPlan plan;
+    bool quick = false, quiet = false;
+    std::string output;
+
+    void add(CLI::App& app, const std::string& quickHelp, const std::string& outputHelp);
+    /// With --quick: these rounds and frames unless the command line gave them.
+    void applyQuick(int rounds, int frames);
+
+private:
+    CLI::Option *m_rounds = nullptr, *m_frames = nullptr;
+};
+
+/// Creates the output folder (IoError naming --output when it cannot be made).
+Result<void> makeOutputFolder(const std::string& path);
+
 /// One configuration to time, and what timing it found.
 struct TimedConfig {
     std::string label; ///< for progress lines
@@ -44,6 +62,8 @@ struct TimedConfig {
     double ms() const { return median(roundMedians); } ///< median of the round medians
     double minMs() const { return minimum(frameMs); }
     double msWall() const { return median(wallMs); }
+    /// (slowest - fastest round median) / ms(): how much the machine drifted during the run.
+    double roundSpread() const;
 };
 
 /// Times every configuration in interleaved rounds on `renderer`. The frame time is the GPU
@@ -52,7 +72,16 @@ struct TimedConfig {
 Result<void> timeInterleaved(Renderer& renderer, std::vector<TimedConfig>& configs,
                              const TimingPlan& plan, bool quiet, bool* usedGpuClock);
 
-/// A markdown paragraph describing the machine: CPU, cores, LP_NUM_THREADS, device, driver.
+/// The median of configurations' round spreads (TimedConfig::roundSpread), as a sentence.
+std::string spreadSentence(std::vector<double> spreads);
+
+/// Turns Mesa's on-disk shader cache off for this process unless the environment already
+/// says what to do (MESA_SHADER_CACHE_DISABLE set): a first frame then shows the whole JIT
+/// cost, as numerics.md section 7.4 asks. Call before Renderer::create.
+void coldShaderCacheUnlessSet();
+
+/// A markdown paragraph describing the machine: CPU, cores, LP_NUM_THREADS, shader cache,
+/// device, driver.
 std::string machineDescription(const Renderer& renderer);
 
 /// This process's command line, arguments joined by spaces (for "reproduced with").

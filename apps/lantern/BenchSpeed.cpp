@@ -24,22 +24,19 @@ struct SpeedArgs {
     std::vector<std::string> shading{"flat", "gouraud", "phong"};
     std::vector<int> lights{1, 2, 4, 8, 16, 32, 64, 128, 256};
     std::vector<double> triangles{1e3, 1e4, 1e5, 1e6, 1e7};
-    TimingPlan timing;
-    bool quick = false, quiet = false;
-    std::string output = "bench-speed";
+    TimingOptions timing;
     DeviceOptions device;
     CLI::Option *widthOption = nullptr, *heightOption = nullptr, *lightsOption = nullptr,
-                *trianglesOption = nullptr, *roundsOption = nullptr, *framesOption = nullptr;
+                *trianglesOption = nullptr;
 };
 
 void applyQuick(SpeedArgs& a) {
-    if (!a.quick) return;
+    if (!a.timing.quick) return;
     if (!a.widthOption->count()) a.width = 640;
     if (!a.heightOption->count()) a.height = 360;
     if (!a.lightsOption->count()) a.lights = {1, 8, 64};
     if (!a.trianglesOption->count()) a.triangles = {1e3, 1e4, 1e5};
-    if (!a.roundsOption->count()) a.timing.rounds = 2;
-    if (!a.framesOption->count()) a.timing.frames = 3;
+    a.timing.applyQuick(2, 3);
 }
 
 // One measured configuration of a section.
@@ -226,7 +223,7 @@ private:
 
 std::string csvHeader() {
     return "section,scene,width,height,shading,features,lights,triangles,msaa,ms_per_frame,ms_min,"
-           "ms_wall,first_frame_ms,pipelines_compiled,floor_ms,x_floor\n";
+           "ms_wall,ms_round_spread,first_frame_ms,pipelines_compiled,floor_ms,x_floor\n";
 }
 
 const SpeedRow* find(const Section& s, const std::string& shading, const std::string& features,
@@ -316,13 +313,10 @@ int run(SpeedArgs& a) {
     if (a.width < 1 || a.height < 1 || a.width > 16384 || a.height > 16384)
         return report(makeError(ErrorCode::InvalidInput, "image sides must be in 1..16384",
                                 "--width/--height"));
-    std::error_code ec;
-    std::filesystem::create_directories(a.output, ec);
-    if (ec || !std::filesystem::is_directory(a.output))
-        return report(
-            makeError(ErrorCode::IoError, "cannot create the output folder", "--output", a.output));
+    if (auto f = makeOutputFolder(a.timing.output); !f) return report(f.error());
     auto loaded = loadScene(a.scene);
     if (!loaded) return report(loaded.error());
+    coldShaderCacheUnlessSet();
     auto renderer = Renderer::create(a.device.desc());
     if (!renderer) return report(renderer.error());
 
@@ -333,6 +327,7 @@ int run(SpeedArgs& a) {
        << "`\n\n";
     std::string csv = csvHeader();
     bool gpuClock = true;
+    std::vector<double> spreads;
     for (const std::string& name :
          {std::string("modes"), std::string("lights"), std::string("triangles")}) {
         if (std::find(a.sections.begin(), a.sections.end(), name) == a.sections.end()) continue;
@@ -340,13 +335,17 @@ int run(SpeedArgs& a) {
                        : name == "lights" ? bench.lights(*loaded)
                                           : bench.triangles();
         if (!section) return report(section.error());
-        if (!a.quiet)
+        if (!a.timing.quiet)
             std::fprintf(stderr, "section %s: %zu configurations\n", name.c_str(),
                          section->configs.size());
         bool clock = true;
-        if (auto t = timeInterleaved(*renderer, section->configs, a.timing, a.quiet, &clock); !t)
+        if (auto t =
+                timeInterleaved(*renderer, section->configs, a.timing.plan, a.timing.quiet, &clock);
+            !t)
             return report(t.error());
         gpuClock = gpuClock && clock;
+        for (const TimedConfig& c : section->configs)
+            spreads.push_back(c.roundSpread());
         for (const SpeedRow& r : section->rows) {
             const TimedConfig& c = section->configs[r.config];
             const double floor = section->configs[r.floor].ms();
@@ -354,23 +353,23 @@ int run(SpeedArgs& a) {
             line << r.section << ',' << r.scene << ',' << r.width << ',' << r.height << ','
                  << r.shading << ',' << r.features << ',' << r.lights << ',' << r.triangles << ','
                  << r.msaa << ',' << num(c.ms()) << ',' << num(c.minMs()) << ',' << num(c.msWall())
-                 << ',' << num(c.firstFrameMs) << ',' << c.pipelinesCreated << ',' << num(floor)
-                 << ',' << num(c.ms() / floor) << '\n';
+                 << ',' << num(c.roundSpread(), "%.3f") << ',' << num(c.firstFrameMs) << ','
+                 << c.pipelinesCreated << ',' << num(floor) << ',' << num(c.ms() / floor) << '\n';
             csv += line.str();
         }
         sectionMarkdown(md, *section, name, *modes);
     }
     md << "Frame time: "
        << (gpuClock ? "the render pass on the device's timestamps" : "render() wall time")
-       << ", median of " << a.timing.rounds << " rounds' medians of " << a.timing.frames
-       << " frames after " << a.timing.warmup
+       << ", median of " << a.timing.plan.rounds << " rounds' medians of " << a.timing.plan.frames
+       << " frames after " << a.timing.plan.warmup
        << " warm-up frames; within a section every configuration is interleaved with "
        << "the others in each round. The floor draws the same geometry over the same pixels with a "
-       << "constant-colour shader (FeatureMode::Floor).\n";
-    const std::filesystem::path dir(a.output);
+       << "constant-colour shader (FeatureMode::Floor). " << spreadSentence(spreads) << "\n";
+    const std::filesystem::path dir(a.timing.output);
     for (auto [file, text] : {std::pair{"speed.csv", csv}, std::pair{"speed.md", md.str()}})
         if (auto w = writeTextFile((dir / file).string(), text); !w) return report(w.error());
-    if (!a.quiet) std::fputs(md.str().c_str(), stdout);
+    if (!a.timing.quiet) std::fputs(md.str().c_str(), stdout);
     std::printf("wrote %s and %s\n", (dir / "speed.csv").c_str(), (dir / "speed.md").c_str());
     return kOk;
 }
@@ -403,21 +402,10 @@ Runner addSpeedBench(CLI::App& bench) {
         cmd->add_option("--triangles", a->triangles, "Triangle counts (approximate)")
             ->delimiter(',')
             ->capture_default_str();
-    a->roundsOption = cmd->add_option("--rounds", a->timing.rounds, "Interleaved rounds")
-                          ->capture_default_str()
-                          ->check(CLI::Range(1, 1000));
-    a->framesOption =
-        cmd->add_option("--frames", a->timing.frames, "Timed frames per configuration and round")
-            ->capture_default_str()
-            ->check(CLI::Range(1, 10000));
-    cmd->add_option("--warmup", a->timing.warmup, "Untimed frames before them")
-        ->capture_default_str()
-        ->check(CLI::Range(1, 1000));
-    cmd->add_flag("--quick", a->quick,
-                  "Reduced run: 640x360, lights 1,8,64, up to 1e5 triangles, 2 rounds of 3 frames");
-    cmd->add_flag("-q,--quiet", a->quiet, "No progress and no summary on the terminal");
-    cmd->add_option("-o,--output", a->output, "Folder for speed.csv and speed.md")
-        ->capture_default_str();
+    a->timing.output = "bench-speed";
+    a->timing.add(*cmd,
+                  "Reduced run: 640x360, lights 1,8,64, up to 1e5 triangles, 2 rounds of 3 frames",
+                  "Folder for speed.csv and speed.md");
     a->device.add(*cmd);
     return [a, cmd]() { return cmd->parsed() ? run(*a) : -1; };
 }

@@ -17,19 +17,11 @@
 namespace lantern {
 
 AnalyticShape AnalyticShape::sphere(int mesh, double radius) {
-    AnalyticShape s;
-    s.mesh = mesh;
-    s.kind = AnalyticKind::Sphere;
-    s.radius = radius;
-    return s;
+    return AnalyticShape{mesh, AnalyticKind::Sphere, radius, 2.0};
 }
 
 AnalyticShape AnalyticShape::plane(int mesh, double size) {
-    AnalyticShape s;
-    s.mesh = mesh;
-    s.kind = AnalyticKind::Plane;
-    s.size = size;
-    return s;
+    return AnalyticShape{mesh, AnalyticKind::Plane, 1.0, size};
 }
 
 Primitive tessellate(const AnalyticShape& shape, int segments) {
