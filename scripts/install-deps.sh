@@ -22,7 +22,7 @@ build_pkgs=(
 slurm_pkgs=(slurm-wlm slurmctld slurmd slurm-client munge)
 test_pkgs=(
     xvfb xauth xdotool x11-utils openimageio-tools vulkan-tools
-    clang-14 libclang-rt-14-dev valgrind python3
+    clang-14 libclang-rt-14-dev valgrind python3 librsvg2-bin
     "${slurm_pkgs[@]}" python3-yaml
 )
 
