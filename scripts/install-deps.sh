@@ -2,9 +2,11 @@
 # Installs, with apt-get, every Debian 12 package Lantern needs to build, run and test;
 # does nothing (and needs no root) when all of them are already installed.
 #
-# Usage: scripts/install-deps.sh [build|test|all]   (default: all)
+# Usage: scripts/install-deps.sh [build|test|all|slurm]   (default: all)
 #   build  what `cmake --build` and `lantern render` need
-#   test   build + the tools the test suite drives (Xvfb, xdotool, oiiotool, valgrind, clang)
+#   test   build + the tools the test suite drives (Xvfb, xdotool, oiiotool, valgrind, clang,
+#          and a single-node Slurm for the farm tests)
+#   slurm  only Slurm and munge (scripts/slurm-single-node.sh install)
 set -euo pipefail
 
 what=${1:-all}
@@ -16,16 +18,20 @@ build_pkgs=(
     libcli11-dev libfmt-dev libglfw3-dev libimgui-dev libx11-dev
     libgtest-dev libgmock-dev libbenchmark-dev
 )
+# The farm tests start a private single-node Slurm (scripts/slurm-single-node.sh).
+slurm_pkgs=(slurm-wlm slurmctld slurmd slurm-client munge)
 test_pkgs=(
     xvfb xauth xdotool x11-utils openimageio-tools vulkan-tools
-    clang-14 libclang-rt-14-dev valgrind python3
+    clang-14 libclang-rt-14-dev valgrind python3 librsvg2-bin
+    "${slurm_pkgs[@]}" python3-yaml
 )
 
 case "$what" in
 build) pkgs=("${build_pkgs[@]}") ;;
 test | all) pkgs=("${build_pkgs[@]}" "${test_pkgs[@]}") ;;
+slurm) pkgs=("${slurm_pkgs[@]}") ;;
 *)
-    echo "usage: $0 [build|test|all]" >&2
+    echo "usage: $0 [build|test|all|slurm]" >&2
     exit 2
     ;;
 esac

@@ -5,9 +5,11 @@
 namespace lantern::cli {
 
 Runner addSequenceBench(CLI::App& bench);
+Runner addAccuracyBench(CLI::App& bench);
+Runner addSpeedBench(CLI::App& bench);
 
 std::vector<Runner> addMoreBenchCommands(CLI::App& bench) {
-    return {addSequenceBench(bench)};
+    return {addSequenceBench(bench), addAccuracyBench(bench), addSpeedBench(bench)};
 }
 
 } // namespace lantern::cli

@@ -14,5 +14,6 @@ Runner addRenderCommand(CLI::App& app);
 Runner addInfoCommand(CLI::App& app);
 Runner addBenchCommand(CLI::App& app);
 Runner addViewCommand(CLI::App& app);
+Runner addFarmCommand(CLI::App& app); // docs/farm.md
 
 } // namespace lantern::cli

@@ -95,6 +95,7 @@ struct RenderArgs {
     std::uint64_t maxSize = std::uint64_t(1) << 30;
     std::string background;
     std::string frames;
+    std::string frameList; // --frame-list: explicit frames, e.g. those a farm job is missing
     double fps = 24.0;
     std::string shard;
     int encoderThreads = 0;
@@ -151,9 +152,15 @@ double medianOf(std::vector<double> v) {
 int runSequence(const RenderArgs& a, Renderer& renderer, const PreparedScene& prepared,
                 const RenderOptions& options, const ExrOptions& exr, const std::vector<std::string>& outputs) {
     SequenceOptions seq;
-    auto range = parseFrameRange(a.frames);
-    if (!range) return report(range.error());
-    seq.frames = *range;
+    if (!a.frameList.empty()) {
+        auto list = parseFrameList(a.frameList);
+        if (!list) return report(list.error());
+        seq.frameList = std::move(*list);
+    } else {
+        auto range = parseFrameRange(a.frames);
+        if (!range) return report(range.error());
+        seq.frames = *range;
+    }
     if (!a.shard.empty()) {
         auto shard = parseShard(a.shard);
         if (!shard) return report(shard.error());
@@ -172,7 +179,7 @@ int runSequence(const RenderArgs& a, Renderer& renderer, const PreparedScene& pr
     const SequenceReport& r = *result;
     for (int frame : r.framesWritten)
         for (const std::string& out : outputs) std::cout << expandFramePattern(out, frame) << "\n";
-    const std::size_t total = shardFrames(seq.frames, seq.shard).size();
+    const std::size_t total = sequenceFrames(seq).size();
     std::fprintf(stderr,
                  "lantern: %zu of %zu frames written in %.2f s (%.2f fps); per frame (median): render "
                  "%.1f ms (GPU %.1f ms), encode %.1f ms on %d threads; CPU %.1f s; at most %zu frames "
@@ -224,9 +231,13 @@ int run(const RenderArgs& a) {
         return report(makeError(ErrorCode::InvalidInput, "unknown compression \"" + a.compression + "\"",
                                 "--compression"));
     exr.compression = *compression;
+    const bool sequence = !a.frames.empty() || !a.frameList.empty();
+    if (!a.frames.empty() && !a.frameList.empty())
+        return report(makeError(ErrorCode::Usage, "--frames and --frame-list cannot be combined",
+                                "--frame-list"));
     std::vector<std::string> outputs = a.outputs;
-    if (outputs.empty()) outputs.push_back(a.frames.empty() ? "out/render.exr" : "out/frame_####.exr");
-    if (!a.frames.empty() && a.timeGiven)
+    if (outputs.empty()) outputs.push_back(sequence ? "out/frame_####.exr" : "out/render.exr");
+    if (sequence && a.timeGiven)
         return report(makeError(ErrorCode::Usage, "--time and --frames cannot be combined", "--time"));
     if (auto r = checkImagePaths(outputs, "--output"); !r) return report(r.error());
 
@@ -267,7 +278,7 @@ int run(const RenderArgs& a) {
     }
     auto prepared = renderer->prepare(shared);
     if (!prepared) return report(prepared.error());
-    if (!a.frames.empty()) return runSequence(a, *renderer, *prepared, options, exr, outputs);
+    if (sequence) return runSequence(a, *renderer, *prepared, options, exr, outputs);
     if (!a.shard.empty())
         return report(makeError(ErrorCode::Usage, "--shard needs --frames", "--shard"));
     auto image = renderer->render(*prepared, options, a.time);
@@ -299,6 +310,8 @@ Runner addRenderCommand(CLI::App& app) {
     cmd->add_option("--background", args->background,
                     "Background colour R,G,B (opaque) or R,G,B,A, linear (default: transparent)");
     cmd->add_option("--frames", args->frames, "Render the sequence of frames A-B inclusive (frame k at time k/fps)");
+    cmd->add_option("--frame-list", args->frameList,
+                    "Render these frames, not a range: N,A-B,... (--shard splits the list by position)");
     cmd->add_option("--fps", args->fps, "Frames per second of the sequence")->capture_default_str()->check(CLI::PositiveNumber);
     cmd->add_option("--shard", args->shard, "Render only frames k with k mod N == I (I/N)");
     cmd->add_option("--encoder-threads", args->encoderThreads, "Threads encoding frames (0: one per core)")

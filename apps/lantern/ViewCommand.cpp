@@ -138,7 +138,6 @@ private:
     fs::file_time_type m_loadedTime{}, m_seenTime{};
     std::uintmax_t m_loadedSize = 0, m_seenSize = 0;
     Clock::time_point m_seenAt{}, m_lastWatch{};
-    bool m_reportedFailure = false;
 };
 
 Viewer* viewerOf(GLFWwindow* w) { return static_cast<Viewer*>(glfwGetWindowUserPointer(w)); }

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     std::vector<Runner> runners = {addRenderCommand(app), addInfoCommand(app), addBenchCommand(app),
                                    addViewCommand(app)};
+    runners.push_back(addFarmCommand(app));
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

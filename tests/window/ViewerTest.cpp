@@ -474,5 +474,43 @@ TEST_F(ViewerTest, WatchReloadsTheFileAndKeepsTheCamera) {
     expectCleanExit(viewer);
 }
 
+TEST_F(ViewerTest, WatchKeepsTheLastGoodSceneWhileTheFileIsHalfWritten) {
+    const fs::path source = sharedDir() / "assets/gltf-samples/Box/glTF-Embedded/Box.gltf";
+    ASSERT_TRUE(fs::exists(source)) << source;
+    const fs::path scene = m_dir / "box.gltf";
+    fs::copy_file(source, scene);
+    ASSERT_EQ(runLantern({"info", scene.string()}).exitCode, 0);
+    ViewerRun viewer(*m_server, m_dir);
+    ASSERT_TRUE(viewer.start({scene.string(), "--width", "160", "--height", "120", "--no-panel", "--watch"}));
+    auto first = viewer.screenshot();
+    ASSERT_TRUE(first);
+    // A writer that truncates the file in place and stops half-way (an editor saving, a copy
+    // still running): the viewer must refuse that version and keep the last good one.
+    const std::string text = readText(scene);
+    {
+        std::ofstream out(scene, std::ios::trunc);
+        out << text.substr(0, text.size() / 2);
+    }
+    const auto deadline = std::chrono::steady_clock::now() + 30s;
+    while (viewer.err().find("cannot be loaded; still showing the previous version") == std::string::npos &&
+           std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(50ms);
+    ASSERT_NE(viewer.err().find("cannot be loaded; still showing the previous version"), std::string::npos)
+        << viewer.err();
+    EXPECT_NE(viewer.err().find(scene.filename().string()), std::string::npos) << "the error names the file";
+    auto during = viewer.screenshot();
+    ASSERT_TRUE(during);
+    EXPECT_EQ(differingPixels(readImage(first->first), readImage(during->first)), std::size_t(0));
+    // The writer finishes: the complete file is loaded again.
+    {
+        std::ofstream out(scene, std::ios::trunc);
+        out << text;
+    }
+    while (viewer.out().find("reloaded: ") == std::string::npos && std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(50ms);
+    EXPECT_NE(viewer.out().find("reloaded: "), std::string::npos) << viewer.err();
+    expectCleanExit(viewer);
+}
+
 } // namespace
 } // namespace lantern::test

@@ -54,8 +54,10 @@ struct View {
 };
 
 /// Which pipeline features are compiled in: only those the scene needs (the default), or all
-/// of them (for measuring what specialisation saves).
-enum class FeatureMode { Specialised, AllFeatures };
+/// of them (for measuring what specialisation saves). Floor draws the same geometry with a
+/// trivial shader (constant white, no lighting): the cost of rasterising alone, the floor that
+/// `lantern bench speed` divides frame times by.
+enum class FeatureMode { Specialised, AllFeatures, Floor };
 
 /// Everything that affects a render besides the scene and the time.
 struct RenderOptions {

@@ -38,6 +38,16 @@ LANTERN_API Result<Shard> parseShard(std::string_view text);
 /// The frames of `range` that `shard` renders, in order.
 LANTERN_API std::vector<int> shardFrames(const FrameRange& range, const Shard& shard);
 
+/// Parses a frame list "A,B,C-D" (ranges inclusive, frames >= 0, at least one frame). The
+/// frames come back ascending, each once.
+Result<std::vector<int>> parseFrameList(std::string_view text);
+/// Writes ascending frames as the shortest "A,B,C-D" text that parseFrameList reads back.
+std::string formatFrameList(const std::vector<int>& frames);
+/// The frames of `list` that `shard` renders: those at positions p with p mod count == index.
+/// A list is split by position, not frame number, so its shards stay balanced whichever
+/// frames it holds.
+std::vector<int> shardFrameList(const std::vector<int>& list, const Shard& shard);
+
 /// Replaces each run of '#' in `pattern` by `frame` zero-padded to the run's length
 /// ("out/f_####.exr", 7 -> "out/f_0007.exr"); frames wider than the run are written in full.
 LANTERN_API std::string expandFramePattern(std::string_view pattern, int frame);
@@ -56,6 +66,9 @@ struct SequenceProgress {
 
 struct SequenceOptions {
     FrameRange frames;
+    /// When not empty: render these frames (ascending, from parseFrameList) instead of the
+    /// range `frames`; the shard then splits the list by position (shardFrameList).
+    std::vector<int> frameList;
     double fps = 24.0;  ///< frame k is rendered at time k / fps seconds
     Shard shard;
     /// Output patterns (.exr or .png, with '#' runs for the frame number); every frame is
@@ -70,6 +83,9 @@ struct SequenceOptions {
     /// Called on the rendering thread after frames are written.
     std::function<void(const SequenceProgress&)> progress;
 };
+
+/// The frames a sequence run renders, in order: its shard of `frameList`, else of `frames`.
+std::vector<int> sequenceFrames(const SequenceOptions& sequence);
 
 /// What a sequence did and how long each stage took.
 struct SequenceReport {

@@ -1,6 +1,7 @@
 // Frame ranges, shards and file-name patterns for sequences.
 #include <lantern/Sequence.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
 
@@ -43,6 +44,65 @@ std::vector<int> shardFrames(const FrameRange& range, const Shard& shard) {
     for (int k = range.first; k <= range.last; ++k)
         if (shard.contains(k)) frames.push_back(k);
     return frames;
+}
+
+Result<std::vector<int>> parseFrameList(std::string_view text) {
+    std::vector<int> frames;
+    std::size_t start = 0;
+    while (start <= text.size()) {
+        const std::size_t comma = std::min(text.find(',', start), text.size());
+        const std::string_view item = text.substr(start, comma - start);
+        const std::size_t dash = item.find('-');
+        int first = 0, last = 0;
+        const bool ok =
+            dash == std::string_view::npos
+                ? parseInt(item, first) && parseInt(item, last)
+                : parseInt(item.substr(0, dash), first) && parseInt(item.substr(dash + 1), last);
+        if (!ok || first < 0 || last < first)
+            return makeError(ErrorCode::InvalidInput,
+                             "\"" + std::string(item) + "\" in \"" + std::string(text) +
+                                 "\" is not a frame N or a range A-B with 0 <= A <= B",
+                             "--frame-list");
+        // One range may not make the list unreasonably long (a typo like 0-2000000000).
+        if (frames.size() + std::size_t(last - first) >= std::size_t(1) << 24)
+            return makeError(ErrorCode::InvalidInput,
+                             "more than 16777216 frames in \"" + std::string(text) + "\"",
+                             "--frame-list");
+        for (int k = first;; ++k) { // not k <= last: last may be INT_MAX
+            frames.push_back(k);
+            if (k == last) break;
+        }
+        start = comma + 1;
+    }
+    std::sort(frames.begin(), frames.end());
+    frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
+    return frames;
+}
+
+std::string formatFrameList(const std::vector<int>& frames) {
+    std::string out;
+    for (std::size_t i = 0; i < frames.size();) {
+        std::size_t j = i;
+        while (j + 1 < frames.size() && frames[j + 1] == frames[j] + 1)
+            ++j;
+        if (!out.empty()) out += ',';
+        out += std::to_string(frames[i]);
+        if (j > i) out += '-' + std::to_string(frames[j]);
+        i = j + 1;
+    }
+    return out;
+}
+
+std::vector<int> shardFrameList(const std::vector<int>& list, const Shard& shard) {
+    std::vector<int> frames;
+    for (std::size_t p = std::size_t(shard.index); p < list.size(); p += std::size_t(shard.count))
+        frames.push_back(list[p]);
+    return frames;
+}
+
+std::vector<int> sequenceFrames(const SequenceOptions& sequence) {
+    return sequence.frameList.empty() ? shardFrames(sequence.frames, sequence.shard)
+                                      : shardFrameList(sequence.frameList, sequence.shard);
 }
 
 bool hasFramePattern(std::string_view pattern) { return pattern.find('#') != std::string_view::npos; }

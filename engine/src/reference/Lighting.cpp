@@ -3,10 +3,9 @@
 
 #include "lantern_shared.h"
 
-#include <glm/geometric.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <string>
 
 namespace lantern::ref {
@@ -39,8 +38,8 @@ double glSpotFactor(const glm::dvec3& towardsPoint, const glm::dvec3& axis,
     return y <= oneMinusCosCutoff ? lobe(towardsPoint, axis, exponent) : 0.0;
 }
 
-double specularTerm(const glm::dvec3& n, const glm::dvec3& l, const glm::dvec3& v,
-                    double shininess, SpecularModel model) {
+double specularTerm(const glm::dvec3& n, const glm::dvec3& l, const glm::dvec3& v, double shininess,
+                    SpecularModel model) {
     if (shininess == 0.0) return 1.0;
     if (model == SpecularModel::Phong) {
         const glm::dvec3 r = 2.0 * glm::dot(n, l) * n - l;
@@ -152,8 +151,8 @@ glm::dvec3 shade(const glm::dvec3& V, const glm::dvec3& n, const MaterialSide& m
     return c.base + c.textured;
 }
 
-std::vector<EyeLight> eyeLights(const Scene& scene, const Pose& pose, const glm::dmat4& viewFromWorld,
-                                bool glCompat) {
+std::vector<EyeLight> eyeLights(const Scene& scene, const Pose& pose,
+                                const glm::dmat4& viewFromWorld, bool glCompat) {
     std::vector<EyeLight> out;
     auto place = [&](const Light& l, const std::string& fallbackName,
                      const glm::dmat4& viewFromLight) {

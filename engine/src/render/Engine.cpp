@@ -30,6 +30,7 @@ ProgramShaders programShaders(Program p) {
         return {ShaderId::gouraud_vert, ShaderId::gouraud_frag, ShaderId::gouraud_aov_frag};
     case Program::Flat: return {ShaderId::flat_vert, ShaderId::flat_frag, ShaderId::flat_aov_frag};
     case Program::GlFlat: return {ShaderId::glflat_vert, ShaderId::flat_frag, ShaderId::flat_aov_frag};
+    case Program::Floor: return {ShaderId::mesh_vert, ShaderId::floor_frag, ShaderId::floor_aov_frag};
     }
     return {ShaderId::mesh_vert, ShaderId::phong_frag, ShaderId::phong_aov_frag};
 }

@@ -123,6 +123,7 @@ const char* toString(Program p) noexcept {
     case Program::Gouraud: return "gouraud";
     case Program::Flat: return "flat";
     case Program::GlFlat: return "gl-flat";
+    case Program::Floor: return "floor";
     }
     return "?";
 }
@@ -493,7 +494,7 @@ Result<FramePlan> buildFramePlan(const Scene& scene, const RenderOptions& o, dou
                 const bool materialSpecular =
                     nonZero(mat.front.specular) || (mat.back && nonZero(mat.back->specular));
                 VariantKey& k = d.key;
-                k.program = lit.program;
+                k.program = o.features == FeatureMode::Floor ? Program::Floor : lit.program;
                 k.blend = blend;
                 k.aov = o.aovs.any();
                 k.samples = std::uint32_t(o.msaa);

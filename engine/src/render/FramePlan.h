@@ -25,6 +25,7 @@ enum class Program : std::uint32_t {
     Gouraud,  ///< pervertex.vert + pervertex.frag: per vertex
     Flat,     ///< pervertex.vert(FLAT_CENTROID) + pervertex.frag(FLAT): per triangle centroid
     GlFlat,   ///< pervertex.vert(FLAT_PROVOKING) + pervertex.frag(FLAT): GL's provoking vertex
+    Floor,    ///< mesh.vert + floor.frag: constant colour, no lighting (FeatureMode::Floor)
 };
 const char* toString(Program program) noexcept;
 

@@ -251,6 +251,11 @@ ProbeReport PixelReference::explain(int x, int y, std::uint32_t drawId, std::uin
                                          perLight));
         break;
     }
+    case Program::Floor:
+        // The floor's constant white is not the equation: there is nothing to evaluate.
+        r.evaluations.push_back(ProbeEvaluation{"floor (constant white, unlit)", 1.0});
+        r.evaluations.back().colour = glm::dvec3(1.0);
+        break;
     case Program::Flat: {
         // At the centroid with the face normal, both from the object-space positions as the
         // flat streams are built (render/GpuScene.cpp); COLOR_0 averaged.

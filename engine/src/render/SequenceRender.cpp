@@ -60,7 +60,7 @@ Result<SequenceReport> Renderer::renderSequence(const PreparedScene& prepared, c
     if (!prepared) return makeError(ErrorCode::Usage, "renderSequence() needs a prepared scene");
     render::Engine& engine = *m_impl->engine;
     LANTERN_TRY(engine.checkOptions(options));
-    const std::vector<int> frames = shardFrames(seq.frames, seq.shard);
+    const std::vector<int> frames = sequenceFrames(seq);
     LANTERN_TRY(checkSequence(seq, frames));
     // A process killed mid-write (SIGKILL) leaves a temporary file; clear those of dead writers.
     std::set<std::filesystem::path> folders;

@@ -1,0 +1,104 @@
+// Reference: ground truth for the lighting model. A CPU ray caster in double precision renders
+// scenes whose meshes stand for analytic spheres and planes, with the exact surface and its
+// exact normal, the same camera, lights and materials as the renderer, and the lighting
+// equation of the scene contract (spec section 1) evaluated per sample; and the error metrics
+// that compare a render with it (the accuracy benchmark, `lantern bench accuracy`).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <lantern/Image.h>
+#include <lantern/Renderer.h>
+#include <lantern/Result.h>
+#include <lantern/Scene.h>
+#include <vector>
+
+namespace lantern {
+
+/// The analytic surfaces the reference can ray-cast.
+enum class AnalyticKind {
+    Sphere, ///< centred at the mesh's origin, as makeSphere() builds it
+    Plane,  ///< the square |x|, |y| <= size / 2 in the mesh's XY plane, normal +Z (makePlane())
+};
+
+/// Declares that Scene::meshes[mesh] stands for an exact surface in its own (object) space.
+/// The node transforms that place the mesh place the surface too (any affine transform: a
+/// scaled sphere is an ellipsoid, with the normals the inverse transpose gives).
+struct AnalyticShape {
+    int mesh = -1;
+    AnalyticKind kind = AnalyticKind::Sphere;
+    double radius = 1.0; ///< Sphere
+    double size = 2.0;   ///< Plane: side length
+
+    static AnalyticShape sphere(int mesh, double radius);
+    static AnalyticShape plane(int mesh, double size);
+};
+
+/// The triangle mesh a rasteriser draws for `shape` at a tessellation level: a sphere with
+/// `segments` around and max(2, segments / 2) rings (2 segments (rings - 1) triangles), a
+/// plane split into segments x segments quads. `segments` is clamped to at least 3 (sphere)
+/// or 1 (plane).
+Primitive tessellate(const AnalyticShape& shape, int segments);
+
+struct ReferenceOptions {
+    /// Which meshes are which analytic surfaces. Every mesh drawn by the scene must be listed.
+    std::vector<AnalyticShape> shapes;
+    /// The box image averages boxSamples x boxSamples stratified rays per pixel (>= 1).
+    int boxSamples = 8;
+    /// A pixel is interior when edgeProbes x edgeProbes rays spread over its whole square,
+    /// corners included, all meet the same surface (>= 2).
+    int edgeProbes = 4;
+    int threads = 0; ///< worker threads; 0: one per core
+};
+
+/// The reference pictures of one frame. Both images are premultiplied linear RGBA like a
+/// render (alpha: the covered fraction of the pixel; background pixels hold
+/// RenderOptions::background), top row first.
+struct ReferenceImage {
+    Image centre; ///< one ray through each pixel centre: what a one-sample rasteriser samples
+    Image box;    ///< the pixel's area average: the ideal anti-aliased picture
+    /// One per pixel: 1 where a single surface covers the whole pixel (the shading-only
+    /// comparison), 0 on silhouettes, on edges between surfaces and on the background.
+    std::vector<std::uint8_t> interior;
+    std::size_t rays = 0; ///< rays cast, all kinds
+};
+
+/// Ray-casts the scene at `timeSeconds` as the renderer would frame it under `options`: the
+/// same camera (RenderOptions::camera, resolved as the renderer resolves it), the lights and
+/// the lighting model (shading switches that change the equation: specular model, local
+/// viewer, two-sided, clamp), the materials and back-face culling. The shading mode is ignored:
+/// the reference is exact everywhere. Refused: InvalidInput for a drawn mesh without an
+/// AnalyticShape, a bad shape or bad options; Unsupported for what the reference does not
+/// model (several views, GL compatibility, textures, alpha blending).
+Result<ReferenceImage> raycastReference(const Scene& scene, const RenderOptions& options,
+                                        double timeSeconds, const ReferenceOptions& reference);
+
+/// Error statistics of one channel population (absolute errors of linear RGB values; max and
+/// 99th percentile are per pixel, over the worst of its three channels).
+struct ErrorStats {
+    std::size_t pixels = 0;
+    double rmse = 0.0; ///< over pixels and RGB channels
+    double max = 0.0;
+    double p99 = 0.0;
+};
+
+/// How far a render is from the reference (scene contract colours, linear HDR, before any
+/// tone mapping). Alpha is not compared: colour is premultiplied, so coverage errors show in
+/// RGB.
+struct ErrorMetrics {
+    ErrorStats whole;    ///< every pixel against the box image (shading and aliasing)
+    double psnr = 0.0;   ///< dB: 20 log10(largest box reference value / whole.rmse); +inf if exact
+    ErrorStats interior; ///< reference-interior pixels the render covers fully, against the
+                         ///< centre image: shading alone
+    ErrorStats silhouette; ///< every other pixel that either picture covers, against the box
+                           ///< image: geometry and aliasing
+    /// Highlight peak ratio: the render's largest value over the reference's largest value,
+    /// both over the reference's interior pixels (1: the highlight keeps its height).
+    double peakRatio = 0.0;
+    std::size_t nonFinite = 0; ///< NaN/Inf values in the render's colour
+};
+
+/// Compares a render (same size, same options) with its reference.
+Result<ErrorMetrics> measureError(const Image& rendered, const ReferenceImage& reference);
+
+} // namespace lantern

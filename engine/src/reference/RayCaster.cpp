@@ -1,0 +1,356 @@
+// The reference ray caster: exact spheres and planes in double precision, the renderer's own
+// camera resolution and light placement, and the lighting equation of reference/Lighting
+// (the shaders' twin) at every sample. Ground truth for the accuracy benchmark.
+#include "reference/Lighting.h"
+#include "render/FramePlan.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+#include <lantern/Reference.h>
+#include <limits>
+#include <string>
+#include <thread>
+
+namespace lantern {
+
+AnalyticShape AnalyticShape::sphere(int mesh, double radius) {
+    return AnalyticShape{mesh, AnalyticKind::Sphere, radius, 2.0};
+}
+
+AnalyticShape AnalyticShape::plane(int mesh, double size) {
+    return AnalyticShape{mesh, AnalyticKind::Plane, 1.0, size};
+}
+
+Primitive tessellate(const AnalyticShape& shape, int segments) {
+    if (shape.kind == AnalyticKind::Plane) return makePlane(shape.size, std::max(segments, 1));
+    segments = std::max(segments, 3);
+    return makeSphere(shape.radius, segments, std::max(2, segments / 2));
+}
+
+namespace {
+
+constexpr double kNoHit = std::numeric_limits<double>::infinity();
+
+// One placed analytic surface: the shape, where it is, and how it is drawn.
+struct Surface {
+    AnalyticShape shape;
+    glm::dmat4 modelFromView{1.0};
+    glm::dmat3 normalFromModel{1.0}; // eye-space normals, up to length (normalMatrix())
+    const Material* material = nullptr;
+};
+
+struct Ray {
+    glm::dvec3 origin{0.0};    // on the near plane, eye space
+    glm::dvec3 direction{0.0}; // not normalised: t = 1 reaches the mid-depth plane
+};
+
+struct Hit {
+    double t = kNoHit;
+    int surface = -1;
+    glm::dvec3 point{0.0};  // eye space
+    glm::dvec3 normal{0.0}; // unit, eye space, the surface's outward (front) side
+    bool front = true;
+};
+
+// Both roots of |o + t d|^2 = r^2 in ascending order (NaN-free); false without real roots.
+bool sphereRoots(const glm::dvec3& o, const glm::dvec3& d, double r, double roots[2]) {
+    const double a = glm::dot(d, d), b = glm::dot(o, d), c = glm::dot(o, o) - r * r;
+    const double disc = b * b - a * c;
+    if (!(disc >= 0.0) || !(a > 0.0)) return false;
+    // The stable pair: q never cancels, t1 = q / a and t2 = c / q.
+    const double q = -(b + std::copysign(std::sqrt(disc), b));
+    if (q == 0.0) {
+        roots[0] = roots[1] = 0.0;
+        return true;
+    }
+    roots[0] = q / a;
+    roots[1] = c / q;
+    if (roots[0] > roots[1]) std::swap(roots[0], roots[1]);
+    return true;
+}
+
+class Caster {
+public:
+    Caster(std::vector<Surface> surfaces, const render::ResolvedCamera& camera,
+           std::vector<ref::EyeLight> lights, const ref::Settings& settings,
+           const RenderOptions& options)
+        : m_surfaces(std::move(surfaces)), m_lights(std::move(lights)), m_settings(settings),
+          m_options(options), m_clipFromView(camera.clipFromView),
+          m_viewFromClip(glm::inverse(camera.clipFromView)),
+          m_nearDepth(options.depth == DepthMode::ReversedZ ? 1.0 : 0.0) {}
+
+    // The ray through framebuffer point (fx, fy): x from the left, y from the top, in pixels.
+    Ray rayAt(double fx, double fy) const {
+        const double x = 2.0 * fx / m_options.width - 1.0, y = 2.0 * fy / m_options.height - 1.0;
+        const glm::dvec4 a = m_viewFromClip * glm::dvec4(x, y, m_nearDepth, 1.0);
+        const glm::dvec4 b = m_viewFromClip * glm::dvec4(x, y, 0.5, 1.0);
+        Ray r;
+        r.origin = glm::dvec3(a) / a.w;
+        r.direction = glm::dvec3(b) / b.w - r.origin;
+        return r;
+    }
+
+    // The nearest surface the rasteriser would keep: in front of the near plane, before the
+    // far plane, not culled, not cut away by the alpha mask.
+    Hit trace(const Ray& ray) const {
+        Hit best;
+        for (std::size_t i = 0; i < m_surfaces.size(); ++i) {
+            const Surface& s = m_surfaces[i];
+            const glm::dvec3 o(s.modelFromView * glm::dvec4(ray.origin, 1.0));
+            const glm::dvec3 d(s.modelFromView * glm::dvec4(ray.direction, 0.0));
+            double ts[2];
+            int count = 0;
+            if (s.shape.kind == AnalyticKind::Sphere) {
+                if (sphereRoots(o, d, s.shape.radius, ts)) count = 2;
+            } else if (d.z != 0.0) {
+                ts[0] = -o.z / d.z;
+                const glm::dvec3 p = o + ts[0] * d;
+                const double h = 0.5 * s.shape.size;
+                if (std::abs(p.x) <= h && std::abs(p.y) <= h) count = 1;
+            }
+            for (int k = 0; k < count; ++k)
+                if (ts[k] >= 0.0 && ts[k] < best.t)
+                    keepIfDrawn(s, o + ts[k] * d, ray, ts[k], int(i), best);
+        }
+        return best;
+    }
+
+    // Premultiplied RGBA of a sample.
+    glm::dvec4 shade(const Hit& hit) const {
+        if (hit.surface < 0) return glm::dvec4(m_options.background);
+        const Material& mat = *m_surfaces[hit.surface].material;
+        const bool useBack = m_twoSided && !hit.front;
+        const MaterialSide& side = mat.side(useBack);
+        ref::Settings st = m_settings;
+        st.unlit = mat.unlit;
+        const glm::dvec3 n = useBack ? -hit.normal : hit.normal;
+        const ref::LightSums sums = ref::evaluateLighting(hit.point, n, side, m_lights, st);
+        const ref::MaterialColours mc = ref::materialColours(side, nullptr, false);
+        const ref::SplitColour split =
+            ref::splitColour(sums, mc.ambient, mc.diffuse, mat.ambientFollowsDiffuse, false);
+        glm::dvec3 c = split.base + split.textured;
+        if (m_options.clamp)
+            for (int k = 0; k < 3; ++k)
+                if (std::isfinite(c[k])) c[k] = std::clamp(c[k], 0.0, 1.0);
+        return glm::dvec4(c, 1.0);
+    }
+
+    void setTwoSided(bool twoSided) { m_twoSided = twoSided; }
+
+private:
+    // Records a candidate hit at model point p if the rasteriser would draw it there.
+    void keepIfDrawn(const Surface& s, const glm::dvec3& p, const Ray& ray, double t, int index,
+                     Hit& best) const {
+        const glm::dvec3 eye = ray.origin + t * ray.direction;
+        const glm::dvec4 clip = m_clipFromView * glm::dvec4(eye, 1.0);
+        if (!(clip.w > 0.0)) return;
+        const double depth = clip.z / clip.w;
+        if (depth < 0.0 || depth > 1.0) return;
+        const glm::dvec3 modelNormal =
+            s.shape.kind == AnalyticKind::Sphere ? p / s.shape.radius : glm::dvec3(0, 0, 1);
+        const glm::dvec3 n = ref::safeNormalize(s.normalFromModel * modelNormal);
+        const bool front = glm::dot(n, ray.direction) < 0.0;
+        const Material& mat = *s.material;
+        if (!front && !mat.doubleSided) return; // back-face culling
+        if (mat.alphaMode == AlphaMode::Mask &&
+            mat.side(m_twoSided && !front).diffuse.a < mat.alphaCutoff)
+            return;
+        best.t = t;
+        best.surface = index;
+        best.point = eye;
+        best.normal = n;
+        best.front = front;
+    }
+
+    std::vector<Surface> m_surfaces;
+    std::vector<ref::EyeLight> m_lights;
+    ref::Settings m_settings;
+    RenderOptions m_options;
+    glm::dmat4 m_clipFromView, m_viewFromClip;
+    double m_nearDepth;
+    bool m_twoSided = false;
+};
+
+Error refuse(ErrorCode code, std::string message, std::string object) {
+    return makeError(code, std::move(message), std::move(object));
+}
+
+Result<void> checkOptions(const Scene& scene, const RenderOptions& o, double time,
+                          const ReferenceOptions& r) {
+    if (o.width < 1 || o.height < 1 || double(o.width) * double(o.height) > double(1 << 28))
+        return refuse(ErrorCode::InvalidInput,
+                      "image size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
+                          " is empty or larger than 2^28 pixels",
+                      "--width/--height");
+    if (!std::isfinite(time))
+        return refuse(ErrorCode::InvalidInput, "time must be a finite number", "--time");
+    if (r.boxSamples < 1 || r.boxSamples > 64)
+        return refuse(ErrorCode::InvalidInput,
+                      "box samples per axis " + std::to_string(r.boxSamples) + " is not in 1..64",
+                      "ReferenceOptions::boxSamples");
+    if (r.edgeProbes < 2 || r.edgeProbes > 64)
+        return refuse(ErrorCode::InvalidInput,
+                      "edge probes per axis " + std::to_string(r.edgeProbes) + " is not in 2..64",
+                      "ReferenceOptions::edgeProbes");
+    if (!o.views.empty())
+        return refuse(
+            ErrorCode::Unsupported,
+            "the reference renders one full-image view; RenderOptions::views is not empty",
+            "views");
+    if (o.glCompat)
+        return refuse(ErrorCode::Unsupported,
+                      "GL compatibility changes how the rasteriser interpolates; the reference "
+                      "evaluates the scene contract's equation exactly",
+                      "--gl-compat");
+    if (o.root < -1 || o.root >= int(scene.roots.size()))
+        return refuse(ErrorCode::InvalidInput,
+                      "scene " + std::to_string(o.root) + " does not exist (the file has " +
+                          std::to_string(scene.roots.size()) + " scenes)",
+                      "--scene");
+    for (std::size_t i = 0; i < r.shapes.size(); ++i) {
+        const AnalyticShape& s = r.shapes[i];
+        const std::string object = "ReferenceOptions::shapes[" + std::to_string(i) + "]";
+        if (s.mesh < 0 || s.mesh >= int(scene.meshes.size()))
+            return refuse(ErrorCode::InvalidInput,
+                          "mesh " + std::to_string(s.mesh) + " does not exist (the scene has " +
+                              std::to_string(scene.meshes.size()) + " meshes)",
+                          object);
+        const double extent = s.kind == AnalyticKind::Sphere ? s.radius : s.size;
+        if (!(extent > 0.0) || !std::isfinite(extent))
+            return refuse(ErrorCode::InvalidInput,
+                          std::string(s.kind == AnalyticKind::Sphere ? "radius" : "size") +
+                              " must be a finite number > 0",
+                          object);
+        for (std::size_t j = 0; j < i; ++j)
+            if (r.shapes[j].mesh == s.mesh)
+                return refuse(ErrorCode::InvalidInput,
+                              "mesh " + std::to_string(s.mesh) + " is described twice", object);
+        if (scene.meshes[s.mesh].primitives.size() != 1)
+            return refuse(ErrorCode::InvalidInput,
+                          "an analytic mesh has exactly one primitive; mesh " +
+                              std::to_string(s.mesh) + " has " +
+                              std::to_string(scene.meshes[s.mesh].primitives.size()),
+                          object);
+    }
+    return {};
+}
+
+} // namespace
+
+Result<ReferenceImage> raycastReference(const Scene& scene, const RenderOptions& options,
+                                        double time, const ReferenceOptions& reference) {
+    LANTERN_TRY(scene.validate());
+    LANTERN_TRY(checkOptions(scene, options, time, reference));
+    const int root = options.root < 0 ? scene.defaultRoot : options.root;
+    const Pose pose = evaluatePose(scene, root, time);
+    auto camera = render::resolveCamera(scene, pose, options.camera,
+                                        double(options.width) / double(options.height),
+                                        options.depth, "camera");
+    if (!camera) return std::move(camera).error();
+    const render::ResolvedLighting lit = render::resolveLighting(scene, root, options);
+
+    static const Material kDefaultMaterial;
+    std::vector<Surface> surfaces;
+    for (std::size_t ni = 0; ni < scene.nodes.size(); ++ni) {
+        const Node& node = scene.nodes[ni];
+        if (!pose.visible[ni] || node.mesh < 0) continue;
+        const auto shape =
+            std::find_if(reference.shapes.begin(), reference.shapes.end(),
+                         [&](const AnalyticShape& s) { return s.mesh == node.mesh; });
+        const std::string object = "nodes[" + std::to_string(ni) + "]";
+        if (shape == reference.shapes.end())
+            return refuse(ErrorCode::InvalidInput,
+                          "draws mesh " + std::to_string(node.mesh) +
+                              ", which has no analytic description (the reference ray-casts only "
+                              "the spheres and planes listed in ReferenceOptions::shapes)",
+                          object);
+        const Primitive& prim = scene.meshes[node.mesh].primitives[0];
+        const Material& mat =
+            prim.material >= 0 ? scene.materials[prim.material] : kDefaultMaterial;
+        const std::string matObject = "materials[" + std::to_string(prim.material) + "]";
+        if (mat.baseColorTexture >= 0)
+            return refuse(ErrorCode::Unsupported,
+                          "textured materials are not modelled by the reference", matObject);
+        if (mat.alphaMode == AlphaMode::Blend)
+            return refuse(ErrorCode::Unsupported,
+                          "alpha-blended materials are not modelled by the reference", matObject);
+        Surface s;
+        s.shape = *shape;
+        const glm::dmat4 viewFromModel = camera->viewFromWorld * pose.worldFromNode[ni];
+        s.modelFromView = glm::inverse(viewFromModel);
+        s.normalFromModel = normalMatrix(viewFromModel);
+        if (!std::isfinite(s.modelFromView[0][0]) || s.normalFromModel == glm::dmat3(0.0))
+            return refuse(ErrorCode::InvalidInput,
+                          "the node's transform is singular: the surface has no inside", object);
+        s.material = &mat;
+        surfaces.push_back(s);
+    }
+
+    ref::Settings settings;
+    settings.globalAmbient = lit.model.globalAmbient;
+    settings.localViewer = lit.model.localViewer;
+    settings.specular = lit.model.specular;
+    settings.specularOn = true;
+    Caster caster(std::move(surfaces), *camera,
+                  ref::eyeLights(scene, pose, camera->viewFromWorld, false), settings, options);
+    caster.setTwoSided(lit.model.twoSided);
+
+    const int W = options.width, H = options.height;
+    const int N = reference.boxSamples, K = reference.edgeProbes;
+    ReferenceImage out;
+    out.centre = Image(W, H);
+    out.box = Image(W, H);
+    out.interior.assign(std::size_t(W) * std::size_t(H), 0);
+    out.rays = std::size_t(W) * std::size_t(H) * std::size_t(1 + N * N + K * K);
+
+    auto renderRow = [&](int y) {
+        for (int x = 0; x < W; ++x) {
+            const Ray c = caster.rayAt(x + 0.5, y + 0.5);
+            const glm::dvec4 centre = caster.shade(caster.trace(c));
+            glm::dvec4 sum(0.0);
+            for (int j = 0; j < N; ++j)
+                for (int i = 0; i < N; ++i) {
+                    const Ray r = caster.rayAt(x + (i + 0.5) / N, y + (j + 0.5) / N);
+                    sum += caster.shade(caster.trace(r));
+                }
+            int first = -2;
+            bool same = true;
+            for (int j = 0; j < K && same; ++j)
+                for (int i = 0; i < K && same; ++i) {
+                    const int id =
+                        caster.trace(caster.rayAt(x + double(i) / (K - 1), y + double(j) / (K - 1)))
+                            .surface;
+                    if (first == -2) first = id;
+                    same = id == first;
+                }
+            const glm::dvec4 box = sum / double(N * N);
+            float* pc = out.centre.pixel(x, y);
+            float* pb = out.box.pixel(x, y);
+            for (int k = 0; k < 4; ++k) {
+                pc[k] = float(centre[k]);
+                pb[k] = float(box[k]);
+            }
+            out.interior[std::size_t(y) * W + x] = same && first >= 0 ? 1 : 0;
+        }
+    };
+    int threads = reference.threads > 0 ? reference.threads
+                                        : int(std::max(1u, std::thread::hardware_concurrency()));
+    threads = std::min(threads, H);
+    std::atomic<int> nextRow{0};
+    auto worker = [&] {
+        for (int y = nextRow++; y < H; y = nextRow++)
+            renderRow(y);
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t)
+        pool.emplace_back(worker);
+    worker();
+    for (std::thread& t : pool)
+        t.join();
+    return out;
+}
+
+} // namespace lantern

@@ -1,0 +1,214 @@
+// The benchmark harness, not its numbers: `lantern bench accuracy` and `lantern bench speed` run
+// a tiny sweep and write a CSV with one row per configuration, named columns and finite values,
+// a plot and a summary; bad options are refused with exit 1. Nothing here is timed.
+#include "TestSupport.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace {
+
+using namespace lantern;
+using lantern::test::GpuTest;
+using lantern::test::runLantern;
+
+// A CSV file as rows of named cells.
+struct Csv {
+    std::vector<std::string> header;
+    std::vector<std::map<std::string, std::string>> rows;
+};
+
+std::vector<std::string> split(const std::string& line) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ','))
+        cells.push_back(cell);
+    if (!line.empty() && line.back() == ',') cells.emplace_back();
+    return cells;
+}
+
+Csv readCsv(const std::filesystem::path& path) {
+    Csv csv;
+    std::ifstream in(path);
+    std::string line;
+    if (!std::getline(in, line)) return csv;
+    csv.header = split(line);
+    while (std::getline(in, line)) {
+        const auto cells = split(line);
+        EXPECT_EQ(cells.size(), csv.header.size()) << "ragged row: " << line;
+        std::map<std::string, std::string> row;
+        for (std::size_t i = 0; i < cells.size() && i < csv.header.size(); ++i)
+            row[csv.header[i]] = cells[i];
+        csv.rows.push_back(row);
+    }
+    return csv;
+}
+
+double number(const std::map<std::string, std::string>& row, const std::string& column) {
+    const auto it = row.find(column);
+    if (it == row.end() || it->second.empty()) return std::nan("");
+    char* end = nullptr;
+    const double v = std::strtod(it->second.c_str(), &end);
+    return end && *end == '\0' ? v : std::nan("");
+}
+
+std::string readText(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+class BenchHarness : public GpuTest {};
+
+TEST_F(BenchHarness, TinyAccuracySweepWritesOneFiniteRowPerConfiguration) {
+    const auto dir = test::testOutputDir();
+    const auto r = runLantern({"bench",
+                               "accuracy",
+                               "--shading",
+                               "flat,gouraud,phong",
+                               "--segments",
+                               "8,16",
+                               "--msaa",
+                               "1,4",
+                               "--resolutions",
+                               "64x48",
+                               "--rounds",
+                               "1",
+                               "--frames",
+                               "1",
+                               "--warmup",
+                               "1",
+                               "--reference-samples",
+                               "4",
+                               "-q",
+                               "-o",
+                               dir.string()});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Csv csv = readCsv(dir / "accuracy.csv");
+    for (const char* column :
+         {"scene", "shading", "segments", "triangles", "msaa", "ms_per_frame", "rmse",
+          "interior_rmse", "silhouette_rmse", "peak_ratio", "psnr_db", "floor_ms", "x_floor",
+          "nonfinite", "pareto_interior", "pareto_whole"})
+        EXPECT_NE(std::find(csv.header.begin(), csv.header.end(), column), csv.header.end())
+            << column;
+    // 2 scenes x 3 modes x 2 tessellations x 2 sample counts, each exactly once.
+    ASSERT_EQ(csv.rows.size(), 24u);
+    std::set<std::string> seen;
+    const std::map<std::string, std::map<int, int>> triangles{{"sphere", {{8, 48}, {16, 224}}},
+                                                              {"spot", {{8, 128}, {16, 512}}}};
+    std::map<std::string, int> frontSizes;
+    for (const auto& row : csv.rows) {
+        const std::string key = row.at("scene") + "/" + row.at("shading") + "/" +
+                                row.at("segments") + "/" + row.at("msaa");
+        EXPECT_TRUE(seen.insert(key).second) << "duplicate row " << key;
+        EXPECT_EQ(number(row, "triangles"),
+                  triangles.at(row.at("scene")).at(int(number(row, "segments"))))
+            << key;
+        for (const char* column : {"ms_per_frame", "ms_wall", "first_frame_ms", "floor_ms",
+                                   "x_floor", "rmse", "max_error", "interior_rmse", "interior_max",
+                                   "interior_p99", "silhouette_rmse", "peak_ratio"}) {
+            const double v = number(row, column);
+            EXPECT_TRUE(std::isfinite(v) && v >= 0.0)
+                << key << ": " << column << " = " << row.at(column);
+        }
+        EXPECT_GT(number(row, "ms_per_frame"), 0.0) << key;
+        EXPECT_GT(number(row, "interior_pixels"), 100.0) << key;
+        EXPECT_EQ(number(row, "nonfinite"), 0.0) << key;
+        frontSizes[row.at("scene")] += int(number(row, "pareto_interior"));
+        // Phong shading of a plane interpolates a constant normal and exact positions: at one
+        // sample per pixel the reference must agree to float precision (a wrong camera or
+        // light placement would not; MSAA shades at sample centroids, not pixel centres).
+        if (row.at("scene") == "spot" && row.at("shading") == "phong" && row.at("msaa") == "1") {
+            EXPECT_LT(number(row, "interior_rmse"), 1e-5) << key;
+        }
+    }
+    EXPECT_GE(frontSizes["sphere"], 1);
+    EXPECT_GE(frontSizes["spot"], 1);
+
+    const std::string md = readText(dir / "accuracy.md");
+    EXPECT_NE(md.find("Pareto front"), std::string::npos);
+    EXPECT_NE(md.find("fastest setting"), std::string::npos);
+    EXPECT_NE(md.find("lantern bench accuracy --shading flat,gouraud,phong"), std::string::npos)
+        << "the summary names the command that reproduces it";
+    const std::string svg = readText(dir / "accuracy.svg");
+    EXPECT_EQ(svg.rfind("<?xml", 0), 0u);
+    EXPECT_NE(svg.find("</svg>"), std::string::npos);
+    if (std::system("command -v rsvg-convert >/dev/null 2>&1") == 0) {
+        const auto png = dir / "accuracy.png";
+        const auto c =
+            test::runProcess({"rsvg-convert", (dir / "accuracy.svg").string(), "-o", png.string()});
+        EXPECT_EQ(c.exitCode, 0) << c.err;
+        EXPECT_GT(std::filesystem::file_size(png), 1000u);
+    }
+}
+
+TEST_F(BenchHarness, TinySpeedRunGivesEveryTimeAsAMultipleOfTheFloor) {
+    const auto dir = test::testOutputDir();
+    const auto r = runLantern({"bench",       "speed",     "builtin:teapot",
+                               "--width",     "64",        "--height",
+                               "48",          "--lights",  "1,3",
+                               "--triangles", "1000",      "--rounds",
+                               "1",           "--frames",  "1",
+                               "--warmup",    "1",         "-q",
+                               "-o",          dir.string()});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Csv csv = readCsv(dir / "speed.csv");
+    std::map<std::string, int> perSection;
+    for (const auto& row : csv.rows) {
+        ++perSection[row.at("section")];
+        for (const char* column : {"ms_per_frame", "floor_ms", "x_floor"}) {
+            const double v = number(row, column);
+            EXPECT_TRUE(std::isfinite(v) && v > 0.0) << row.at("section") << " " << column;
+        }
+        if (row.at("features") == "floor") {
+            EXPECT_EQ(number(row, "x_floor"), 1.0);
+        }
+    }
+    // modes: floor + 3 modes x (specialised, all-features); lights: floor + 2 counts x 3 modes;
+    // triangles: floor + 3 modes.
+    EXPECT_EQ(perSection["modes"], 7);
+    EXPECT_EQ(perSection["lights"], 7);
+    EXPECT_EQ(perSection["triangles"], 4);
+    std::set<double> lights;
+    for (const auto& row : csv.rows)
+        if (row.at("section") == "lights") lights.insert(number(row, "lights"));
+    EXPECT_EQ(lights, (std::set<double>{1.0, 3.0}));
+    const std::string md = readText(dir / "speed.md");
+    EXPECT_NE(md.find("all-features / specialised"), std::string::npos);
+}
+
+struct BadOption {
+    const char* name;
+    std::vector<std::string> args;
+    int exitCode;
+    const char* message;
+};
+
+TEST_F(BenchHarness, RefusesBadOptionsBeforeRendering) {
+    const auto dir = test::testOutputDir();
+    const std::vector<BadOption> cases = {
+        {"segments", {"accuracy", "--segments", "2"}, 1, "--segments"},
+        {"resolution", {"accuracy", "--resolutions", "0x5"}, 1, "--resolutions"},
+        {"scene", {"accuracy", "--scenes", "cube"}, 1, "--scenes"},
+        {"shading", {"accuracy", "--shading", "toon"}, 1, "--shading"},
+        {"shininess", {"accuracy", "--shininess", "-1"}, 1, "--shininess"},
+        {"section", {"speed", "--sections", "fog"}, 1, "--sections"},
+        {"lights", {"speed", "--lights", "0"}, 1, "--lights"},
+        {"output", {"accuracy", "-o", "/proc/lantern-bench"}, 3, "--output"},
+    };
+    for (const BadOption& c : cases) {
+        std::vector<std::string> args{"bench"};
+        args.insert(args.end(), c.args.begin(), c.args.end());
+        if (c.exitCode != 3) args.insert(args.end(), {"-o", (dir / c.name).string()});
+        const auto r = runLantern(args);
+        EXPECT_EQ(r.exitCode, c.exitCode) << c.name << ": " << r.err;
+        EXPECT_NE(r.err.find(c.message), std::string::npos) << c.name << ": " << r.err;
+    }
+}
+
+} // namespace
