@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <lantern/Export.h>
 #include <lantern/Image.h>
 #include <lantern/Renderer.h>
 #include <lantern/Result.h>
@@ -24,7 +25,7 @@ enum class AnalyticKind {
 /// Declares that Scene::meshes[mesh] stands for an exact surface in its own (object) space.
 /// The node transforms that place the mesh place the surface too (any affine transform: a
 /// scaled sphere is an ellipsoid, with the normals the inverse transpose gives).
-struct AnalyticShape {
+struct LANTERN_API AnalyticShape {
     int mesh = -1;
     AnalyticKind kind = AnalyticKind::Sphere;
     double radius = 1.0; ///< Sphere
@@ -38,7 +39,7 @@ struct AnalyticShape {
 /// `segments` around and max(2, segments / 2) rings (2 segments (rings - 1) triangles), a
 /// plane split into segments x segments quads. `segments` is clamped to at least 3 (sphere)
 /// or 1 (plane).
-Primitive tessellate(const AnalyticShape& shape, int segments);
+LANTERN_API Primitive tessellate(const AnalyticShape& shape, int segments);
 
 struct ReferenceOptions {
     /// Which meshes are which analytic surfaces. Every mesh drawn by the scene must be listed.
@@ -70,8 +71,10 @@ struct ReferenceImage {
 /// the reference is exact everywhere. Refused: InvalidInput for a drawn mesh without an
 /// AnalyticShape, a bad shape or bad options; Unsupported for what the reference does not
 /// model (several views, GL compatibility, textures, alpha blending).
-Result<ReferenceImage> raycastReference(const Scene& scene, const RenderOptions& options,
-                                        double timeSeconds, const ReferenceOptions& reference);
+LANTERN_API Result<ReferenceImage> raycastReference(const Scene& scene,
+                                                    const RenderOptions& options,
+                                                    double timeSeconds,
+                                                    const ReferenceOptions& reference);
 
 /// Error statistics of one channel population (absolute errors of linear RGB values; max and
 /// 99th percentile are per pixel, over the worst of its three channels).
@@ -99,6 +102,7 @@ struct ErrorMetrics {
 };
 
 /// Compares a render (same size, same options) with its reference.
-Result<ErrorMetrics> measureError(const Image& rendered, const ReferenceImage& reference);
+LANTERN_API Result<ErrorMetrics> measureError(const Image& rendered,
+                                              const ReferenceImage& reference);
 
 } // namespace lantern

@@ -40,13 +40,13 @@ LANTERN_API std::vector<int> shardFrames(const FrameRange& range, const Shard& s
 
 /// Parses a frame list "A,B,C-D" (ranges inclusive, frames >= 0, at least one frame). The
 /// frames come back ascending, each once.
-Result<std::vector<int>> parseFrameList(std::string_view text);
+LANTERN_API Result<std::vector<int>> parseFrameList(std::string_view text);
 /// Writes ascending frames as the shortest "A,B,C-D" text that parseFrameList reads back.
-std::string formatFrameList(const std::vector<int>& frames);
+LANTERN_API std::string formatFrameList(const std::vector<int>& frames);
 /// The frames of `list` that `shard` renders: those at positions p with p mod count == index.
 /// A list is split by position, not frame number, so its shards stay balanced whichever
 /// frames it holds.
-std::vector<int> shardFrameList(const std::vector<int>& list, const Shard& shard);
+LANTERN_API std::vector<int> shardFrameList(const std::vector<int>& list, const Shard& shard);
 
 /// Replaces each run of '#' in `pattern` by `frame` zero-padded to the run's length
 /// ("out/f_####.exr", 7 -> "out/f_0007.exr"); frames wider than the run are written in full.
@@ -85,7 +85,7 @@ struct SequenceOptions {
 };
 
 /// The frames a sequence run renders, in order: its shard of `frameList`, else of `frames`.
-std::vector<int> sequenceFrames(const SequenceOptions& sequence);
+LANTERN_API std::vector<int> sequenceFrames(const SequenceOptions& sequence);
 
 /// What a sequence did and how long each stage took.
 struct SequenceReport {
