@@ -10,6 +10,7 @@
 #include <cctype>
 #include <cstring>
 #include <sstream>
+#include <utility>
 
 namespace lantern::gpu {
 namespace {
@@ -363,10 +364,19 @@ std::string versionText(std::uint32_t v) {
 Result<std::shared_ptr<Context>> Context::adopt(const ExternalDevice& e, bool swapchain,
                                                 LogSink log) {
     armFaultsFromEnvironment();
-    const char* object = "ExternalDevice";
-    if (!e.instance || !e.physicalDevice || !e.device || !e.queue)
-        return makeError(ErrorCode::Usage,
-                         "instance, physicalDevice, device and queue must all be set", object);
+#if defined(LANTERN_ASAN)
+    core::pinVulkanLibraries();
+#endif
+    const std::pair<const char*, bool> handles[] = {{"instance", e.instance != VK_NULL_HANDLE},
+                                                    {"physicalDevice", e.physicalDevice != VK_NULL_HANDLE},
+                                                    {"device", e.device != VK_NULL_HANDLE},
+                                                    {"queue", e.queue != VK_NULL_HANDLE}};
+    for (const auto& [name, set] : handles)
+        if (!set)
+            return makeError(ErrorCode::Usage,
+                             std::string(name) + " is VK_NULL_HANDLE: the host's instance, "
+                                                 "physical device, device and queue are all needed",
+                             std::string("ExternalDevice.") + name);
     if (e.instanceApiVersion < VK_API_VERSION_1_3)
         return makeError(ErrorCode::Unsupported,
                          "the instance was created for Vulkan " +
