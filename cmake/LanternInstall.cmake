@@ -30,11 +30,11 @@ endif()
 
 set(LANTERN_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/Lantern)
 
+# (Lantern::lantern's include directory is its INSTALL_INTERFACE, engine/CMakeLists.txt.)
 install(TARGETS lantern EXPORT LanternTargets
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
     LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
-    RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
-    INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+    RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(EXPORT LanternTargets NAMESPACE Lantern:: DESTINATION ${LANTERN_CMAKE_DIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/include/lantern
     DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.h" PATTERN "glfw" EXCLUDE)
@@ -68,13 +68,24 @@ install(FILES ${PROJECT_BINARY_DIR}/LanternConfig.cmake ${PROJECT_BINARY_DIR}/La
     DESTINATION ${LANTERN_CMAKE_DIR})
 
 # pkg-config. The files locate the prefix from their own folder (${pcfiledir}), so they stay
-# right under `cmake --install --prefix` and DESTDIR. A static libLantern's dependencies are in
-# Requires.private / Libs.private, which `pkg-config --static` adds.
+# right under `cmake --install --prefix` and DESTDIR. A static libLantern needs its
+# dependencies on every link line, so they are in Requires/Libs (a plain
+# `pkg-config --cflags --libs lantern` links); a shared one names them itself (NEEDED).
 if(IS_ABSOLUTE "${CMAKE_INSTALL_LIBDIR}")
     set(LANTERN_PC_PREFIX "${CMAKE_INSTALL_PREFIX}")
 else()
     file(RELATIVE_PATH LANTERN_PC_PREFIX "/x/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/x")
+    string(REGEX REPLACE "/$" "" LANTERN_PC_PREFIX "${LANTERN_PC_PREFIX}")
     set(LANTERN_PC_PREFIX "\${pcfiledir}/${LANTERN_PC_PREFIX}")
+endif()
+if(LANTERN_SHARED)
+    set(LANTERN_PC_REQUIRES "glm vulkan")
+    set(LANTERN_PC_LIBS "")
+    set(LANTERN_PC_GLFW_REQUIRES "lantern")
+else()
+    set(LANTERN_PC_REQUIRES "glm vulkan OpenEXR tinygltf stb")
+    set(LANTERN_PC_LIBS " -pthread")
+    set(LANTERN_PC_GLFW_REQUIRES "lantern glfw3")
 endif()
 configure_file(${PROJECT_SOURCE_DIR}/cmake/lantern.pc.in ${PROJECT_BINARY_DIR}/lantern.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/lantern.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
