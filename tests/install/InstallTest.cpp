@@ -1,0 +1,128 @@
+// The installed package, as a host uses it (issue 10): `cmake --install` of this build into a
+// temporary prefix (then moved elsewhere), and, against that prefix only, the two example
+// projects configured with find_package, built and run (the headless one writes an EXR that
+// is read back; the GLFW one presents frames in a window under Xvfb), and a program compiled
+// and linked with nothing but `pkg-config --cflags --libs lantern`.
+#include "InstallSupport.h"
+
+#if LANTERN_INSTALL_HAS_GLFW
+#include "XServer.h"
+#endif
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using namespace lantern;
+using namespace lantern::test;
+
+// What the headless example wrote must be its picture: the size it renders, the depth plane
+// it asks for, a ball and a floor over a transparent background, nothing non-finite.
+void expectHeadlessPicture(const fs::path& exr) {
+    ASSERT_TRUE(fs::exists(exr)) << exr << " was not written";
+    auto image = readExr(exr);
+    ASSERT_TRUE(image) << image.error().describe();
+    EXPECT_EQ(image->width, 160);
+    EXPECT_EQ(image->height, 120);
+    EXPECT_EQ(image->depth.size(), image->pixelCount()) << "the Z plane is missing";
+    EXPECT_EQ(countNonFinite(*image), 0u);
+    const std::size_t covered = countCovered(*image);
+    EXPECT_GT(covered, image->pixelCount() / 5) << "the floor and the ball cover too little";
+    EXPECT_LT(covered, image->pixelCount()) << "no background left: not the example's picture";
+    float reddest = 0.0f;  // the ball is red plastic
+    for (std::size_t i = 0; i < image->pixelCount(); ++i)
+        reddest = std::max(reddest, image->rgba[i * 4] - image->rgba[i * 4 + 2]);
+    EXPECT_GT(reddest, 0.2f) << "no red ball in the picture";
+}
+
+class Installed : public ::testing::Test {
+protected:
+    void SetUp() override {
+        ASSERT_FALSE(m_root.path().empty()) << "cannot create a temporary folder";
+        std::string failure;
+        m_prefix = installBuild(binaryDir(), m_root.path(), failure);
+        ASSERT_TRUE(failure.empty()) << failure;
+        const fs::path lib = LANTERN_INSTALL_LIBDIR;
+        for (const fs::path& f :
+             {fs::path("include/lantern/Lantern.h"), fs::path("include/lantern/Version.h"),
+              fs::path("include/lantern/ExternalDevice.h"), lib / "liblantern.a",
+              lib / "cmake/Lantern/LanternConfig.cmake", lib / "pkgconfig/lantern.pc"})
+            EXPECT_TRUE(fs::exists(m_prefix / f)) << f << " is not installed";
+        EXPECT_FALSE(fs::exists(m_prefix / "include/lantern/Version.h.in"));
+    }
+    TempDir m_root;
+    fs::path m_prefix;
+};
+
+TEST_F(Installed, HeadlessExampleBuildsAndRendersAgainstThePrefix) {
+    const fs::path build = m_root.path() / "headless-build";
+    const auto failure = buildExample("headless", m_prefix, build);
+    ASSERT_TRUE(failure.empty()) << failure;
+    const fs::path exr = m_root.path() / "headless.exr";
+    ProcessResult run;
+    const auto ran = runStep({(build / "lantern-headless-example").string(), exr.string()}, {},
+                             300.0, &run);
+    ASSERT_TRUE(ran.empty()) << ran;
+    EXPECT_NE(run.out.find("wrote " + exr.string()), std::string::npos) << run.out;
+    expectHeadlessPicture(exr);
+}
+
+TEST_F(Installed, GlfwExampleShowsFramesInAWindow) {
+#if !LANTERN_INSTALL_HAS_GLFW
+    GTEST_SKIP() << "this build has no Lantern::glfw (GLFW was not found at configure time)";
+#else
+    ASSERT_TRUE(fs::exists(m_prefix / LANTERN_INSTALL_LIBDIR / "cmake/Lantern/LanternGlfwTargets.cmake"));
+    const fs::path build = m_root.path() / "glfw-build";
+    const auto failure = buildExample("glfw_window", m_prefix, build);
+    ASSERT_TRUE(failure.empty()) << failure;
+    if (!XServer::available())
+        GTEST_SKIP() << "Xvfb is not installed (Debian package xvfb): the example was built but "
+                        "not run";
+    std::string error;
+    auto server = XServer::start(m_root.path(), error, "640x480x24");
+    ASSERT_TRUE(server) << error;
+    ProcessResult run;
+    const auto ran = runStep({(build / "lantern-glfw-example").string(), "--frames", "5",
+                              "--size", "160x120"},
+                             server->environment(), 300.0, &run);
+    ASSERT_TRUE(ran.empty()) << ran;
+    EXPECT_NE(run.out.find("presented 5 frames"), std::string::npos) << run.out;
+#endif
+}
+
+TEST_F(Installed, PkgConfigAloneCompilesAndLinksAHost) {
+    const std::vector<std::string> env = {"PKG_CONFIG_PATH=" + (m_prefix / LANTERN_INSTALL_LIBDIR / "pkgconfig").string()};
+    ProcessResult flags;
+    auto failure = runStep({"pkg-config", "--cflags", "--libs", "lantern"}, env, 60.0, &flags);
+    ASSERT_TRUE(failure.empty()) << failure;
+    EXPECT_NE(flags.out.find(m_prefix.string()), std::string::npos)
+        << "the flags do not point into the prefix: " << flags.out;
+#if LANTERN_INSTALL_HAS_GLFW
+    failure = runStep({"pkg-config", "--cflags", "--libs", "lantern-glfw"}, env, 60.0);
+    EXPECT_TRUE(failure.empty()) << failure;
+#endif
+
+    // The headless example's source, compiled and linked with those flags only.
+    const fs::path exe = m_root.path() / "headless-pkg-config";
+    std::vector<std::string> compile = {cxxCompiler(),
+                                        (sourceDir() / "apps/examples/headless/main.cpp").string(),
+                                        "-o", exe.string()};
+    const auto tool = toolchainFlags();
+    compile.insert(compile.end(), tool.begin(), tool.end());
+    std::istringstream words(flags.out);
+    for (std::string w; words >> w;) compile.push_back(w);
+    failure = runStep(compile, {}, 600.0);
+    ASSERT_TRUE(failure.empty()) << failure;
+    const fs::path exr = m_root.path() / "pkg-config.exr";
+    failure = runStep({exe.string(), exr.string()}, {}, 300.0);
+    ASSERT_TRUE(failure.empty()) << failure;
+    expectHeadlessPicture(exr);
+}
+
+} // namespace
