@@ -1,7 +1,7 @@
 // ExternalDevice.h: a Renderer on Vulkan objects the host owns (its VkInstance, VkPhysicalDevice,
 // VkDevice and a graphics queue), for a host that renders with Vulkan itself and wants Lantern's
-// pictures on the same device. One of the two public headers that include vulkan.h (with
-// lantern/Window.h): the host's handles cross the API on purpose.
+// pictures on the same device. It includes vulkan.h, as lantern/Window.h does: the host's
+// handles cross the API on purpose.
 //
 //   lantern::ExternalDevice ext;
 //   ext.instance = instance;  ext.instanceApiVersion = VK_API_VERSION_1_3;

@@ -1,10 +1,10 @@
 // Window.h: presenting Lantern's pictures in a window the host owns, through a Vulkan
 // swapchain on the host's VkSurfaceKHR, with room for the host's own overlay drawing (ImGui).
 //
-// The one public header that includes vulkan.h: the host owns the surface, and an overlay
-// records its own Vulkan commands, so the handles it needs cross this API on purpose. Nothing
-// else in Lantern's public API exposes a Vulkan type. lantern/glfw/GlfwWindow.h wraps all of
-// this for GLFW in a few lines.
+// It includes vulkan.h (as lantern/ExternalDevice.h does, and glfw/GlfwWindow.h through it):
+// the host owns the surface, and an overlay records its own Vulkan commands, so the handles it
+// needs cross this API on purpose. Nothing else in Lantern's public API exposes a Vulkan type.
+// lantern/glfw/GlfwWindow.h wraps all of this for GLFW in a few lines.
 //
 // A frame: the scene is rendered into the frame slot's linear RGBA32F image (the very image a
 // headless render reads back, so a capture is exactly the picture shown), which is blitted
