@@ -16,6 +16,7 @@
 #include <iostream>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -215,15 +216,33 @@ protected:
                          "device is not validated\n";
         return h;
     }
+
+    /// A host device, the spheres, and their picture at `time` from Lantern's own device.
+    struct Setup {
+        std::unique_ptr<HostVulkan> host;
+        Scene scene;
+        Image expected;
+    };
+    std::optional<Setup> setUp(double time) {
+        Setup s;
+        s.host = host();
+        auto scene = builtinScene("spheres");
+        if (!s.host || !scene) return std::nullopt;
+        s.scene = std::move(*scene);
+        auto expected = renderer().render(s.scene, small(), time);
+        EXPECT_TRUE(expected) << expected.error().describe();
+        if (!expected) return std::nullopt;
+        s.expected = std::move(*expected);
+        return s;
+    }
 };
 
 TEST_F(ExternalDevice_, RendersWhatItsOwnDeviceRenders) {
-    auto h = host();
-    ASSERT_TRUE(h);
-    auto scene = builtinScene("spheres");
-    ASSERT_TRUE(scene);
-    auto expected = renderer().render(*scene, small(), 0.5);
-    ASSERT_TRUE(expected) << expected.error().describe();
+    auto setup = setUp(0.5);
+    ASSERT_TRUE(setup);
+    auto& h = setup->host;
+    const Scene* scene = &setup->scene;
+    const Image* expected = &setup->expected;
     {
         auto r = Renderer::create(h->external(), loggingDesc());
         ASSERT_TRUE(r) << r.error().describe();
@@ -258,12 +277,11 @@ TEST_F(ExternalDevice_, RendersWhatItsOwnDeviceRenders) {
 }
 
 TEST_F(ExternalDevice_, SharesTheQueueWithAHostThreadUnderItsMutex) {
-    auto h = host();
-    ASSERT_TRUE(h);
-    auto scene = builtinScene("spheres");
-    ASSERT_TRUE(scene);
-    auto expected = renderer().render(*scene, small(), 0.0);
-    ASSERT_TRUE(expected);
+    auto setup = setUp(0.0);
+    ASSERT_TRUE(setup);
+    auto& h = setup->host;
+    const Scene* scene = &setup->scene;
+    const Image* expected = &setup->expected;
 
     std::mutex queueMutex;
     std::atomic<bool> stop{false};
