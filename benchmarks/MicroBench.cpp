@@ -98,6 +98,36 @@ void BM_CameraRelativeCompose(benchmark::State& state) {
 }
 BENCHMARK(BM_CameraRelativeCompose);
 
+// A whole frame on the device (plan, record, render 640x360, read back) of the same grid, at
+// the origin and 1e7 away: the camera-relative path must cost nothing measurable. Skipped,
+// saying so, without a Vulkan device.
+void BM_RenderFrame(benchmark::State& state) {
+    static auto renderer = Renderer::create();
+    if (!renderer) {
+        state.SkipWithError(("no Vulkan device: " + renderer.error().describe()).c_str());
+        return;
+    }
+    auto prepared =
+        renderer->prepare(std::make_shared<const Scene>(gridScene(16, state.range(0) ? 1e7 : 0.0)));
+    if (!prepared) {
+        state.SkipWithError(prepared.error().describe().c_str());
+        return;
+    }
+    RenderOptions options;
+    options.width = 640;
+    options.height = 360;
+    for (auto _ : state) {
+        auto image = renderer->render(*prepared, options, 0.0);
+        if (!image) {
+            state.SkipWithError(image.error().describe().c_str());
+            break;
+        }
+        benchmark::DoNotOptimize(image);
+    }
+    state.SetLabel(state.range(0) ? "at 1e7" : "at the origin");
+}
+BENCHMARK(BM_RenderFrame)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 // Angle-weighted smooth normals (what a glTF without NORMAL costs at load) on a sphere of
 // about 2 * segments^2 / 2 triangles.
 void BM_SmoothNormals(benchmark::State& state) {
