@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 #include <thread>
+#include <unistd.h>
 
 namespace lantern::cli {
 
@@ -100,8 +101,22 @@ std::string spreadSentence(std::vector<double> spreads) {
            num(100.0 * median(std::move(spreads)), "%.0f") + " %.";
 }
 
-void coldShaderCacheUnlessSet() {
-    setenv("MESA_SHADER_CACHE_DISABLE", "true", 0);
+ColdShaderCache::ColdShaderCache() {
+    if (std::getenv("MESA_SHADER_CACHE_DISABLE") || std::getenv("MESA_SHADER_CACHE_DIR")) return;
+    std::string pattern =
+        (std::filesystem::temp_directory_path() / "lantern-bench-shader-cache-XXXXXX").string();
+    if (!::mkdtemp(pattern.data())) {
+        setenv("MESA_SHADER_CACHE_DISABLE", "true", 1);  // cold, the other way
+        return;
+    }
+    m_dir = pattern;
+    setenv("MESA_SHADER_CACHE_DIR", m_dir.c_str(), 1);
+}
+
+ColdShaderCache::~ColdShaderCache() {
+    if (m_dir.empty()) return;
+    std::error_code ec;
+    std::filesystem::remove_all(m_dir, ec);
 }
 
 std::string machineDescription(const Renderer& renderer) {
@@ -113,11 +128,18 @@ std::string machineDescription(const Renderer& renderer) {
             break;
         }
     const char* threads = std::getenv("LP_NUM_THREADS");
-    const char* cache = std::getenv("MESA_SHADER_CACHE_DISABLE");
+    const char* off = std::getenv("MESA_SHADER_CACHE_DISABLE");
+    const char* dir = std::getenv("MESA_SHADER_CACHE_DIR");
+    const std::string cache = off ? std::string("off (MESA_SHADER_CACHE_DISABLE=") + off + ")"
+                              : dir ? (std::string(dir).find("lantern-bench-shader-cache-") !=
+                                               std::string::npos
+                                           ? std::string("on, in a new empty folder")
+                                           : std::string("MESA_SHADER_CACHE_DIR=") + dir)
+                                    : std::string("Mesa's default");
     std::ostringstream s;
     s << "CPU " << cpu << ", " << std::thread::hardware_concurrency()
       << " cores, LP_NUM_THREADS=" << (threads ? threads : "(unset: one per core)")
-      << ", MESA_SHADER_CACHE_DISABLE=" << (cache ? cache : "(unset)") << "; device "
+      << ", shader cache " << cache << "; device "
       << renderer.device().name << " (" << renderer.device().driver << ")";
     return s.str();
 }

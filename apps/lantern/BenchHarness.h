@@ -75,10 +75,23 @@ Result<void> timeInterleaved(Renderer& renderer, std::vector<TimedConfig>& confi
 /// The median of configurations' round spreads (TimedConfig::roundSpread), as a sentence.
 std::string spreadSentence(std::vector<double> spreads);
 
-/// Turns Mesa's on-disk shader cache off for this process unless the environment already
-/// says what to do (MESA_SHADER_CACHE_DISABLE set): a first frame then shows the whole JIT
-/// cost, as numerics.md section 7.4 asks. Call before Renderer::create.
-void coldShaderCacheUnlessSet();
+/// Gives Mesa a new, empty on-disk shader cache for this process (MESA_SHADER_CACHE_DIR in a
+/// fresh temporary folder, removed when the object goes), unless the environment already
+/// chooses (MESA_SHADER_CACHE_DISABLE or MESA_SHADER_CACHE_DIR set). A first frame then shows
+/// the whole JIT cost, as numerics.md section 7.4 asks, while later frames run as they do for
+/// a user, whose cache is on: lavapipe re-compiles some pipelines' draw-time variants on every
+/// frame (S2's per-vertex modes), and with the cache off each of those costs a full LLVM
+/// compile (120 ms per 480x270 frame instead of 3). Construct before Renderer::create.
+class ColdShaderCache {
+public:
+    ColdShaderCache();
+    ~ColdShaderCache();
+    ColdShaderCache(const ColdShaderCache&) = delete;
+    ColdShaderCache& operator=(const ColdShaderCache&) = delete;
+
+private:
+    std::string m_dir;  ///< the folder made here (empty: the environment chose)
+};
 
 /// A markdown paragraph describing the machine: CPU, cores, LP_NUM_THREADS, shader cache,
 /// device, driver.

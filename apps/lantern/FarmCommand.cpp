@@ -49,7 +49,8 @@ struct RenderPart {
 
 Result<RenderPart> splitRenderArguments(const std::vector<std::string>& extras) {
     CLI::App parser;
-    (void)addRenderCommand(parser);
+    // The runner owns the variables the options write into: it must outlive the parser.
+    const Runner renderRunner = addRenderCommand(parser);
     CLI::App* render = parser.get_subcommand("render");
     RenderPart part;
     for (std::size_t i = 0; i < extras.size(); ++i) {
@@ -91,7 +92,7 @@ Result<void> checkRenderLine(const Submission& s) {
     line.insert(line.end(), s.renderArgs.begin(), s.renderArgs.end());
     std::reverse(line.begin(), line.end()); // CLI11 takes the arguments last first
     CLI::App parser;
-    (void)addRenderCommand(parser);
+    const Runner renderRunner = addRenderCommand(parser);  // owns what the options write into
     try {
         parser.parse(line);
     } catch (const CLI::ParseError& e) {

@@ -1,0 +1,236 @@
+// lantern_microbench: Google Benchmark micro-benchmarks of the CPU-side paths a frame or a file
+// goes through. The GPU side is measured by `lantern bench` (frame, sequence, speed, accuracy);
+// these are the parts a host pays on its own thread. Compare rows of one run (ratios), never
+// absolute numbers across runs. See docs/performance.md for the results and the command.
+#include "reference/Lighting.h"
+#include "render/FramePlan.h"
+
+#include <lantern/Lantern.h>
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+namespace {
+
+using namespace lantern;
+namespace fs = std::filesystem;
+
+// A cube of cubes, n per side, seen from a corner; everything shifted by `offset`. The
+// camera-relative path composes viewFromWorld * worldFromNode in double for every draw: at 1e7
+// this must cost what it costs at the origin.
+Scene gridScene(int n, double offset) {
+    const glm::dvec3 o(offset, 0.5 * offset, -0.75 * offset);
+    Scene s;
+    s.sourcePath = "microbench";
+    Material m;
+    m.front.diffuse = {0.7, 0.6, 0.5, 1.0};
+    m.front.specular = {0.3, 0.3, 0.3};
+    m.front.shininess = 20;
+    s.materials.push_back(m);
+    Primitive cube = makeCube(0.6);
+    cube.material = 0;
+    s.meshes.push_back(Mesh{"cube", {cube}});
+    SceneRoot root;
+    for (int i = 0; i < n * n * n; ++i) {
+        Node node;
+        node.mesh = 0;
+        node.translation = o + glm::dvec3(i % n, (i / n) % n, i / (n * n)) - glm::dvec3(n / 2.0);
+        s.nodes.push_back(node);
+        root.nodes.push_back(i);
+    }
+    Light sun;
+    sun.type = LightType::Directional;
+    Node sunNode;
+    sunNode.light = 0;
+    sunNode.rotation = glm::angleAxis(-0.6, glm::normalize(glm::dvec3(1, 1, 0)));
+    s.lights.push_back(sun);
+    s.nodes.push_back(sunNode);
+    root.nodes.push_back(int(s.nodes.size()) - 1);
+    Camera camera;
+    camera.projection = Projection::makePerspective(0.8, 0.0, 0.1, kInfinity);
+    camera.lookAt = LookAt{o + glm::dvec3(1.3 * n, 0.9 * n, 1.6 * n), o, {0, 1, 0}};
+    s.cameras.push_back(camera);
+    s.roots.push_back(root);
+    return s;
+}
+
+// Frame planning (cameras, eye-space lights, materials, one draw per node) for 16^3 nodes;
+// argument 0: at the origin, 1: scene and camera 1e7 units away.
+void BM_BuildFramePlan(benchmark::State& state) {
+    const Scene scene = gridScene(16, state.range(0) ? 1e7 : 0.0);
+    RenderOptions options;
+    options.width = 640;
+    options.height = 360;
+    for (auto _ : state) {
+        auto plan = render::buildFramePlan(scene, options, 0.0);
+        if (!plan) {
+            state.SkipWithError(plan.error().describe().c_str());
+            break;
+        }
+        benchmark::DoNotOptimize(plan);
+    }
+    state.SetItemsProcessed(state.iterations() * 4096);
+    state.SetLabel(state.range(0) ? "at 1e7" : "at the origin");
+}
+BENCHMARK(BM_BuildFramePlan)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+// The one operation the camera-relative path adds per draw: a double 4x4 product.
+void BM_CameraRelativeCompose(benchmark::State& state) {
+    const Scene scene = gridScene(16, 1e7);
+    const glm::dmat4 viewFromWorld =
+        lookAt(scene.cameras[0].lookAt->eye, scene.cameras[0].lookAt->target, {0, 1, 0});
+    std::vector<glm::dmat4> worldFromNode;
+    for (const Node& n : scene.nodes) worldFromNode.push_back(n.localTransform());
+    std::vector<glm::mat4> out(worldFromNode.size());
+    for (auto _ : state) {
+        for (std::size_t i = 0; i < worldFromNode.size(); ++i)
+            out[i] = glm::mat4(viewFromWorld * worldFromNode[i]);
+        benchmark::DoNotOptimize(out.data());
+        benchmark::ClobberMemory();
+    }
+    state.SetItemsProcessed(state.iterations() * std::int64_t(worldFromNode.size()));
+}
+BENCHMARK(BM_CameraRelativeCompose);
+
+// A whole frame on the device (plan, record, render 640x360, read back) of the same grid, at
+// the origin and 1e7 away: the camera-relative path must cost nothing measurable. Skipped,
+// saying so, without a Vulkan device.
+void BM_RenderFrame(benchmark::State& state) {
+    static auto renderer = Renderer::create();
+    if (!renderer) {
+        state.SkipWithError(("no Vulkan device: " + renderer.error().describe()).c_str());
+        return;
+    }
+    auto prepared =
+        renderer->prepare(std::make_shared<const Scene>(gridScene(16, state.range(0) ? 1e7 : 0.0)));
+    if (!prepared) {
+        state.SkipWithError(prepared.error().describe().c_str());
+        return;
+    }
+    RenderOptions options;
+    options.width = 640;
+    options.height = 360;
+    for (auto _ : state) {
+        auto image = renderer->render(*prepared, options, 0.0);
+        if (!image) {
+            state.SkipWithError(image.error().describe().c_str());
+            break;
+        }
+        benchmark::DoNotOptimize(image);
+    }
+    state.SetLabel(state.range(0) ? "at 1e7" : "at the origin");
+}
+BENCHMARK(BM_RenderFrame)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Angle-weighted smooth normals (what a glTF without NORMAL costs at load) on a sphere of
+// about 2 * segments^2 / 2 triangles.
+void BM_SmoothNormals(benchmark::State& state) {
+    const int segments = int(state.range(0));
+    const Primitive sphere = makeSphere(1.0, segments, segments / 2);
+    for (auto _ : state) {
+        auto normals = computeSmoothNormals(sphere.positions, sphere.indices);
+        benchmark::DoNotOptimize(normals.data());
+    }
+    state.SetItemsProcessed(state.iterations() * std::int64_t(sphere.triangleCount()));
+    state.counters["triangles"] = double(sphere.triangleCount());
+}
+BENCHMARK(BM_SmoothNormals)->Arg(64)->Arg(512)->Unit(benchmark::kMicrosecond);
+
+// The double-precision reference equation at one point with N point lights (the per-sample
+// cost of the ray caster and of --probe).
+void BM_ReferenceLighting(benchmark::State& state) {
+    const int n = int(state.range(0));
+    std::vector<ref::EyeLight> lights(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) {
+        const double a = 6.283185307179586 * i / n;
+        lights[std::size_t(i)].type = LightType::Point;
+        lights[std::size_t(i)].position = {3 * std::cos(a), 3 * std::sin(a), 1.0};
+        lights[std::size_t(i)].attenuation = {1.0, 0.1, 0.01};
+        lights[std::size_t(i)].diffuse = glm::dvec3(1.0 / n);
+        lights[std::size_t(i)].specular = glm::dvec3(1.0 / n);
+    }
+    MaterialSide m;
+    m.specular = {1, 1, 1};
+    m.shininess = 128;
+    ref::Settings settings;
+    const glm::dvec3 V(0.1, -0.2, -4.0), normal = glm::normalize(glm::dvec3(0.1, -0.2, 1.0));
+    for (auto _ : state) {
+        auto sums = ref::evaluateLighting(V, normal, m, lights, settings);
+        benchmark::DoNotOptimize(sums);
+    }
+    state.SetItemsProcessed(state.iterations() * n);
+}
+BENCHMARK(BM_ReferenceLighting)->Arg(1)->Arg(8)->Arg(64)->Arg(256);
+
+fs::path sharedDir() {
+    if (const char* env = std::getenv("LANTERN_SHARED_DIR")) return env;
+    return LANTERN_DEFAULT_SHARED_DIR;
+}
+
+// Loading and validating a glTF from ../shared/assets (skipped, saying so, when absent).
+void BM_LoadGltf(benchmark::State& state, const char* relative) {
+    const fs::path path = sharedDir() / "assets" / "gltf-samples" / relative;
+    if (!fs::exists(path)) {
+        state.SkipWithError(("not found (../shared absent): " + path.string()).c_str());
+        return;
+    }
+    for (auto _ : state) {
+        auto scene = loadGltf(path);
+        if (!scene) {
+            state.SkipWithError(scene.error().describe().c_str());
+            break;
+        }
+        benchmark::DoNotOptimize(scene);
+    }
+}
+BENCHMARK_CAPTURE(BM_LoadGltf, Suzanne, "Suzanne/glTF/Suzanne.gltf")
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_LoadGltf, Duck, "Duck/glTF-Binary/Duck.glb")->Unit(benchmark::kMillisecond);
+
+// Writing a 640x360 float EXR (a smooth gradient with a highlight, like a rendered frame) per
+// compression, one thread: the encode stage of a sequence. Bytes written are a counter.
+void BM_WriteExr(benchmark::State& state) {
+    const auto compression = ExrCompression(state.range(0));
+    Image image(640, 360);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            float* p = image.pixel(x, y);
+            const double dx = (x - 400.0) / 60.0, dy = (y - 150.0) / 60.0;
+            const float highlight = float(std::exp(-(dx * dx + dy * dy)));
+            p[0] = 0.2f + 0.6f * float(x) / float(image.width) + highlight;
+            p[1] = 0.1f + 0.5f * float(y) / float(image.height) + highlight;
+            p[2] = 0.3f + highlight;
+            p[3] = 1.0f;
+        }
+    const fs::path path = fs::temp_directory_path() /
+                          ("lantern-microbench-" + std::to_string(::getpid()) + ".exr");
+    ExrOptions options;
+    options.compression = compression;
+    for (auto _ : state) {
+        auto written = writeExr(path, image, options);
+        if (!written) {
+            state.SkipWithError(written.error().describe().c_str());
+            break;
+        }
+    }
+    std::error_code ec;
+    state.counters["MiB"] = double(fs::file_size(path, ec)) / (1024.0 * 1024.0);
+    fs::remove(path, ec);
+    state.SetLabel(toString(compression));
+}
+BENCHMARK(BM_WriteExr)
+    ->Arg(int(ExrCompression::None))
+    ->Arg(int(ExrCompression::Zip))
+    ->Arg(int(ExrCompression::Piz))
+    ->Arg(int(ExrCompression::Dwaa))
+    ->Unit(benchmark::kMillisecond);
+
+} // namespace
+
+BENCHMARK_MAIN();
