@@ -47,11 +47,16 @@ struct RenderPart {
     std::vector<std::string> args;
 };
 
+// The `lantern render` command's own parser, with the runner that owns the variables its
+// options write into (a parse after the runner is gone writes into freed memory).
+struct RenderParser {
+    CLI::App app;
+    Runner runner = addRenderCommand(app);
+};
+
 Result<RenderPart> splitRenderArguments(const std::vector<std::string>& extras) {
-    CLI::App parser;
-    // The runner owns the variables the options write into: it must outlive the parser.
-    const Runner renderRunner = addRenderCommand(parser);
-    CLI::App* render = parser.get_subcommand("render");
+    RenderParser parser;
+    const CLI::App* render = parser.app.get_subcommand("render");
     RenderPart part;
     for (std::size_t i = 0; i < extras.size(); ++i) {
         const std::string& arg = extras[i];
@@ -91,10 +96,9 @@ Result<void> checkRenderLine(const Submission& s) {
         line.insert(line.end(), {"-o", out});
     line.insert(line.end(), s.renderArgs.begin(), s.renderArgs.end());
     std::reverse(line.begin(), line.end()); // CLI11 takes the arguments last first
-    CLI::App parser;
-    const Runner renderRunner = addRenderCommand(parser);  // owns what the options write into
+    RenderParser parser;
     try {
-        parser.parse(line);
+        parser.app.parse(line);
     } catch (const CLI::ParseError& e) {
         return usage(std::string("the render options: ") + e.what());
     }
