@@ -70,16 +70,16 @@ TEST_F(LightingVariants, OneDirectionalLightWithoutSpecularCompilesNothingElse) 
           "alpha-mask", "two-sided", "local-viewer"})
         EXPECT_EQ(r->variants[0].find(absent), std::string::npos) << absent << "\n" << all;
     // The constants themselves, as the pipeline receives them.
-    auto plan = render::buildFramePlan(scene, o, 0.0);
+    auto plan = render::planFrame(scene, o, 0.0);
     ASSERT_TRUE(plan);
-    const auto& sc = plan->views[0].draws[0].key.constants;
+    const auto& sc = plan->list.views[0].draws[0].pipeline.constants;
     EXPECT_EQ(sc[LANTERN_SC_LIGHT_TYPES], std::uint32_t(LANTERN_LIGHT_BIT_DIRECTIONAL));
     EXPECT_EQ(sc[LANTERN_SC_GL_ATTENUATION], 0u);
     EXPECT_EQ(sc[LANTERN_SC_GL_SPOT], 0u);
     EXPECT_EQ(sc[LANTERN_SC_GLTF_FALLOFF], 0u);
     EXPECT_EQ(sc[LANTERN_SC_SPECULAR], std::uint32_t(LANTERN_SPECULAR_NONE));
     // And the specialised pipeline renders the equation.
-    const test::ReferenceComparison c = test::compareWithReference(renderer(), scene, o);
+    const test::ReferenceComparison c = test::compareWithReference(device(), scene, o);
     EXPECT_LE(c.worst, 1.0 / 255.0) << c.describe("variant_minimal");
 }
 

@@ -2,7 +2,7 @@
 // camera resolution and light placement, and the lighting equation of reference/Lighting
 // (the shaders' twin) at every sample. Ground truth for the accuracy benchmark.
 #include "reference/Lighting.h"
-#include "render/FramePlan.h"
+#include "frame/Frame.h"
 
 #include <algorithm>
 #include <atomic>
@@ -74,7 +74,7 @@ bool sphereRoots(const glm::dvec3& o, const glm::dvec3& d, double r, double root
 
 class Caster {
 public:
-    Caster(std::vector<Surface> surfaces, const render::ResolvedCamera& camera,
+    Caster(std::vector<Surface> surfaces, const frame::ViewCamera& camera,
            std::vector<ref::EyeLight> lights, const ref::Settings& settings,
            const RenderOptions& options)
         : m_surfaces(std::move(surfaces)), m_lights(std::move(lights)), m_settings(settings),
@@ -246,11 +246,11 @@ Result<ReferenceImage> raycastReference(const Scene& scene, const RenderOptions&
     LANTERN_TRY(checkOptions(scene, options, time, reference));
     const int root = options.root < 0 ? scene.defaultRoot : options.root;
     const Pose pose = evaluatePose(scene, root, time);
-    auto camera = render::resolveCamera(scene, pose, options.camera,
+    auto camera = frame::resolveCamera(scene, pose, options.camera,
                                         double(options.width) / double(options.height),
                                         options.depth, "camera");
     if (!camera) return std::move(camera).error();
-    const render::ResolvedLighting lit = render::resolveLighting(scene, root, options);
+    const frame::Lighting lit = frame::resolveLighting(scene, root, options);
 
     static const Material kDefaultMaterial;
     std::vector<Surface> surfaces;
@@ -293,9 +293,8 @@ Result<ReferenceImage> raycastReference(const Scene& scene, const RenderOptions&
     settings.globalAmbient = lit.model.globalAmbient;
     settings.localViewer = lit.model.localViewer;
     settings.specular = lit.model.specular;
-    settings.specularOn = true;
     Caster caster(std::move(surfaces), *camera,
-                  ref::eyeLights(scene, pose, camera->viewFromWorld, false), settings, options);
+                  frame::placeLights(scene, pose, camera->viewFromWorld, false), settings, options);
     caster.setTwoSided(lit.model.twoSided);
 
     const int W = options.width, H = options.height;

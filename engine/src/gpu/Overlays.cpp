@@ -1,12 +1,14 @@
 // The wireframe and normals overlays: pipelines made on first use per (kind, samples, depth
 // mode), recorded per view after the view's shaded draws.
-#include "render/DebugDraw.h"
+#include "gpu/Overlays.h"
 
 #include "gpu/Pipeline.h"
+#include "gpu/Pipelines.h"
+#include "gpu/Targets.h"
 
 #include "ShaderBlobs.h"
 
-namespace lantern::render {
+namespace lantern::gpu {
 namespace {
 
 using shaders::ShaderId;
@@ -18,8 +20,8 @@ constexpr float kBiasSlope = 1.5f;
 
 } // namespace
 
-Result<void> DebugDraw::checkOptions(const gpu::Context& ctx, const RenderOptions& o) {
-    if ((o.wireframe || o.normals) && o.aovs.any())
+Result<void> OverlayPipelines::check(const Context& ctx, const Overlays& o, const AovSet& aovs) {
+    if (o.any() && aovs.any())
         return makeError(ErrorCode::InvalidInput,
                          "the wireframe and normals overlays are for display and cannot be "
                          "combined with AOVs",
@@ -28,33 +30,19 @@ Result<void> DebugDraw::checkOptions(const gpu::Context& ctx, const RenderOption
         return makeError(ErrorCode::Unsupported,
                          "the device lacks fillModeNonSolid, needed for the wireframe overlay",
                          "options.wireframe");
-    if (o.normals && !(o.normalLength >= 0.0 && o.normalLength < 1e300))
-        return makeError(ErrorCode::InvalidInput, "the normal length must be finite and >= 0",
-                         "options.normalLength");
     return {};
 }
 
-Result<VkShaderModule> DebugDraw::shader(std::uint32_t id) {
-    auto it = m_shaders.find(id);
-    if (it != m_shaders.end()) return it->second.get();
-    const shaders::ShaderBlob blob = shaders::shaderBlob(ShaderId(id));
-    auto module = gpu::createShaderModule(m_ctx, {blob.words, blob.wordCount}, std::string(blob.name));
-    if (!module) return std::move(module).error();
-    const VkShaderModule handle = module->get();
-    m_shaders.emplace(id, std::move(*module));
-    return handle;
-}
-
-Result<VkPipeline> DebugDraw::pipeline(bool normals, std::uint32_t samples, bool reversedZ) {
+Result<VkPipeline> OverlayPipelines::pipeline(bool normals, std::uint32_t samples, bool reversedZ) {
     const auto key = std::make_tuple(normals, samples, reversedZ);
-    if (auto it = m_pipelines.find(key); it != m_pipelines.end()) return it->second.get();
-    auto vs = shader(std::uint32_t(normals ? ShaderId::normals_vert : ShaderId::wireframe_vert));
+    if (auto it = m_cache.find(key); it != m_cache.end()) return it->second.get();
+    auto vs = m_pipelines.shader(std::uint32_t(normals ? ShaderId::normals_vert : ShaderId::wireframe_vert));
     if (!vs) return std::move(vs).error();
-    auto fs = shader(std::uint32_t(ShaderId::debug_frag));
+    auto fs = m_pipelines.shader(std::uint32_t(ShaderId::debug_frag));
     if (!fs) return std::move(fs).error();
 
-    gpu::GraphicsPipelineDesc d;
-    d.layout = m_layout;
+    GraphicsPipelineDesc d;
+    d.layout = m_pipelines.layout();
     d.vertex = *vs;
     d.fragment = *fs;
     if (normals) {
@@ -70,48 +58,43 @@ Result<VkPipeline> DebugDraw::pipeline(bool normals, std::uint32_t samples, bool
         d.polygonMode = VK_POLYGON_MODE_LINE;
         d.depthBias = true;
     }
-    d.colorFormats = {VK_FORMAT_R32G32B32A32_SFLOAT};
-    d.depthFormat = VK_FORMAT_D32_SFLOAT;
+    d.colorFormats = {kColorFormat};
+    d.depthFormat = kDepthFormat;
     d.samples = VkSampleCountFlagBits(samples);
     d.depthWrite = false;
     d.depthCompare = reversedZ ? VK_COMPARE_OP_GREATER_OR_EQUAL : VK_COMPARE_OP_LESS_OR_EQUAL;
     d.name = normals ? "overlay: normals" : "overlay: wireframe";
-    auto p = gpu::createGraphicsPipeline(m_ctx, d);
+    auto p = createGraphicsPipeline(m_ctx, d);
     if (!p) return std::move(p).error();
     const VkPipeline handle = p->get();
-    m_pipelines.emplace(key, std::move(*p));
+    m_cache.emplace(key, std::move(*p));
     return handle;
 }
 
-Result<DebugFrame> DebugDraw::prepare(const RenderOptions& o, const GpuScene& scene,
-                                      const FramePlan& plan) {
-    DebugFrame f;
-    const bool reversed = o.depth == DepthMode::ReversedZ;
+Result<OverlayFrame> OverlayPipelines::prepare(const Overlays& o, const TargetDesc& target) {
+    OverlayFrame f;
     if (o.wireframe) {
-        auto p = pipeline(false, std::uint32_t(o.msaa), reversed);
+        auto p = pipeline(false, target.samples, target.reversedZ);
         if (!p) return std::move(p).error();
         f.wireframe = *p;
     }
     if (o.normals) {
-        auto p = pipeline(true, std::uint32_t(o.msaa), reversed);
+        auto p = pipeline(true, target.samples, target.reversedZ);
         if (!p) return std::move(p).error();
         f.normals = *p;
-        double length = o.normalLength;
-        if (!(length > 0.0)) {
-            const Bounds b = computeBounds(scene.scene(), plan.pose);
-            length = b.empty() ? 0.0 : 0.03 * b.radius();
-        }
-        f.normalLength = float(length);
+        f.normalLength = o.normalLength;
     }
-    f.depthBias = reversed ? 1.0f : -1.0f;
+    f.depthBias = target.reversedZ ? 1.0f : -1.0f;
     return f;
 }
 
-void DebugDraw::recordView(VkCommandBuffer cmd, const GpuScene& scene, const ViewPlan& view,
-                           VkDescriptorSet frameSet, const std::uint32_t dynamicOffsets[2],
-                           const DebugFrame& f) const {
+void OverlayPipelines::recordView(VkCommandBuffer cmd, const SceneBuffers& scene,
+                                  const ViewCommands& view, VkDescriptorSet frameSet,
+                                  const std::uint32_t dynamicOffsets[2],
+                                  const OverlayFrame& f) const {
+    const VkPipelineLayout layout = m_pipelines.layout();
     if (!f.any() || view.draws.empty()) return;
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_layout, 0, 1, &frameSet, 2,
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, LANTERN_SET_FRAME, 1, &frameSet, 2,
                             dynamicOffsets);
     const VkBuffer geometry = scene.geometry();
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
@@ -119,12 +102,12 @@ void DebugDraw::recordView(VkCommandBuffer cmd, const GpuScene& scene, const Vie
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, f.wireframe);
         vkCmdSetLineWidth(cmd, 1.0f);
         vkCmdSetDepthBias(cmd, f.depthBias * kBiasConstant, 0.0f, f.depthBias * kBiasSlope);
-        for (const DrawItem& d : view.draws) {
-            const GpuPrimitive& gp = scene.primitive(d.mesh, d.primitive);
+        for (const DrawCommand& d : view.draws) {
+            const PrimitiveBuffers& gp = scene.primitive(d.mesh, d.primitive);
             vkCmdSetCullMode(cmd, d.cullBack ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE);
-            vkCmdSetFrontFace(cmd, d.mirrored ? VK_FRONT_FACE_CLOCKWISE
+            vkCmdSetFrontFace(cmd, d.frontClockwise ? VK_FRONT_FACE_CLOCKWISE
                                               : VK_FRONT_FACE_COUNTER_CLOCKWISE);
-            vkCmdPushConstants(cmd, m_layout, stages, 0, sizeof(DrawBlock), &d.block);
+            vkCmdPushConstants(cmd, layout, stages, 0, sizeof(DrawBlock), &d.block);
             const VkDeviceSize offset = gp.position, stride = 12;
             vkCmdBindVertexBuffers2(cmd, LANTERN_LOC_POSITION, 1, &geometry, &offset, nullptr, &stride);
             if (gp.indexCount > 0) {
@@ -140,11 +123,11 @@ void DebugDraw::recordView(VkCommandBuffer cmd, const GpuScene& scene, const Vie
         vkCmdSetLineWidth(cmd, 1.0f);
         vkCmdSetCullMode(cmd, VK_CULL_MODE_NONE);
         vkCmdSetFrontFace(cmd, VK_FRONT_FACE_COUNTER_CLOCKWISE);
-        for (const DrawItem& d : view.draws) {
-            const GpuPrimitive& gp = scene.primitive(d.mesh, d.primitive);
+        for (const DrawCommand& d : view.draws) {
+            const PrimitiveBuffers& gp = scene.primitive(d.mesh, d.primitive);
             DrawBlock block = d.block;
             block.normalMatrix[3] = f.normalLength;
-            vkCmdPushConstants(cmd, m_layout, stages, 0, sizeof(DrawBlock), &block);
+            vkCmdPushConstants(cmd, layout, stages, 0, sizeof(DrawBlock), &block);
             const VkBuffer buffers[2] = {geometry, geometry};
             const VkDeviceSize offsets[2] = {gp.position, gp.normal}, strides[2] = {12, 12};
             vkCmdBindVertexBuffers2(cmd, LANTERN_LOC_POSITION, 2, buffers, offsets, nullptr, strides);
@@ -153,4 +136,4 @@ void DebugDraw::recordView(VkCommandBuffer cmd, const GpuScene& scene, const Vie
     }
 }
 
-} // namespace lantern::render
+} // namespace lantern::gpu

@@ -1,4 +1,4 @@
-// GpuScene.h: a Scene's geometry and textures on the device. All primitives share one
+// SceneBuffers.h: a Scene's geometry and textures on the device. All primitives share one
 // geometry buffer (non-interleaved streams at 16-byte-aligned offsets); the de-indexed streams
 // flat shading needs (face normal and centroid per triangle corner) are built on first use.
 #pragma once
@@ -12,11 +12,11 @@
 #include <mutex>
 #include <vector>
 
-namespace lantern::render {
+namespace lantern::gpu {
 
 inline constexpr VkDeviceSize kNoStream = ~VkDeviceSize(0);
 
-struct GpuPrimitive {
+struct PrimitiveBuffers {
     // Offsets into the geometry buffer; kNoStream for absent colours/texcoords.
     VkDeviceSize position = 0, normal = 0, color = kNoStream, texcoord = kNoStream,
                  index = kNoStream;
@@ -28,19 +28,19 @@ struct GpuPrimitive {
     std::uint32_t flatVertexCount = 0;
 };
 
-class GpuScene {
+class SceneBuffers {
 public:
     /// Uploads `scene` (which must have passed Scene::validate()).
-    static Result<std::shared_ptr<GpuScene>> create(std::shared_ptr<gpu::Context> ctx,
+    static Result<std::shared_ptr<SceneBuffers>> create(std::shared_ptr<Context> ctx,
                                                     std::shared_ptr<const Scene> scene,
                                                     VkDescriptorSetLayout textureLayout);
-    ~GpuScene();
+    ~SceneBuffers();
 
     const Scene& scene() const { return *m_scene; }
     /// The context (device) the scene lives on: only its own Renderer may draw it.
-    const gpu::Context* context() const { return m_ctx.get(); }
+    const Context* context() const { return m_ctx.get(); }
     const std::shared_ptr<const Scene>& sharedScene() const { return m_scene; }
-    const GpuPrimitive& primitive(std::uint32_t mesh, std::uint32_t prim) const {
+    const PrimitiveBuffers& primitive(std::uint32_t mesh, std::uint32_t prim) const {
         return m_primitives[m_meshFirst[mesh] + prim];
     }
     VkBuffer geometry() const { return m_geometry.get(); }
@@ -56,22 +56,22 @@ public:
     std::size_t geometryBytes() const { return std::size_t(m_geometry.size); }
 
 private:
-    GpuScene() = default;
+    SceneBuffers() = default;
     Result<void> uploadTextures(VkDescriptorSetLayout layout);
 
-    std::shared_ptr<gpu::Context> m_ctx;
+    std::shared_ptr<Context> m_ctx;
     std::shared_ptr<const Scene> m_scene;
-    std::vector<GpuPrimitive> m_primitives;
+    std::vector<PrimitiveBuffers> m_primitives;
     std::vector<std::size_t> m_meshFirst;
-    gpu::Buffer m_geometry;
-    gpu::Buffer m_flatGeometry;
+    Buffer m_geometry;
+    Buffer m_flatGeometry;
     std::mutex m_flatMutex;
     bool m_flatReady = false;
     VkDeviceSize m_defaultColor = 0, m_defaultTexcoord = 0;
-    std::vector<gpu::Image> m_textures;  ///< [0] is the white default
-    std::vector<gpu::UniqueSampler> m_samplers;  ///< by (nearest, clamp)
-    gpu::UniqueDescriptorPool m_pool;
+    std::vector<Image> m_textures;  ///< [0] is the white default
+    std::vector<UniqueSampler> m_samplers;  ///< by (nearest, clamp)
+    UniqueDescriptorPool m_pool;
     std::vector<VkDescriptorSet> m_textureSets;
 };
 
-} // namespace lantern::render
+} // namespace lantern::gpu

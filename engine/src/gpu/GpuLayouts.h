@@ -9,7 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 
-namespace lantern::render {
+namespace lantern::gpu {
 
 struct alignas(16) Vec4 {
     float x = 0, y = 0, z = 0, w = 0;
@@ -88,4 +88,4 @@ static_assert(offsetof(DrawBlock, flags) == 120);
 
 inline constexpr std::uint32_t kDrawFlagVertexColor = 1u;
 
-} // namespace lantern::render
+} // namespace lantern::gpu

@@ -1,7 +1,7 @@
 // resolveCameraPlacement(): the camera a render would use, for hosts that move it themselves.
 #include <lantern/Renderer.h>
 
-#include "render/FramePlan.h"
+#include "frame/Frame.h"
 
 #include <cmath>
 
@@ -15,7 +15,7 @@ Result<CameraPlacement> resolveCameraPlacement(const Scene& scene, const CameraS
     if (!(aspect > 0.0) || !std::isfinite(aspect) || !std::isfinite(time))
         return makeError(ErrorCode::InvalidInput, "aspect must be > 0 and time finite", "aspect");
     const Pose pose = evaluatePose(scene, root < 0 ? scene.defaultRoot : root, time);
-    auto rc = render::resolveCamera(scene, pose, spec, aspect, DepthMode::ReversedZ, "camera");
+    auto rc = frame::resolveCamera(scene, pose, spec, aspect, DepthMode::ReversedZ, "camera");
     if (!rc) return std::move(rc).error();
     return CameraPlacement{rc->viewFromWorld, rc->projection, rc->description};
 }

@@ -1,6 +1,7 @@
-// Renderer::renderSequence: frames double buffered through the engine's frame slots and
-// encoded in parallel by an EncodePool.
-#include "render/RendererImpl.h"
+// Renderer::renderSequence: writing sequences, above the renderer: frames double buffered
+// through the device's frame slots and encoded in parallel by an EncodePool (io/).
+#include "api/RendererImpl.h"
+#include "render/FrameRender.h"
 
 #include "io/AtomicFile.h"
 #include "io/EncodePool.h"
@@ -58,8 +59,8 @@ Result<void> checkSequence(const SequenceOptions& s, const std::vector<int>& fra
 Result<SequenceReport> Renderer::renderSequence(const PreparedScene& prepared, const RenderOptions& options,
                                                 const SequenceOptions& seq) {
     if (!prepared) return makeError(ErrorCode::Usage, "renderSequence() needs a prepared scene");
-    render::Engine& engine = *m_impl->engine;
-    LANTERN_TRY(engine.checkOptions(options));
+    gpu::Device& device = *m_impl->device;
+    LANTERN_TRY(render::checkOptions(device, options));
     const std::vector<int> frames = sequenceFrames(seq);
     LANTERN_TRY(checkSequence(seq, frames));
     // A process killed mid-write (SIGKILL) leaves a temporary file; clear those of dead writers.
@@ -80,7 +81,7 @@ Result<SequenceReport> Renderer::renderSequence(const PreparedScene& prepared, c
         int frame;
         double time;
         double submitMs;
-        render::FramePlan plan;
+        frame::Frame model;
     };
     std::deque<InFlight> inFlight;
     std::optional<Error> failure;
@@ -105,13 +106,13 @@ Result<SequenceReport> Renderer::renderSequence(const PreparedScene& prepared, c
         InFlight f = std::move(inFlight.front());
         inFlight.pop_front();
         const auto t0 = Clock::now();
-        auto result = engine.collect(f.slot, options);
+        auto result = device.collect(f.slot);
         if (!result) return std::move(result).error();
         report.renderMs.push_back(f.submitMs + msBetween(t0, Clock::now()));
         report.gpuMs.push_back(result->gpuMs);
         if (!encode) return {};
         Image image = std::move(result->image);
-        attachMetadata(image, f.plan, m_impl->info, f.time);
+        attachMetadata(image, f.model, device.info(), f.time);
         image.metadata.emplace_back("lantern:frame", std::to_string(f.frame));
         image.framesPerSecond = seq.fps;
         io::EncodePool::Job job;
@@ -130,7 +131,7 @@ Result<SequenceReport> Renderer::renderSequence(const PreparedScene& prepared, c
         if (pool.failed()) break;
         // Double buffering: the next slot is reused only after its previous frame is collected,
         // so frame k+1 is recorded and rendering while frame k is read back and encoded.
-        if (engine.busy(engine.nextSlot())) {
+        if (device.busy(device.nextSlot())) {
             if (auto r = collectOldest(true); !r) {
                 failure = r.error();
                 break;
@@ -139,17 +140,18 @@ Result<SequenceReport> Renderer::renderSequence(const PreparedScene& prepared, c
         }
         const auto t0 = Clock::now();
         const double time = double(frame) / seq.fps;
-        auto plan = render::buildFramePlan(prepared.scene(), options, time);
-        if (!plan) {
-            failure = plan.error();
+        auto planned = render::planFrame(prepared.scene(), options, time);
+        if (!planned) {
+            failure = planned.error();
             break;
         }
-        auto slot = engine.submit(prepared.m_gpu, *plan, options);
+        auto slot = device.submit(planned->list, prepared.m_gpu);
         if (!slot) {
             failure = slot.error();
             break;
         }
-        inFlight.push_back({*slot, frame, time, msBetween(t0, Clock::now()), std::move(*plan)});
+        inFlight.push_back(
+            {*slot, frame, time, msBetween(t0, Clock::now()), std::move(planned->frame)});
     }
     // Frames still in flight: finish them (unless stopping or failing, then only wait for the
     // GPU), so every slot is free when this returns.

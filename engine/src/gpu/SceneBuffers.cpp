@@ -1,6 +1,6 @@
 // Uploads a scene's geometry (one buffer, non-interleaved streams), builds flat-shading
 // streams on demand, and uploads textures with a mip chain.
-#include "render/GpuScene.h"
+#include "gpu/SceneBuffers.h"
 
 #include "lantern_shared.h"
 
@@ -11,7 +11,7 @@
 #include <cstring>
 #include <limits>
 
-namespace lantern::render {
+namespace lantern::gpu {
 namespace {
 
 VkDeviceSize align16(VkDeviceSize v) { return (v + 15) & ~VkDeviceSize(15); }
@@ -19,31 +19,31 @@ VkDeviceSize align16(VkDeviceSize v) { return (v + 15) & ~VkDeviceSize(15); }
 // Where the bytes of a new device buffer are written: straight into it when it is host-visible,
 // else into a staging buffer copied over afterwards.
 struct Filler {
-    gpu::Buffer staging;
+    Buffer staging;
     char* dst = nullptr;
 };
 
-Result<Filler> beginFill(gpu::Context& ctx, gpu::Buffer& target) {
+Result<Filler> beginFill(Context& ctx, Buffer& target) {
     Filler f;
     if (target.mapped) {
         f.dst = static_cast<char*>(target.mapped);
         return f;
     }
-    auto staging = gpu::createBuffer(ctx, target.size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                     gpu::MemoryUsage::Upload, "geometry staging");
+    auto staging = createBuffer(ctx, target.size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                     MemoryUsage::Upload, "geometry staging");
     if (!staging) return std::move(staging).error();
     f.staging = std::move(*staging);
     f.dst = static_cast<char*>(f.staging.mapped);
     return f;
 }
 
-Result<void> endFill(gpu::Context& ctx, gpu::Buffer& target, Filler& f) {
-    if (!f.staging.buffer) return gpu::flush(ctx, target);
-    LANTERN_TRY(gpu::flush(ctx, f.staging));
+Result<void> endFill(Context& ctx, Buffer& target, Filler& f) {
+    if (!f.staging.buffer) return flush(ctx, target);
+    LANTERN_TRY(flush(ctx, f.staging));
     return ctx.submitAndWait([&](VkCommandBuffer cmd) {
         VkBufferCopy region{0, 0, target.size};
         vkCmdCopyBuffer(cmd, f.staging.get(), target.get(), 1, &region);
-        gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                            VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT,
                            VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_2_INDEX_READ_BIT);
     });
@@ -60,15 +60,15 @@ Error tooLarge(const char* what) {
 
 } // namespace
 
-GpuScene::~GpuScene() {
+SceneBuffers::~SceneBuffers() {
     // Descriptor sets go with their pool; images, buffers and samplers with their owners. The
     // device stays alive through m_ctx until this object is gone.
 }
 
-Result<std::shared_ptr<GpuScene>> GpuScene::create(std::shared_ptr<gpu::Context> ctx,
+Result<std::shared_ptr<SceneBuffers>> SceneBuffers::create(std::shared_ptr<Context> ctx,
                                                    std::shared_ptr<const Scene> scene,
                                                    VkDescriptorSetLayout textureLayout) {
-    std::shared_ptr<GpuScene> g(new GpuScene());
+    std::shared_ptr<SceneBuffers> g(new SceneBuffers());
     g->m_ctx = std::move(ctx);
     g->m_scene = std::move(scene);
     const Scene& s = *g->m_scene;
@@ -80,7 +80,7 @@ Result<std::shared_ptr<GpuScene>> GpuScene::create(std::shared_ptr<gpu::Context>
     for (const Mesh& mesh : s.meshes) {
         g->m_meshFirst.push_back(g->m_primitives.size());
         for (const Primitive& p : mesh.primitives) {
-            GpuPrimitive gp;
+            PrimitiveBuffers gp;
             const VkDeviceSize n = p.positions.size();
             if (n > std::numeric_limits<std::uint32_t>::max() ||
                 p.indices.size() > std::numeric_limits<std::uint32_t>::max())
@@ -106,12 +106,12 @@ Result<std::shared_ptr<GpuScene>> GpuScene::create(std::shared_ptr<gpu::Context>
             g->m_primitives.push_back(gp);
         }
     }
-    gpu::Context& c = *g->m_ctx;
-    auto buffer = gpu::createBuffer(c, size,
+    Context& c = *g->m_ctx;
+    auto buffer = createBuffer(c, size,
                                     VK_BUFFER_USAGE_VERTEX_BUFFER_BIT |
                                         VK_BUFFER_USAGE_INDEX_BUFFER_BIT |
                                         VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                    gpu::MemoryUsage::DeviceLocal, "scene geometry");
+                                    MemoryUsage::DeviceLocal, "scene geometry");
     if (!buffer) return std::move(buffer).error();
     g->m_geometry = std::move(*buffer);
     auto fill = beginFill(c, g->m_geometry);
@@ -123,7 +123,7 @@ Result<std::shared_ptr<GpuScene>> GpuScene::create(std::shared_ptr<gpu::Context>
     std::size_t k = 0;
     for (const Mesh& mesh : s.meshes)
         for (const Primitive& p : mesh.primitives) {
-            const GpuPrimitive& gp = g->m_primitives[k++];
+            const PrimitiveBuffers& gp = g->m_primitives[k++];
             put(dst, gp.position, p.positions);
             put(dst, gp.normal, p.normals);
             if (gp.color != kNoStream) put(dst, gp.color, p.colors);
@@ -135,7 +135,7 @@ Result<std::shared_ptr<GpuScene>> GpuScene::create(std::shared_ptr<gpu::Context>
     return g;
 }
 
-Result<void> GpuScene::ensureFlatStreams() {
+Result<void> SceneBuffers::ensureFlatStreams() {
     std::lock_guard lock(m_flatMutex);
     if (m_flatReady) return {};
     const Scene& s = *m_scene;
@@ -143,7 +143,7 @@ Result<void> GpuScene::ensureFlatStreams() {
     std::size_t k = 0;
     for (const Mesh& mesh : s.meshes)
         for (const Primitive& p : mesh.primitives) {
-            GpuPrimitive& gp = m_primitives[k++];
+            PrimitiveBuffers& gp = m_primitives[k++];
             const VkDeviceSize n = VkDeviceSize(p.triangleCount()) * 3;
             if (n > std::numeric_limits<std::uint32_t>::max()) return tooLarge("a primitive");
             gp.flatVertexCount = std::uint32_t(n);
@@ -162,10 +162,10 @@ Result<void> GpuScene::ensureFlatStreams() {
                 size = align16(size + n * 8);
             }
         }
-    auto buffer = gpu::createBuffer(*m_ctx, size,
+    auto buffer = createBuffer(*m_ctx, size,
                                     VK_BUFFER_USAGE_VERTEX_BUFFER_BIT |
                                         VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                    gpu::MemoryUsage::DeviceLocal, "flat geometry");
+                                    MemoryUsage::DeviceLocal, "flat geometry");
     if (!buffer) return std::move(buffer).error();
     m_flatGeometry = std::move(*buffer);
     auto fill = beginFill(*m_ctx, m_flatGeometry);
@@ -174,7 +174,7 @@ Result<void> GpuScene::ensureFlatStreams() {
     k = 0;
     for (const Mesh& mesh : s.meshes)
         for (const Primitive& p : mesh.primitives) {
-            const GpuPrimitive& gp = m_primitives[k++];
+            const PrimitiveBuffers& gp = m_primitives[k++];
             auto* pos = reinterpret_cast<glm::vec3*>(dst + gp.flatPosition);
             auto* nrm = reinterpret_cast<glm::vec3*>(dst + gp.flatNormal);
             auto* cen = reinterpret_cast<glm::vec3*>(dst + gp.flatCentroid);
@@ -211,8 +211,8 @@ Result<void> GpuScene::ensureFlatStreams() {
     return {};
 }
 
-Result<void> GpuScene::uploadTextures(VkDescriptorSetLayout layout) {
-    gpu::Context& c = *m_ctx;
+Result<void> SceneBuffers::uploadTextures(VkDescriptorSetLayout layout) {
+    Context& c = *m_ctx;
     const Scene& s = *m_scene;
     // Linear blits build the mip chain when the format supports them.
     VkFormatProperties fp;
@@ -232,8 +232,8 @@ Result<void> GpuScene::uploadTextures(VkDescriptorSetLayout layout) {
 
     VkDeviceSize stagingSize = 0;
     for (const Source& src : sources) stagingSize += VkDeviceSize(src.width) * src.height * 4;
-    auto staging = gpu::createBuffer(c, stagingSize, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                     gpu::MemoryUsage::Upload, "texture staging");
+    auto staging = createBuffer(c, stagingSize, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                     MemoryUsage::Upload, "texture staging");
     if (!staging) return std::move(staging).error();
     std::vector<VkDeviceSize> offsets;
     VkDeviceSize offset = 0;
@@ -243,10 +243,10 @@ Result<void> GpuScene::uploadTextures(VkDescriptorSetLayout layout) {
         std::memcpy(static_cast<char*>(staging->mapped) + offset, src.pixels, bytes);
         offset += bytes;
     }
-    LANTERN_TRY(gpu::flush(c, *staging));
+    LANTERN_TRY(flush(c, *staging));
 
     for (std::size_t i = 0; i < sources.size(); ++i) {
-        gpu::ImageDesc d;
+        ImageDesc d;
         d.format = VK_FORMAT_R8G8B8A8_SRGB;
         d.width = std::uint32_t(sources[i].width);
         d.height = std::uint32_t(sources[i].height);
@@ -254,15 +254,15 @@ Result<void> GpuScene::uploadTextures(VkDescriptorSetLayout layout) {
         d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
                   VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
         d.name = i == 0 ? "white texture" : "texture " + std::to_string(i - 1);
-        auto img = gpu::createImage(c, d);
+        auto img = createImage(c, d);
         if (!img) return std::move(img).error();
         m_textures.push_back(std::move(*img));
     }
     LANTERN_TRY(c.submitAndWait([&](VkCommandBuffer cmd) {
         for (std::size_t i = 0; i < m_textures.size(); ++i) {
-            const gpu::Image& img = m_textures[i];
+            const Image& img = m_textures[i];
             const std::uint32_t mips = img.desc.mipLevels;
-            gpu::imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+            imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
                               VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
             VkBufferImageCopy region{};
@@ -273,7 +273,7 @@ Result<void> GpuScene::uploadTextures(VkDescriptorSetLayout layout) {
                                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
             std::int32_t w = std::int32_t(img.desc.width), h = std::int32_t(img.desc.height);
             for (std::uint32_t m = 1; m < mips; ++m) {
-                gpu::imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT,
+                imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT,
                                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                                   VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
@@ -287,7 +287,7 @@ Result<void> GpuScene::uploadTextures(VkDescriptorSetLayout layout) {
                 blit.dstOffsets[1] = {nw, nh, 1};
                 vkCmdBlitImage(cmd, img.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, img.get(),
                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
-                gpu::imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT,
+                imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT,
                                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                                   VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
@@ -296,7 +296,7 @@ Result<void> GpuScene::uploadTextures(VkDescriptorSetLayout layout) {
                 w = nw;
                 h = nh;
             }
-            gpu::imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT,
+            imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT,
                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                               VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
@@ -329,7 +329,7 @@ Result<void> GpuScene::uploadTextures(VkDescriptorSetLayout layout) {
     dpci.pPoolSizes = &poolSize;
     VkDescriptorPool pool = VK_NULL_HANDLE;
     LANTERN_VK_TRY(vkCreateDescriptorPool(c.device(), &dpci, nullptr, &pool));
-    m_pool = gpu::UniqueDescriptorPool(c.device(), pool);
+    m_pool = UniqueDescriptorPool(c.device(), pool);
     std::vector<VkDescriptorSetLayout> layouts(m_textures.size(), layout);
     m_textureSets.resize(m_textures.size());
     VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
@@ -356,4 +356,4 @@ Result<void> GpuScene::uploadTextures(VkDescriptorSetLayout layout) {
     return {};
 }
 
-} // namespace lantern::render
+} // namespace lantern::gpu
