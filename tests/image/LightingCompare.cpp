@@ -117,9 +117,10 @@ Result<render::RenderedFrame> renderWithIds(gpu::Device& device, const Scene& sc
 }
 
 ReferenceComparison compareWithReference(gpu::Device& device, const Scene& scene,
-                                         const RenderOptions& options, const PixelCheck& check) {
+                                         const RenderOptions& options, const PixelCheck& check,
+                                         const render::FrameEdits& edits) {
     ReferenceComparison c;
-    auto f = renderWithIds(device, scene, options);
+    auto f = renderWithIds(device, scene, options, edits);
     if (!f) {
         ADD_FAILURE() << f.error().describe();
         return c;

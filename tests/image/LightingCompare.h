@@ -85,7 +85,8 @@ Result<render::RenderedFrame> renderWithIds(gpu::Device& device, const Scene& sc
 
 ReferenceComparison compareWithReference(gpu::Device& device, const Scene& scene,
                                          const RenderOptions& options,
-                                         const PixelCheck& check = {});
+                                         const PixelCheck& check = {},
+                                         const render::FrameEdits& edits = {});
 
 /// RenderOptions of the given size and shading mode.
 RenderOptions optionsFor(int width, int height, ShadingMode mode);

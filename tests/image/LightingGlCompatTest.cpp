@@ -62,7 +62,7 @@ protected:
 };
 
 // GL_FLAT: the whole triangle has the (clamped) colour lit at its last vertex.
-TEST_F(LightingGlCompat, FlatTakesTheProvokingVertexColour) {
+TEST_F(LightingGlCompat, FlatTakesTheProvokingVertexColor) {
     const Scene scene = litSphere(1.0);
     RenderOptions o = test::optionsFor(64, 64, ShadingMode::Flat);
     o.glCompat = true;
@@ -103,7 +103,7 @@ TEST_F(LightingGlCompat, FlatTakesTheProvokingVertexColour) {
 
 // Lit colours clamp to [0, 1] at each vertex, before interpolation: a bright light gives a
 // different picture from clamping the interpolated colour (--clamp).
-TEST_F(LightingGlCompat, GouraudClampsEachVertexColour) {
+TEST_F(LightingGlCompat, GouraudClampsEachVertexColor) {
     const Scene scene = litSphere(3.0);
     RenderOptions o = test::optionsFor(64, 64, ShadingMode::Gouraud);
     o.glCompat = true;

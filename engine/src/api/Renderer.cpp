@@ -4,7 +4,6 @@
 #include <lantern/Version.h>
 
 #include "api/RendererImpl.h"
-#include "gpu/SceneBuffers.h"
 #include "render/FrameRender.h"
 
 #include <cstdio>
@@ -51,7 +50,7 @@ void attachMetadata(Image& image, const frame::Frame& p, const DeviceInfo& devic
     }
 }
 
-const Scene& PreparedScene::scene() const { return m_gpu->scene(); }
+const Scene& PreparedScene::scene() const { return gpu::Device::sceneOf(*m_gpu); }
 
 Renderer::Renderer(std::unique_ptr<Impl> impl) : m_impl(std::move(impl)) {}
 Renderer::Renderer(Renderer&&) noexcept = default;

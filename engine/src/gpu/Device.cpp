@@ -112,6 +112,8 @@ Result<std::shared_ptr<SceneBuffers>> Device::upload(std::shared_ptr<const Scene
                                 m_impl->pipelines->textureSetLayout());
 }
 
+const Scene& Device::sceneOf(const SceneBuffers& buffers) { return buffers.scene(); }
+
 Result<void> Device::checkTarget(const TargetDesc& target, const Overlays& overlays) const {
     LANTERN_TRY(gpu::checkTarget(*m_impl->ctx, target, m_impl->ring->slotCount()));
     return OverlayPipelines::check(*m_impl->ctx, overlays, target.aovs);

@@ -76,6 +76,8 @@ public:
 
     /// Uploads `scene` (which must have passed Scene::validate()).
     Result<std::shared_ptr<SceneBuffers>> upload(std::shared_ptr<const Scene> scene);
+    /// The scene an upload holds.
+    static const Scene& sceneOf(const SceneBuffers& buffers);
 
     /// Refuses, before anything is allocated, a target or overlay this device cannot make:
     /// InvalidInput, Unsupported or OutOfMemory naming the option.

@@ -115,14 +115,14 @@ LightSums evaluateLighting(const glm::dvec3& V, const glm::dvec3& n, const Mater
     return s;
 }
 
-MaterialColours materialColours(const MaterialSide& m, const glm::dvec4* vertexColour,
+MaterialColours materialColours(const MaterialSide& m, const glm::dvec4* vertexColor,
                                 bool scales) {
     MaterialColours r{m.ambient, glm::dvec3(m.diffuse), m.diffuse.a};
-    if (vertexColour) {
-        const glm::dvec3 rgb(*vertexColour);
+    if (vertexColor) {
+        const glm::dvec3 rgb(*vertexColor);
         r.ambient = scales ? r.ambient * rgb : rgb;
         r.diffuse = scales ? r.diffuse * rgb : rgb;
-        r.alpha *= vertexColour->a;
+        r.alpha *= vertexColor->a;
     }
     return r;
 }

@@ -70,7 +70,7 @@ struct MaterialColours {
     glm::dvec3 ambient{0.0}, diffuse{0.0};
     double alpha = 1.0;
 };
-MaterialColours materialColours(const MaterialSide& m, const glm::dvec4* vertexColour,
+MaterialColours materialColours(const MaterialSide& m, const glm::dvec4* vertexColor,
                                 bool scales);
 
 /// colour = base + texel * textured, as splitColour in the shaders.
