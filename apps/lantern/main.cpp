@@ -1,7 +1,7 @@
 // `lantern`: the command line (spec/cli.md). Exit status: 0 success, 1 input refused,
 // 2 usage error, 3 the renderer failed.
-#include "CliSupport.h"
-#include "Commands.h"
+#include "common/CliSupport.h"
+#include "common/Commands.h"
 
 #include <lantern/Version.h>
 

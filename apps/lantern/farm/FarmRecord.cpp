@@ -1,6 +1,6 @@
 // The farm's files: where a submission's record, scripts and logs go, the record itself (a
 // line-per-value text file beside the outputs), and which frames exist and can be read.
-#include "Farm.h"
+#include "farm/Farm.h"
 
 #include <algorithm>
 #include <atomic>

@@ -4,9 +4,9 @@
 // cast of the exact surfaces. Writes a CSV (one row per configuration), an SVG plot (error
 // against ms per frame, Pareto fronts marked) and a markdown summary naming, per error budget,
 // the fastest setting that meets it.
-#include "BenchAccuracy.h"
+#include "bench/BenchAccuracy.h"
 
-#include "BenchHarness.h"
+#include "bench/BenchHarness.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,6 +1,6 @@
 // The timing harness and output helpers shared by `lantern bench accuracy` and `lantern bench
 // speed`: interleaved rounds with warm-up and medians (numerics.md sections 5 and 7.4).
-#include "BenchHarness.h"
+#include "bench/BenchHarness.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,7 +1,7 @@
 // The Kubernetes back end of `lantern farm`: an Indexed Job manifest whose pod I renders
 // shard JOB_COMPLETION_INDEX/N. Written only: nothing here talks to a cluster, and it has not
 // been run on one (docs/farm.md says so).
-#include "Farm.h"
+#include "farm/Farm.h"
 
 #include <algorithm>
 #include <cctype>

@@ -3,7 +3,7 @@
 // and materials live and picks cameras and animations, and the help overlay.
 #pragma once
 
-#include "ViewerState.h"
+#include "view/ViewerState.h"
 
 #include <lantern/Window.h>
 

@@ -3,8 +3,8 @@
 // time), encode only per EXR compression (one thread, with the file size), and the full
 // pipeline (double-buffered frames, encoders on every core). The pipeline is compared with
 // the bound its stages set: max(render wall time, total CPU time of all stages / cores).
-#include "Bench.h"
-#include "CliSupport.h"
+#include "bench/Bench.h"
+#include "common/CliSupport.h"
 
 #include <lantern/Sequence.h>
 

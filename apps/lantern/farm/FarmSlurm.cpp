@@ -1,6 +1,6 @@
 // The Slurm back end of `lantern farm`: the sbatch script of a job array, submission with
 // sbatch, and following the array's tasks with squeue.
-#include "Farm.h"
+#include "farm/Farm.h"
 
 #include <chrono>
 #include <cstdio>

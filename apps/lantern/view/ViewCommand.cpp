@@ -2,10 +2,10 @@
 // a Vulkan swapchain (lantern::glfw::Window), the scene's animation, an orbit/pan/zoom/fly
 // camera, shading switches, quad view, an ImGui panel editing lights and materials live,
 // screenshots and scripted runs. Public API only.
-#include "CliSupport.h"
-#include "Commands.h"
-#include "ViewerState.h"
-#include "ViewerUi.h"
+#include "common/CliSupport.h"
+#include "common/Commands.h"
+#include "view/ViewerState.h"
+#include "view/ViewerUi.h"
 
 #include <lantern/Window.h>
 #include <lantern/glfw/GlfwWindow.h>

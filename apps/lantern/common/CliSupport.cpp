@@ -1,5 +1,5 @@
 // Shared command-line pieces: error reporting, number lists, camera/shading/device options.
-#include "CliSupport.h"
+#include "common/CliSupport.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 // The viewer's free camera: turntable orbit, pan, zoom, fly, framing, and its exact
 // `lantern render` equivalent.
-#include "ViewerCamera.h"
+#include "view/ViewerCamera.h"
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>

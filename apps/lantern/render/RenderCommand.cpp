@@ -1,6 +1,6 @@
 // `lantern render SCENE`: headless rendering to EXR/PNG (spec/cli.md).
-#include "CliSupport.h"
-#include "Commands.h"
+#include "common/CliSupport.h"
+#include "common/Commands.h"
 
 #include <algorithm>
 #include <atomic>

@@ -1,9 +1,9 @@
 // `lantern bench frame`: per-frame timing of one scene: the first frame (pipeline JIT) apart,
 // then the median and minimum of N frames for render only (GPU timestamps and the wall time of
 // Renderer::render, which includes readback) and for render + EXR write. Benchmarks, not tests.
-#include "Bench.h"
-#include "CliSupport.h"
-#include "Commands.h"
+#include "bench/Bench.h"
+#include "common/CliSupport.h"
+#include "common/Commands.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,5 +1,5 @@
 // The viewer's ImGui panel and help overlay, drawn in the WindowTarget's overlay pass.
-#include "ViewerUi.h"
+#include "view/ViewerUi.h"
 
 #include <imgui.h>
 #include <backends/imgui_impl_glfw.h>

@@ -1,6 +1,6 @@
 // The list of `lantern bench` subcommands besides `frame`: each benchmark lives in its own file
 // and is added here with one line.
-#include "Bench.h"
+#include "bench/Bench.h"
 
 namespace lantern::cli {
 

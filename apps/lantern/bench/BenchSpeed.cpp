@@ -3,8 +3,8 @@
 // sections, each timed in interleaved rounds: shading modes on a scene (the teapot grid by
 // default), specialised against all-features pipelines; 1 to 256 lights; and 1e3 to 1e7
 // triangles (the S1 sphere tessellated ever finer, so the pixels stay the same).
-#include "BenchAccuracy.h"
-#include "BenchHarness.h"
+#include "bench/BenchAccuracy.h"
+#include "bench/BenchHarness.h"
 
 #include <algorithm>
 #include <cmath>

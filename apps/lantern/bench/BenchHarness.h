@@ -3,8 +3,8 @@
 // description, option-list parsing, and CSV / markdown output helpers.
 #pragma once
 
-#include "Bench.h"
-#include "CliSupport.h"
+#include "bench/Bench.h"
+#include "common/CliSupport.h"
 
 #include <cstdint>
 #include <functional>

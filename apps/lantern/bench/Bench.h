@@ -2,7 +2,7 @@
 // benchmark file registers its own subcommands under `lantern bench`.
 #pragma once
 
-#include "Commands.h"
+#include "common/Commands.h"
 
 #include <chrono>
 #include <vector>

@@ -1,5 +1,5 @@
 // ViewerState: the animation range and choice of `lantern view`, and its keys.
-#include "ViewerState.h"
+#include "view/ViewerState.h"
 
 #include <algorithm>
 

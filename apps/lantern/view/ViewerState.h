@@ -2,7 +2,7 @@
 // (ViewCommand.cpp) and its ImGui panel (ViewerUi.cpp). Public API only.
 #pragma once
 
-#include "ViewerCamera.h"
+#include "view/ViewerCamera.h"
 
 #include <lantern/Lantern.h>
 

@@ -1,7 +1,7 @@
 // The analytic scenes of the accuracy benchmark (numerics.md section 7.1): S1, a lit sphere
 // (tessellation against shading mode, highlight loss), and S2, a spot on a plane (Gouraud's
 // classic failure: the cone falls between vertices). Built in code from the public API.
-#include "BenchAccuracy.h"
+#include "bench/BenchAccuracy.h"
 
 #include <glm/gtc/quaternion.hpp>
 

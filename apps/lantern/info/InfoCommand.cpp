@@ -1,7 +1,7 @@
 // `lantern info SCENE`: what a scene holds (nodes, meshes, triangles, materials, lights,
 // cameras, animations, bounds) and the renderer features it needs. No GPU needed.
-#include "CliSupport.h"
-#include "Commands.h"
+#include "common/CliSupport.h"
+#include "common/Commands.h"
 
 #include <cmath>
 #include <iostream>

@@ -1,8 +1,8 @@
 // The accuracy plot as SVG, written directly (no plotting dependency): per group of comparable
 // rows, error against ms per frame on log-log axes, one curve per shading mode and sample
 // count, the Pareto front drawn as a staircase with rings, and the 1e-3 acceptance line.
-#include "BenchAccuracy.h"
-#include "BenchHarness.h"
+#include "bench/BenchAccuracy.h"
+#include "bench/BenchHarness.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,9 +2,9 @@
 // array (docs/farm.md). submit writes the job (sbatch script or Kubernetes manifest) and a
 // submission record beside the outputs, submits it and, with --wait, follows it; check lists
 // the frames missing or unreadable; submit --resume renders only those.
-#include "CliSupport.h"
-#include "Commands.h"
-#include "Farm.h"
+#include "common/CliSupport.h"
+#include "common/Commands.h"
+#include "farm/Farm.h"
 
 #include <algorithm>
 #include <cstdio>
