@@ -3,9 +3,8 @@
 #include "common/CliSupport.h"
 #include "common/Commands.h"
 
-#include <lantern/Version.h>
-
 #include <iostream>
+#include <lantern/Version.h>
 
 int main(int argc, char** argv) {
     using namespace lantern::cli;

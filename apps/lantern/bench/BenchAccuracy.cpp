@@ -219,7 +219,7 @@ int run(AccuracyArgs& a) {
         return report(makeError(ErrorCode::InvalidInput, "the list is empty", "--resolutions"));
     if (auto f = makeOutputFolder(a.timing.output); !f) return report(f.error());
 
-    const ColdShaderCache coldCache;  // before the device: first frames pay the whole JIT
+    const ColdShaderCache coldCache; // before the device: first frames pay the whole JIT
     auto renderer = Renderer::create(a.device.desc());
     if (!renderer) return report(renderer.error());
     std::vector<int> msaa;

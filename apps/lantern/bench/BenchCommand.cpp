@@ -80,14 +80,17 @@ int runFrame(const FrameArgs& a) {
     }
     std::error_code ec;
     std::filesystem::remove(path, ec);
-    std::printf("scene %s, %dx%d, %s, device %s, %d runs after %d warm-up\n", a.scene.c_str(), a.width,
-                a.height, a.shading.shading.empty() ? "scene shading" : a.shading.shading.c_str(),
+    std::printf("scene %s, %dx%d, %s, device %s, %d runs after %d warm-up\n", a.scene.c_str(),
+                a.width, a.height,
+                a.shading.shading.empty() ? "scene shading" : a.shading.shading.c_str(),
                 renderer->device().name.c_str(), a.runs, a.warmup);
     std::printf("%-34s %10s %10s\n", "", "median ms", "min ms");
     std::printf("%-34s %10.2f\n", "first frame (pipeline JIT)", firstMs);
     std::printf("%-34s %10.2f %10.2f\n", "render only: GPU render pass", median(gpu), minimum(gpu));
-    std::printf("%-34s %10.2f %10.2f\n", "render only: render() + readback", median(wall), minimum(wall));
-    std::printf("%-34s %10.2f %10.2f\n", ("EXR write (" + a.compression + (a.half ? ", half)" : ", float)")).c_str(),
+    std::printf("%-34s %10.2f %10.2f\n", "render only: render() + readback", median(wall),
+                minimum(wall));
+    std::printf("%-34s %10.2f %10.2f\n",
+                ("EXR write (" + a.compression + (a.half ? ", half)" : ", float)")).c_str(),
                 median(write), minimum(write));
     std::printf("%-34s %10.2f %10.2f\n", "render + EXR write", median(total), minimum(total));
     return kOk;
@@ -103,9 +106,13 @@ Runner addBenchCommand(CLI::App& app) {
     frame->add_option("scene", args->scene, "glTF/GLB file or builtin:NAME")->capture_default_str();
     frame->add_option("--width", args->width)->capture_default_str();
     frame->add_option("--height", args->height)->capture_default_str();
-    frame->add_option("--runs", args->runs, "Timed frames")->capture_default_str()->check(CLI::Range(1, 100000));
-    frame->add_option("--warmup", args->warmup, "Frames before timing (the first is reported apart)")
-        ->capture_default_str()->check(CLI::Range(1, 1000));
+    frame->add_option("--runs", args->runs, "Timed frames")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 100000));
+    frame
+        ->add_option("--warmup", args->warmup, "Frames before timing (the first is reported apart)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1000));
     frame->add_option("--compression", args->compression, "EXR compression for the write timing")
         ->capture_default_str();
     frame->add_flag("--half", args->half, "Time half-float EXR writes");

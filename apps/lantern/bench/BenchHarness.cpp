@@ -106,7 +106,7 @@ ColdShaderCache::ColdShaderCache() {
     std::string pattern =
         (std::filesystem::temp_directory_path() / "lantern-bench-shader-cache-XXXXXX").string();
     if (!::mkdtemp(pattern.data())) {
-        setenv("MESA_SHADER_CACHE_DISABLE", "true", 1);  // cold, the other way
+        setenv("MESA_SHADER_CACHE_DISABLE", "true", 1); // cold, the other way
         return;
     }
     m_dir = pattern;
@@ -130,17 +130,17 @@ std::string machineDescription(const Renderer& renderer) {
     const char* threads = std::getenv("LP_NUM_THREADS");
     const char* off = std::getenv("MESA_SHADER_CACHE_DISABLE");
     const char* dir = std::getenv("MESA_SHADER_CACHE_DIR");
-    const std::string cache = off ? std::string("off (MESA_SHADER_CACHE_DISABLE=") + off + ")"
-                              : dir ? (std::string(dir).find("lantern-bench-shader-cache-") !=
-                                               std::string::npos
-                                           ? std::string("on, in a new empty folder")
-                                           : std::string("MESA_SHADER_CACHE_DIR=") + dir)
-                                    : std::string("Mesa's default");
+    const std::string cache =
+        off   ? std::string("off (MESA_SHADER_CACHE_DISABLE=") + off + ")"
+        : dir ? (std::string(dir).find("lantern-bench-shader-cache-") != std::string::npos
+                     ? std::string("on, in a new empty folder")
+                     : std::string("MESA_SHADER_CACHE_DIR=") + dir)
+              : std::string("Mesa's default");
     std::ostringstream s;
     s << "CPU " << cpu << ", " << std::thread::hardware_concurrency()
       << " cores, LP_NUM_THREADS=" << (threads ? threads : "(unset: one per core)")
-      << ", shader cache " << cache << "; device "
-      << renderer.device().name << " (" << renderer.device().driver << ")";
+      << ", shader cache " << cache << "; device " << renderer.device().name << " ("
+      << renderer.device().driver << ")";
     return s.str();
 }
 

@@ -90,7 +90,7 @@ public:
     ColdShaderCache& operator=(const ColdShaderCache&) = delete;
 
 private:
-    std::string m_dir;  ///< the folder made here (empty: the environment chose)
+    std::string m_dir; ///< the folder made here (empty: the environment chose)
 };
 
 /// A markdown paragraph describing the machine: CPU, cores, LP_NUM_THREADS, shader cache,

@@ -6,14 +6,12 @@
 #include "bench/Bench.h"
 #include "common/CliSupport.h"
 
-#include <lantern/Sequence.h>
-
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <lantern/Sequence.h>
 #include <sstream>
+#include <sys/resource.h>
 #include <thread>
 
 namespace lantern::cli {
@@ -31,7 +29,8 @@ struct SequenceArgs {
     std::string frames = "0-119";
     double fps = 24.0;
     std::vector<std::string> sizes = {"1280x720", "1920x1080"};
-    std::vector<std::string> compressions = {"none", "rle", "zips", "zip", "piz", "pxr24", "b44", "dwaa"};
+    std::vector<std::string> compressions = {"none", "rle",   "zips", "zip",
+                                             "piz",  "pxr24", "b44",  "dwaa"};
     std::string pipelineCompression = "zip";
     int encodeSamples = 8;
     std::string tmp = "/tmp/lantern-bench-sequence";
@@ -76,7 +75,8 @@ int run(const SequenceArgs& a) {
         const int n = range->count();
 
         // 1. Render only: every frame, synchronously (plan, record, render, read back).
-        if (auto warm = renderer->render(*prepared, options, 0.0); !warm) return report(warm.error());
+        if (auto warm = renderer->render(*prepared, options, 0.0); !warm)
+            return report(warm.error());
         std::vector<double> renderMs, gpuMs;
         std::vector<Image> samples;
         const int sampleEvery = std::max(1, n / std::max(1, a.encodeSamples));
@@ -103,7 +103,9 @@ int run(const SequenceArgs& a) {
         double pipelineEncodeMs = 0.0;
         for (const std::string& c : a.compressions) {
             auto comp = parseExrCompression(c);
-            if (!comp) return report(makeError(ErrorCode::InvalidInput, "unknown compression " + c, "--compressions"));
+            if (!comp)
+                return report(makeError(ErrorCode::InvalidInput, "unknown compression " + c,
+                                        "--compressions"));
             EncodeRow row{c, 0, 0, 0, 0};
             for (bool half : {false, true}) {
                 std::vector<double> ms;
@@ -131,39 +133,49 @@ int run(const SequenceArgs& a) {
         seq.fps = a.fps;
         seq.outputs = {(std::filesystem::path(a.tmp) / "frame_####.exr").string()};
         auto pc = parseExrCompression(a.pipelineCompression);
-        if (!pc) return report(makeError(ErrorCode::InvalidInput, "unknown compression", "--pipeline-compression"));
+        if (!pc)
+            return report(makeError(ErrorCode::InvalidInput, "unknown compression",
+                                    "--pipeline-compression"));
         seq.exr.compression = *pc;
         auto full = renderer->renderSequence(*prepared, options, seq);
         if (!full) return report(full.error());
         const double fullMs = full->wallSeconds * 1000.0 / n;
         const double fullCpuMs = full->cpuSeconds * 1000.0 / n;
         const double bound = std::max(renderWall, (renderCpu + pipelineEncodeMs) / cores);
-        for (const auto& e : std::filesystem::directory_iterator(a.tmp)) std::filesystem::remove(e.path());
+        for (const auto& e : std::filesystem::directory_iterator(a.tmp))
+            std::filesystem::remove(e.path());
 
         md << "### " << size->width << "x" << size->height << "\n\n";
         md << "| stage | ms per frame |\n|---|---|\n";
         char line[256];
-        std::snprintf(line, sizeof line, "| render only, wall (median / mean) | %.1f / %.1f |\n", median(renderMs), renderWall);
+        std::snprintf(line, sizeof line, "| render only, wall (median / mean) | %.1f / %.1f |\n",
+                      median(renderMs), renderWall);
         md << line;
-        std::snprintf(line, sizeof line, "| render only, GPU render pass (median) | %.1f |\n", median(gpuMs));
+        std::snprintf(line, sizeof line, "| render only, GPU render pass (median) | %.1f |\n",
+                      median(gpuMs));
         md << line;
-        std::snprintf(line, sizeof line, "| render only, process CPU time (mean) | %.1f |\n", renderCpu);
+        std::snprintf(line, sizeof line, "| render only, process CPU time (mean) | %.1f |\n",
+                      renderCpu);
         md << line;
         std::snprintf(line, sizeof line, "| encode only, %s float, one thread (median) | %.1f |\n",
                       a.pipelineCompression.c_str(), pipelineEncodeMs);
         md << line;
-        std::snprintf(line, sizeof line, "| full pipeline, wall (%d encoder threads) | %.1f |\n", cores, fullMs);
+        std::snprintf(line, sizeof line, "| full pipeline, wall (%d encoder threads) | %.1f |\n",
+                      cores, fullMs);
         md << line;
         std::snprintf(line, sizeof line, "| full pipeline, process CPU time | %.1f |\n", fullCpuMs);
         md << line;
-        std::snprintf(line, sizeof line, "| bound max(render wall, (render CPU + encode CPU) / %d cores) | %.1f |\n", cores, bound);
+        std::snprintf(line, sizeof line,
+                      "| bound max(render wall, (render CPU + encode CPU) / %d cores) | %.1f |\n",
+                      cores, bound);
         md << line;
         std::snprintf(line, sizeof line, "| full pipeline / bound | %.3f |\n\n", fullMs / bound);
         md << line;
-        md << "| compression | float ms | float MiB | half ms | half MiB |\n|---|---|---|---|---|\n";
+        md << "| compression | float ms | float MiB | half ms | half MiB "
+              "|\n|---|---|---|---|---|\n";
         for (const EncodeRow& r : rows) {
-            std::snprintf(line, sizeof line, "| %s | %.1f | %.2f | %.1f | %.2f |\n", r.compression.c_str(),
-                          r.floatMs, r.floatMiB, r.halfMs, r.halfMiB);
+            std::snprintf(line, sizeof line, "| %s | %.1f | %.2f | %.1f | %.2f |\n",
+                          r.compression.c_str(), r.floatMs, r.floatMiB, r.halfMs, r.halfMiB);
             md << line;
         }
         md << "\n";
@@ -180,15 +192,22 @@ int run(const SequenceArgs& a) {
 
 Runner addSequenceBench(CLI::App& bench) {
     auto args = std::make_shared<SequenceArgs>();
-    CLI::App* cmd = bench.add_subcommand("sequence", "Time the stages of a headless sequence and the whole pipeline");
+    CLI::App* cmd = bench.add_subcommand(
+        "sequence", "Time the stages of a headless sequence and the whole pipeline");
     cmd->add_option("scene", args->scene, "An animated scene")->capture_default_str();
     cmd->add_option("--frames", args->frames)->capture_default_str();
     cmd->add_option("--fps", args->fps)->capture_default_str();
-    cmd->add_option("--sizes", args->sizes, "Image sizes WxH")->delimiter(',')->capture_default_str();
-    cmd->add_option("--compressions", args->compressions, "EXR compressions to time")->delimiter(',')->capture_default_str();
+    cmd->add_option("--sizes", args->sizes, "Image sizes WxH")
+        ->delimiter(',')
+        ->capture_default_str();
+    cmd->add_option("--compressions", args->compressions, "EXR compressions to time")
+        ->delimiter(',')
+        ->capture_default_str();
     cmd->add_option("--pipeline-compression", args->pipelineCompression)->capture_default_str();
-    cmd->add_option("--encode-samples", args->encodeSamples, "Frames each compression is timed on")->capture_default_str();
-    cmd->add_option("--tmp", args->tmp, "Scratch folder (removed afterwards)")->capture_default_str();
+    cmd->add_option("--encode-samples", args->encodeSamples, "Frames each compression is timed on")
+        ->capture_default_str();
+    cmd->add_option("--tmp", args->tmp, "Scratch folder (removed afterwards)")
+        ->capture_default_str();
     args->device.add(*cmd);
     return [args, cmd]() { return cmd->parsed() ? run(*args) : -1; };
 }

@@ -316,7 +316,7 @@ int run(SpeedArgs& a) {
     if (auto f = makeOutputFolder(a.timing.output); !f) return report(f.error());
     auto loaded = loadScene(a.scene);
     if (!loaded) return report(loaded.error());
-    const ColdShaderCache coldCache;  // before the device: first frames pay the whole JIT
+    const ColdShaderCache coldCache; // before the device: first frames pay the whole JIT
     auto renderer = Renderer::create(a.device.desc());
     if (!renderer) return report(renderer.error());
 

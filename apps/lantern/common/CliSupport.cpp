@@ -47,7 +47,8 @@ Result<std::vector<double>> parseNumbers(const std::string& text, std::size_t co
             return makeError(ErrorCode::InvalidInput, "\"" + item + "\" is not a number", option);
         if (!std::isfinite(v))
             return makeError(ErrorCode::InvalidInput,
-                             "value " + std::to_string(i + 1) + " (" + item + ") is not finite", option);
+                             "value " + std::to_string(i + 1) + " (" + item + ") is not finite",
+                             option);
         values.push_back(v);
     }
     if (values.size() != count)
@@ -76,20 +77,25 @@ Result<glm::vec4> parseBackground(const std::string& text) {
     const double alpha = rgba ? (*v)[3] : 1.0;
     if (alpha < 0.0 || alpha > 1.0)
         return makeError(ErrorCode::InvalidInput, "alpha must be in [0, 1]", "--background");
-    return glm::vec4(float((*v)[0] * alpha), float((*v)[1] * alpha), float((*v)[2] * alpha), float(alpha));
+    return glm::vec4(float((*v)[0] * alpha), float((*v)[1] * alpha), float((*v)[2] * alpha),
+                     float(alpha));
 }
 
 void CameraOptions::add(CLI::App& app) {
-    app.add_option("--camera", cameras, "Use the scene's camera N (glTF index); repeat once per --viewport");
+    app.add_option("--camera", cameras,
+                   "Use the scene's camera N (glTF index); repeat once per --viewport");
     app.add_flag("--default-camera", defaultCamera,
                  "The GL default camera: origin, looking down -Z, orthographic 2x2x2 cube");
-    app.add_option("--look-at", lookAt, "Place the camera as gluLookAt: EX,EY,EZ,TX,TY,TZ,UX,UY,UZ");
-    app.add_option("--perspective", perspective, "Projection as gluPerspective: FOVY_DEG,ASPECT,NEAR,FAR (FAR may be inf)");
+    app.add_option("--look-at", lookAt,
+                   "Place the camera as gluLookAt: EX,EY,EZ,TX,TY,TZ,UX,UY,UZ");
+    app.add_option("--perspective", perspective,
+                   "Projection as gluPerspective: FOVY_DEG,ASPECT,NEAR,FAR (FAR may be inf)");
     app.add_option("--ortho", ortho, "Projection as glOrtho: L,R,B,T,N,F");
     app.add_option("--frustum", frustum, "Projection as glFrustum: L,R,B,T,N,F (F may be inf)");
     app.add_option("--viewport", viewports,
                    "Draw into X,Y,W,H (pixels, origin bottom-left as glViewport); repeatable");
-    app.add_option("--layout", layout, "quad: top, front, side (orthographic) and the perspective camera")
+    app.add_option("--layout", layout,
+                   "quad: top, front, side (orthographic) and the perspective camera")
         ->check(CLI::IsMember({"quad"}));
     app.add_option("--depth", depth,
                    "Depth scheme with the float depth buffer: reversed (near at 1, the default: "
@@ -100,11 +106,12 @@ void CameraOptions::add(CLI::App& app) {
 Result<void> CameraOptions::apply(RenderOptions& o) const {
     const int projections = !perspective.empty() + !ortho.empty() + !frustum.empty();
     if (projections > 1)
-        return makeError(ErrorCode::Usage, "give at most one of --perspective, --ortho and --frustum",
+        return makeError(ErrorCode::Usage,
+                         "give at most one of --perspective, --ortho and --frustum",
                          "--perspective/--ortho/--frustum");
     if (defaultCamera && !cameras.empty())
         return makeError(ErrorCode::Usage, "give either --camera or --default-camera", "--camera");
-    if (!depth.empty()) o.depth = *parseDepthMode(depth);  // CLI11 checked the spelling
+    if (!depth.empty()) o.depth = *parseDepthMode(depth); // CLI11 checked the spelling
     CameraSpec spec;
     if (defaultCamera) spec.source = CameraSpec::Source::GlDefault;
     if (!lookAt.empty()) {
@@ -121,7 +128,8 @@ Result<void> CameraOptions::apply(RenderOptions& o) const {
         const auto& n = *v;
         if (!(n[1] > 0.0))
             return makeError(ErrorCode::InvalidInput, "aspect must be > 0", "--perspective");
-        Projection p = Projection::makePerspective(n[0] * 3.14159265358979323846 / 180.0, n[1], n[2], n[3]);
+        Projection p =
+            Projection::makePerspective(n[0] * 3.14159265358979323846 / 180.0, n[1], n[2], n[3]);
         LANTERN_TRY(checkProjection(p, "--perspective"));
         spec.projection = p;
     }
@@ -142,7 +150,8 @@ Result<void> CameraOptions::apply(RenderOptions& o) const {
         spec.projection = p;
     }
     if (!layout.empty() && !viewports.empty())
-        return makeError(ErrorCode::Usage, "--layout and --viewport cannot be combined", "--layout");
+        return makeError(ErrorCode::Usage, "--layout and --viewport cannot be combined",
+                         "--layout");
     if (cameras.size() > 1 && cameras.size() != viewports.size())
         return makeError(ErrorCode::Usage,
                          "give one --camera, or one per --viewport (" +
@@ -164,8 +173,8 @@ Result<void> CameraOptions::apply(RenderOptions& o) const {
         const auto& n = *v;
         for (double x : n)
             if (x != std::floor(x) || x < 0 || x > 1e6)
-                return makeError(ErrorCode::InvalidInput, "viewport values must be whole pixels >= 0",
-                                 "--viewport");
+                return makeError(ErrorCode::InvalidInput,
+                                 "viewport values must be whole pixels >= 0", "--viewport");
         o.views.push_back(View{int(n[0]), int(n[1]), int(n[2]), int(n[3]), withCamera(spec, i)});
     }
     if (layout == "quad") o.views = quadLayout(o.width, o.height, o.camera);
@@ -196,12 +205,16 @@ void ShadingOptions::add(CLI::App& app) {
         ->check(CLI::IsMember({"flat", "gouraud", "phong"}));
     app.add_option("--specular", specular, "Specular term: blinn or phong")
         ->check(CLI::IsMember({"blinn", "phong"}));
-    app.add_flag("--local-viewer", localViewer, "View vector towards the eye (GL_LIGHT_MODEL_LOCAL_VIEWER)");
-    app.add_flag("--two-sided", twoSided, "Light back faces with the back material (GL_LIGHT_MODEL_TWO_SIDE)");
+    app.add_flag("--local-viewer", localViewer,
+                 "View vector towards the eye (GL_LIGHT_MODEL_LOCAL_VIEWER)");
+    app.add_flag("--two-sided", twoSided,
+                 "Light back faces with the back material (GL_LIGHT_MODEL_TWO_SIDE)");
     app.add_flag("--clamp", clamp, "Clamp lit colours to [0,1]");
     app.add_flag("--gl-compat", glCompat,
-                 "Reproduce OpenGL's fixed-function pipeline (provoking-vertex flat, per-vertex clamp, limits)");
-    app.add_option("--msaa", msaa, "Samples per pixel: 1, 2, 4 or 8")->check(CLI::IsMember({1, 2, 4, 8}));
+                 "Reproduce OpenGL's fixed-function pipeline (provoking-vertex flat, per-vertex "
+                 "clamp, limits)");
+    app.add_option("--msaa", msaa, "Samples per pixel: 1, 2, 4 or 8")
+        ->check(CLI::IsMember({1, 2, 4, 8}));
 }
 
 Result<void> ShadingOptions::apply(RenderOptions& o) const {

@@ -1,12 +1,10 @@
 // CliSupport.h: shared pieces of the `lantern` subcommands: the stderr log sink, exit codes,
-// number-list parsing and the camera/view options (--look-at, --perspective, --viewport, --depth...).
-// Uses only Lantern's public API.
+// number-list parsing and the camera/view options (--look-at, --perspective, --viewport,
+// --depth...). Uses only Lantern's public API.
 #pragma once
 
-#include <lantern/Lantern.h>
-
 #include <CLI/CLI.hpp>
-
+#include <lantern/Lantern.h>
 #include <optional>
 #include <string>
 #include <vector>
@@ -35,12 +33,12 @@ Result<glm::vec4> parseBackground(const std::string& text);
 
 /// The camera and view options shared by render and view.
 struct CameraOptions {
-    std::vector<int> cameras;  ///< --camera N (repeatable: one per --viewport)
+    std::vector<int> cameras; ///< --camera N (repeatable: one per --viewport)
     bool defaultCamera = false;
     std::string lookAt, perspective, ortho, frustum;
     std::vector<std::string> viewports;
     std::string layout;
-    std::string depth;  ///< --depth reversed|standard (default: reversed)
+    std::string depth; ///< --depth reversed|standard (default: reversed)
 
     void add(CLI::App& app);
     /// Fills options.camera / options.views; refuses bad values with the option named.
@@ -68,7 +66,7 @@ struct DeviceOptions {
     bool verbose = false;
 
     void add(CLI::App& app);
-    RendererDesc desc() const;  ///< validation also on when LANTERN_VALIDATION=1
+    RendererDesc desc() const; ///< validation also on when LANTERN_VALIDATION=1
 };
 
 } // namespace lantern::cli

@@ -36,8 +36,8 @@ void printProbe(std::ostream& out, const ProbeReport& r) {
             << "\n";
         return;
     }
-    out << "  view " << r.view << ", node " << r.node << " \"" << r.nodeName << "\", mesh " << r.mesh
-        << " primitive " << r.primitive << ", triangle " << r.triangle << " (vertices "
+    out << "  view " << r.view << ", node " << r.node << " \"" << r.nodeName << "\", mesh "
+        << r.mesh << " primitive " << r.primitive << ", triangle " << r.triangle << " (vertices "
         << r.vertices[0] << " " << r.vertices[1] << " " << r.vertices[2] << ", barycentric "
         << triple(r.barycentric) << ")\n";
     out << "  surface point (eye space): " << triple(r.position) << "\n";
@@ -50,9 +50,9 @@ void printProbe(std::ostream& out, const ProbeReport& r) {
         << triple(m.ambient) << ", diffuse " << triple(glm::dvec3(m.diffuse)) << " alpha "
         << m.diffuse.a << ", specular " << triple(m.specular) << ", shininess " << m.shininess
         << ", emission " << triple(m.emission) << "\n";
-    out << "  shading " << toString(r.shading) << (r.glCompat ? " (gl-compat)" : "") << ", specular "
-        << (r.specularPresent ? toString(r.specular) : "none (not compiled in)") << ", "
-        << (r.localViewer ? "local" : "distant") << " viewer, "
+    out << "  shading " << toString(r.shading) << (r.glCompat ? " (gl-compat)" : "")
+        << ", specular " << (r.specularPresent ? toString(r.specular) : "none (not compiled in)")
+        << ", " << (r.localViewer ? "local" : "distant") << " viewer, "
         << (r.twoSided ? "two-sided" : "one-sided") << (r.clamped ? ", clamped to [0,1]" : "")
         << "\n";
     if (r.textured)
@@ -108,7 +108,9 @@ struct RenderArgs {
 // the handler then resets itself, so a second one ends the process at once.
 std::atomic<int> g_stopSignal{0};
 
-extern "C" void onStopSignal(int signal) { g_stopSignal.store(signal); }
+extern "C" void onStopSignal(int signal) {
+    g_stopSignal.store(signal);
+}
 
 void installStopHandlers() {
     struct sigaction sa {};
@@ -150,7 +152,8 @@ double medianOf(std::vector<double> v) {
 }
 
 int runSequence(const RenderArgs& a, Renderer& renderer, const PreparedScene& prepared,
-                const RenderOptions& options, const ExrOptions& exr, const std::vector<std::string>& outputs) {
+                const RenderOptions& options, const ExrOptions& exr,
+                const std::vector<std::string>& outputs) {
     SequenceOptions seq;
     if (!a.frameList.empty()) {
         auto list = parseFrameList(a.frameList);
@@ -178,20 +181,24 @@ int runSequence(const RenderArgs& a, Renderer& renderer, const PreparedScene& pr
     if (!result) return report(result.error());
     const SequenceReport& r = *result;
     for (int frame : r.framesWritten)
-        for (const std::string& out : outputs) std::cout << expandFramePattern(out, frame) << "\n";
+        for (const std::string& out : outputs)
+            std::cout << expandFramePattern(out, frame) << "\n";
     const std::size_t total = sequenceFrames(seq).size();
-    std::fprintf(stderr,
-                 "lantern: %zu of %zu frames written in %.2f s (%.2f fps); per frame (median): render "
-                 "%.1f ms (GPU %.1f ms), encode %.1f ms on %d threads; CPU %.1f s; at most %zu frames "
-                 "waiting\n",
-                 r.framesWritten.size(), total, r.wallSeconds,
-                 r.wallSeconds > 0 ? double(r.framesWritten.size()) / r.wallSeconds : 0.0,
-                 medianOf(r.renderMs), medianOf(r.gpuMs), medianOf(r.encodeMs),
-                 a.encoderThreads > 0 ? a.encoderThreads : int(std::thread::hardware_concurrency()),
-                 r.cpuSeconds, r.peakQueuedFrames);
+    std::fprintf(
+        stderr,
+        "lantern: %zu of %zu frames written in %.2f s (%.2f fps); per frame (median): render "
+        "%.1f ms (GPU %.1f ms), encode %.1f ms on %d threads; CPU %.1f s; at most %zu frames "
+        "waiting\n",
+        r.framesWritten.size(), total, r.wallSeconds,
+        r.wallSeconds > 0 ? double(r.framesWritten.size()) / r.wallSeconds : 0.0,
+        medianOf(r.renderMs), medianOf(r.gpuMs), medianOf(r.encodeMs),
+        a.encoderThreads > 0 ? a.encoderThreads : int(std::thread::hardware_concurrency()),
+        r.cpuSeconds, r.peakQueuedFrames);
     if (r.clampedValues > 0)
-        std::fprintf(stderr, "lantern: warning: %llu values exceeded the half range and were clamped to 65504\n",
-                     (unsigned long long)r.clampedValues);
+        std::fprintf(
+            stderr,
+            "lantern: warning: %llu values exceeded the half range and were clamped to 65504\n",
+            (unsigned long long)r.clampedValues);
     if (r.stopped) {
         const int sig = g_stopSignal.load();
         std::fprintf(stderr, "lantern: stopped by %s; the frames written are complete\n",
@@ -217,8 +224,10 @@ int run(const RenderArgs& a) {
         std::stringstream ss(a.aov);
         std::string item;
         while (std::getline(ss, item, ',')) {
-            if (item == "depth") options.aovs.depth = true;
-            else if (item == "normal") options.aovs.normal = true;
+            if (item == "depth")
+                options.aovs.depth = true;
+            else if (item == "normal")
+                options.aovs.normal = true;
             else
                 return report(makeError(ErrorCode::InvalidInput,
                                         "unknown AOV \"" + item + "\" (depth, normal)", "--aov"));
@@ -228,8 +237,8 @@ int run(const RenderArgs& a) {
     exr.half = a.half;
     const auto compression = parseExrCompression(a.compression);
     if (!compression)
-        return report(makeError(ErrorCode::InvalidInput, "unknown compression \"" + a.compression + "\"",
-                                "--compression"));
+        return report(makeError(ErrorCode::InvalidInput,
+                                "unknown compression \"" + a.compression + "\"", "--compression"));
     exr.compression = *compression;
     const bool sequence = !a.frames.empty() || !a.frameList.empty();
     if (!a.frames.empty() && !a.frameList.empty())
@@ -238,7 +247,8 @@ int run(const RenderArgs& a) {
     std::vector<std::string> outputs = a.outputs;
     if (outputs.empty()) outputs.push_back(sequence ? "out/frame_####.exr" : "out/render.exr");
     if (sequence && a.timeGiven)
-        return report(makeError(ErrorCode::Usage, "--time and --frames cannot be combined", "--time"));
+        return report(
+            makeError(ErrorCode::Usage, "--time and --frames cannot be combined", "--time"));
     if (auto r = checkImagePaths(outputs, "--output"); !r) return report(r.error());
 
     LoadOptions load;
@@ -251,15 +261,17 @@ int run(const RenderArgs& a) {
     auto renderer = Renderer::create(a.device.desc());
     if (!renderer) return report(renderer.error());
     if (a.device.verbose)
-        std::cerr << "lantern: device: " << renderer->device().name << " (" << renderer->device().driver
-                  << ")\n";
+        std::cerr << "lantern: device: " << renderer->device().name << " ("
+                  << renderer->device().driver << ")\n";
     if (a.explain) {
         auto report_ = renderer->explain(*shared, options, a.time);
         if (!report_) return report(report_.error());
         std::cout << "features:\n";
-        for (const auto& f : report_->features) std::cout << "  " << f << "\n";
+        for (const auto& f : report_->features)
+            std::cout << "  " << f << "\n";
         std::cout << "pipeline variants:\n";
-        for (const auto& v : report_->variants) std::cout << "  " << v << "\n";
+        for (const auto& v : report_->variants)
+            std::cout << "  " << v << "\n";
     }
     if (!a.probe.empty()) {
         auto xy = parseNumbers(a.probe, 2, "--probe");
@@ -301,27 +313,36 @@ Runner addRenderCommand(CLI::App& app) {
     auto args = std::make_shared<RenderArgs>();
     CLI::App* cmd = app.add_subcommand("render", "Render a scene headless to EXR/PNG");
     cmd->add_option("scene", args->scene, "glTF/GLB file, or builtin:NAME")->required();
-    cmd->add_option("-o,--output", args->outputs,
-                    "Output file(s): .exr or .png; repeat to write several (default out/render.exr)");
+    cmd->add_option(
+        "-o,--output", args->outputs,
+        "Output file(s): .exr or .png; repeat to write several (default out/render.exr)");
     cmd->add_option("--width", args->width, "Image width in pixels")->capture_default_str();
     cmd->add_option("--height", args->height, "Image height in pixels")->capture_default_str();
     cmd->add_option("--scene", args->sceneIndex, "glTF scene index (default: the file's default)");
-    cmd->add_option("--time", args->time, "Animation time in seconds (one frame)")->capture_default_str();
+    cmd->add_option("--time", args->time, "Animation time in seconds (one frame)")
+        ->capture_default_str();
     cmd->add_option("--background", args->background,
                     "Background colour R,G,B (opaque) or R,G,B,A, linear (default: transparent)");
-    cmd->add_option("--frames", args->frames, "Render the sequence of frames A-B inclusive (frame k at time k/fps)");
-    cmd->add_option("--frame-list", args->frameList,
-                    "Render these frames, not a range: N,A-B,... (--shard splits the list by position)");
-    cmd->add_option("--fps", args->fps, "Frames per second of the sequence")->capture_default_str()->check(CLI::PositiveNumber);
+    cmd->add_option("--frames", args->frames,
+                    "Render the sequence of frames A-B inclusive (frame k at time k/fps)");
+    cmd->add_option(
+        "--frame-list", args->frameList,
+        "Render these frames, not a range: N,A-B,... (--shard splits the list by position)");
+    cmd->add_option("--fps", args->fps, "Frames per second of the sequence")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
     cmd->add_option("--shard", args->shard, "Render only frames k with k mod N == I (I/N)");
-    cmd->add_option("--encoder-threads", args->encoderThreads, "Threads encoding frames (0: one per core)")
-        ->capture_default_str()->check(CLI::NonNegativeNumber);
+    cmd->add_option("--encoder-threads", args->encoderThreads,
+                    "Threads encoding frames (0: one per core)")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
     cmd->add_option("--aov", args->aov, "Extra EXR channels: depth,normal");
     cmd->add_flag("--half", args->half, "Write 16-bit half channels instead of 32-bit float");
     cmd->add_option("--compression", args->compression,
                     "EXR compression: none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab")
         ->capture_default_str();
-    cmd->add_flag("--explain", args->explain, "Print the features the scene uses and the pipeline variants");
+    cmd->add_flag("--explain", args->explain,
+                  "Print the features the scene uses and the pipeline variants");
     cmd->add_option("--probe", args->probe,
                     "X,Y: print the lighting equation term by term at pixel X,Y (x from the left, "
                     "y from the top)");

@@ -12,7 +12,6 @@
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -50,7 +49,9 @@ struct ViewArgs {
 };
 
 std::atomic<int> g_stopSignal{0};
-extern "C" void onViewStopSignal(int signal) { g_stopSignal.store(signal); }
+extern "C" void onViewStopSignal(int signal) {
+    g_stopSignal.store(signal);
+}
 
 std::string number(double v) {
     char b[40];
@@ -140,7 +141,9 @@ private:
     Clock::time_point m_seenAt{}, m_lastWatch{};
 };
 
-Viewer* viewerOf(GLFWwindow* w) { return static_cast<Viewer*>(glfwGetWindowUserPointer(w)); }
+Viewer* viewerOf(GLFWwindow* w) {
+    return static_cast<Viewer*>(glfwGetWindowUserPointer(w));
+}
 
 extern "C" void keyCallback(GLFWwindow* w, int key, int, int action, int mods) {
     viewerOf(w)->onKey(key, action, mods);
@@ -148,8 +151,12 @@ extern "C" void keyCallback(GLFWwindow* w, int key, int, int action, int mods) {
 extern "C" void mouseButtonCallback(GLFWwindow* w, int button, int action, int mods) {
     viewerOf(w)->onMouseButton(button, action, mods);
 }
-extern "C" void cursorCallback(GLFWwindow* w, double x, double y) { viewerOf(w)->onCursor(x, y); }
-extern "C" void scrollCallback(GLFWwindow* w, double, double dy) { viewerOf(w)->onScroll(dy); }
+extern "C" void cursorCallback(GLFWwindow* w, double x, double y) {
+    viewerOf(w)->onCursor(x, y);
+}
+extern "C" void scrollCallback(GLFWwindow* w, double, double dy) {
+    viewerOf(w)->onScroll(dy);
+}
 
 bool Viewer::adopt(std::shared_ptr<Scene> scene) {
     auto prepared = m_renderer.prepare(scene);
@@ -230,34 +237,60 @@ void Viewer::onKey(int key, int action, int mods) {
         m_st.playing = false;
         m_st.time += key == GLFW_KEY_RIGHT ? step : -step;
         return;
-    default: break;
+    default:
+        break;
     }
     if (repeat) return;
     switch (key) {
-    case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(m_window.handle(), GLFW_TRUE); break;
-    case GLFW_KEY_SPACE: m_st.playing = !m_st.playing; break;
-    case GLFW_KEY_HOME: m_st.time = m_st.startTime(); break;
-    case GLFW_KEY_1: o.shading = ShadingMode::Flat; break;
-    case GLFW_KEY_2: o.shading = ShadingMode::Gouraud; break;
-    case GLFW_KEY_3: o.shading = ShadingMode::Phong; break;
+    case GLFW_KEY_ESCAPE:
+        glfwSetWindowShouldClose(m_window.handle(), GLFW_TRUE);
+        break;
+    case GLFW_KEY_SPACE:
+        m_st.playing = !m_st.playing;
+        break;
+    case GLFW_KEY_HOME:
+        m_st.time = m_st.startTime();
+        break;
+    case GLFW_KEY_1:
+        o.shading = ShadingMode::Flat;
+        break;
+    case GLFW_KEY_2:
+        o.shading = ShadingMode::Gouraud;
+        break;
+    case GLFW_KEY_3:
+        o.shading = ShadingMode::Phong;
+        break;
     case GLFW_KEY_B:
-        o.specular = o.specular == SpecularModel::Phong ? SpecularModel::Blinn : SpecularModel::Phong;
+        o.specular =
+            o.specular == SpecularModel::Phong ? SpecularModel::Blinn : SpecularModel::Phong;
         break;
     case GLFW_KEY_P:
         ensureFree();
         m_st.camera.setOrthographic(!m_st.camera.orthographic());
         break;
-    case GLFW_KEY_L: o.localViewer = !o.localViewer.value_or(false); break;
-    case GLFW_KEY_T: o.twoSided = !o.twoSided.value_or(false); break;
-    case GLFW_KEY_Z: o.wireframe = !o.wireframe; break;
-    case GLFW_KEY_N: o.normals = !o.normals; break;
-    case GLFW_KEY_V: m_st.quad = !m_st.quad; break;
+    case GLFW_KEY_L:
+        o.localViewer = !o.localViewer.value_or(false);
+        break;
+    case GLFW_KEY_T:
+        o.twoSided = !o.twoSided.value_or(false);
+        break;
+    case GLFW_KEY_Z:
+        o.wireframe = !o.wireframe;
+        break;
+    case GLFW_KEY_N:
+        o.normals = !o.normals;
+        break;
+    case GLFW_KEY_V:
+        m_st.quad = !m_st.quad;
+        break;
     case GLFW_KEY_H:
         // Fixed to the camera as it is now, before any motion queued behind this key.
         m_st.headlight = !m_st.headlight;
         updateHeadlight();
         break;
-    case GLFW_KEY_F: m_st.frameAllRequested = true; break;
+    case GLFW_KEY_F:
+        m_st.frameAllRequested = true;
+        break;
     case GLFW_KEY_C: {
         const int n = int(m_st.scene->cameras.size());
         m_st.sceneCamera = m_st.camera.isFree() ? 0 : m_st.sceneCamera + 1;
@@ -269,10 +302,17 @@ void Viewer::onKey(int key, int action, int mods) {
         ensureFree();
         m_st.fly = !m_st.fly;
         break;
-    case GLFW_KEY_F1: m_st.showHelp = !m_st.showHelp; break;
-    case GLFW_KEY_F2: m_st.showPanel = !m_st.showPanel; break;
-    case GLFW_KEY_F12: m_st.screenshotRequested = true; break;
-    default: break;
+    case GLFW_KEY_F1:
+        m_st.showHelp = !m_st.showHelp;
+        break;
+    case GLFW_KEY_F2:
+        m_st.showPanel = !m_st.showPanel;
+        break;
+    case GLFW_KEY_F12:
+        m_st.screenshotRequested = true;
+        break;
+    default:
+        break;
     }
     (void)mods;
 }
@@ -325,7 +365,7 @@ void Viewer::flyMovement(double dt) {
     if (v == glm::dvec3(0.0)) return;
     const double fast = down(GLFW_KEY_LEFT_SHIFT) > 0 || down(GLFW_KEY_RIGHT_SHIFT) > 0 ? 4.0 : 1.0;
     ensureFree();
-    m_st.camera.move(v * (0.5 * fast * dt));  // half the scene's radius per second
+    m_st.camera.move(v * (0.5 * fast * dt)); // half the scene's radius per second
 }
 
 void Viewer::advance(double dt) {
@@ -333,7 +373,8 @@ void Viewer::advance(double dt) {
     const double t0 = m_st.startTime(), t1 = m_st.endTime();
     if (!(t1 > t0)) return;
     m_st.time += dt * m_st.speed;
-    if (m_st.time > t1 || m_st.time < t0) m_st.time = t0 + std::fmod(std::max(m_st.time - t0, 0.0), t1 - t0);
+    if (m_st.time > t1 || m_st.time < t0)
+        m_st.time = t0 + std::fmod(std::max(m_st.time - t0, 0.0), t1 - t0);
 }
 
 // --watch: reload once the file has changed and then stayed the same for 0.3 s (so a file
@@ -354,7 +395,8 @@ void Viewer::checkWatch() {
         m_seenAt = now;
         return;
     }
-    if ((time == m_loadedTime && size == m_loadedSize) || now - m_seenAt < std::chrono::milliseconds(300))
+    if ((time == m_loadedTime && size == m_loadedSize) ||
+        now - m_seenAt < std::chrono::milliseconds(300))
         return;
     m_loadedTime = time;
     m_loadedSize = size;
@@ -363,7 +405,8 @@ void Viewer::checkWatch() {
     load.log = stderrSink(m_args.device.verbose);
     auto scene = loadScene(m_st.source, load);
     if (!scene) {
-        std::cerr << "lantern: the file changed but cannot be loaded; still showing the previous version\n";
+        std::cerr << "lantern: the file changed but cannot be loaded; still showing the previous "
+                     "version\n";
         report(scene.error());
         return;
     }
@@ -376,11 +419,13 @@ void Viewer::applyRequests() {
     if (m_st.cameraPicked) {
         m_st.cameraPicked = false;
         CameraSpec spec = m_st.camera.base();
-        spec.source = m_st.sceneCamera < 0 ? CameraSpec::Source::Automatic : CameraSpec::Source::SceneCamera;
+        spec.source =
+            m_st.sceneCamera < 0 ? CameraSpec::Source::Automatic : CameraSpec::Source::SceneCamera;
         spec.sceneCamera = m_st.sceneCamera;
         spec.lookAt.reset();
         spec.projection.reset();
-        if (auto p = resolveCameraPlacement(*m_st.scene, spec, perspectiveAspect(), m_st.root, m_st.time)) {
+        if (auto p = resolveCameraPlacement(*m_st.scene, spec, perspectiveAspect(), m_st.root,
+                                            m_st.time)) {
             m_st.camera.setBase(spec);
             m_st.fly = false;
         } else {
@@ -425,7 +470,7 @@ std::string Viewer::renderCommand(const std::string& output) const {
     if (o.clamp) s += " --clamp";
     if (o.glCompat) s += " --gl-compat";
     if (o.msaa > 1) s += " --msaa " + std::to_string(o.msaa);
-    s += " --background " + backgroundText();  // the text it was parsed from: the same floats
+    s += " --background " + backgroundText(); // the text it was parsed from: the same floats
     if (m_st.quad) s += " --layout quad";
     s += m_st.camera.commandLine(perspectiveAspect());
     return s;
@@ -454,11 +499,13 @@ int Viewer::writeCapture(const Image& image) {
     if (m_st.edited) notes.push_back("lights or materials were edited in the panel");
     if (o.lightsViewFromWorld) notes.push_back("the lights follow the camera");
     if (o.wireframe || o.normals) notes.push_back("the wireframe/normals overlays are on");
-    if (m_st.animation >= 0) notes.push_back("only animation " + std::to_string(m_st.animation) + " plays");
+    if (m_st.animation >= 0)
+        notes.push_back("only animation " + std::to_string(m_st.animation) + " plays");
     if ((m_sceneLighting.localViewer && !o.localViewer.value_or(false)) ||
         (m_sceneLighting.twoSided && !o.twoSided.value_or(false)))
         notes.push_back("the scene's local viewer or two-sided lighting was switched off");
-    for (const std::string& n : notes) std::cout << "note: not in the command: " << n << "\n";
+    for (const std::string& n : notes)
+        std::cout << "note: not in the command: " << n << "\n";
     std::cout.flush();
     return kOk;
 }
@@ -492,15 +539,16 @@ void Viewer::printStats() const {
         return std::vector<double>(v.begin() + std::ptrdiff_t(std::min(skip, v.size())), v.end());
     };
     const WindowTarget& t = m_window.target();
-    std::fprintf(stderr,
-                 "lantern: view: %d frames at %dx%d, %s, %u frames in flight, %u swapchain images; "
-                 "frame time median %.2f ms (p10 %.2f, p90 %.2f); per frame (median): planning and "
-                 "recording %.2f ms, waiting for the frame slot and image %.2f ms, presenting %.2f ms, "
-                 "GPU %.2f ms\n",
-                 m_presented, t.width(), t.height(), toString(t.presentMode()), t.framesInFlight(),
-                 t.imageCount(), median(tail(m_intervals)), percentile(tail(m_intervals), 0.1),
-                 percentile(tail(m_intervals), 0.9), median(tail(m_cpuMs)), median(tail(m_waitMs)),
-                 median(tail(m_presentMs)), median(tail(m_gpuMs)));
+    std::fprintf(
+        stderr,
+        "lantern: view: %d frames at %dx%d, %s, %u frames in flight, %u swapchain images; "
+        "frame time median %.2f ms (p10 %.2f, p90 %.2f); per frame (median): planning and "
+        "recording %.2f ms, waiting for the frame slot and image %.2f ms, presenting %.2f ms, "
+        "GPU %.2f ms\n",
+        m_presented, t.width(), t.height(), toString(t.presentMode()), t.framesInFlight(),
+        t.imageCount(), median(tail(m_intervals)), percentile(tail(m_intervals), 0.1),
+        percentile(tail(m_intervals), 0.9), median(tail(m_cpuMs)), median(tail(m_waitMs)),
+        median(tail(m_presentMs)), median(tail(m_gpuMs)));
 }
 
 int Viewer::run(std::shared_ptr<Scene> scene) {
@@ -537,7 +585,7 @@ int Viewer::run(std::shared_ptr<Scene> scene) {
     glfwSetMouseButtonCallback(w, mouseButtonCallback);
     glfwSetCursorPosCallback(w, cursorCallback);
     glfwSetScrollCallback(w, scrollCallback);
-    auto ui = ViewerUi::create(w, m_window.target());  // chains to the callbacks above
+    auto ui = ViewerUi::create(w, m_window.target()); // chains to the callbacks above
     if (!ui) return report(ui.error());
     m_ui = std::move(*ui);
 
@@ -590,7 +638,8 @@ int Viewer::run(std::shared_ptr<Scene> scene) {
         if (frame->status != FrameStatus::Presented) continue;
         ++m_presented;
         if (m_lastPresent != Clock::time_point{}) {
-            const double ms = std::chrono::duration<double, std::milli>(now - m_lastPresent).count();
+            const double ms =
+                std::chrono::duration<double, std::milli>(now - m_lastPresent).count();
             m_intervals.push_back(ms);
             m_recentIntervals.push_back(ms);
         }
@@ -629,13 +678,15 @@ int runView(const ViewArgs& a) {
     if (a.afterFrames < 0)
         return report(makeError(ErrorCode::Usage, "--after-frames must be >= 0", "--after-frames"));
     if (!a.screenshots.empty() && a.afterFrames == 0)
-        return report(makeError(ErrorCode::Usage, "--screenshot needs --after-frames N", "--screenshot"));
+        return report(
+            makeError(ErrorCode::Usage, "--screenshot needs --after-frames N", "--screenshot"));
     if (auto r = checkImagePaths(a.screenshots, "--screenshot"); !r) return report(r.error());
     const auto mode = parsePresentMode(a.presentMode);
     if (!mode)
-        return report(makeError(ErrorCode::InvalidInput,
-                                "unknown present mode \"" + a.presentMode + "\" (fifo, mailbox, immediate)",
-                                "--present-mode"));
+        return report(
+            makeError(ErrorCode::InvalidInput,
+                      "unknown present mode \"" + a.presentMode + "\" (fifo, mailbox, immediate)",
+                      "--present-mode"));
     if (a.watch && a.scene.rfind("builtin:", 0) == 0)
         std::cerr << "lantern: warning: --watch has no file to watch for " << a.scene << "\n";
 
@@ -646,7 +697,8 @@ int runView(const ViewArgs& a) {
     if (!scene) return report(scene.error());
     if (a.sceneIndex < -1 || a.sceneIndex >= int(scene->roots.size()))
         return report(makeError(ErrorCode::InvalidInput,
-                                "scene " + std::to_string(a.sceneIndex) + " does not exist (the file has " +
+                                "scene " + std::to_string(a.sceneIndex) +
+                                    " does not exist (the file has " +
                                     std::to_string(scene->roots.size()) + " scenes)",
                                 "--scene"));
     {
@@ -664,8 +716,8 @@ int runView(const ViewArgs& a) {
     auto renderer = Renderer::create(*desc);
     if (!renderer) return report(renderer.error());
     if (a.device.verbose)
-        std::cerr << "lantern: device: " << renderer->device().name << " (" << renderer->device().driver
-                  << ")\n";
+        std::cerr << "lantern: device: " << renderer->device().name << " ("
+                  << renderer->device().driver << ")\n";
     glfw::WindowDesc wd;
     wd.width = a.width;
     wd.height = a.height;
@@ -675,8 +727,9 @@ int runView(const ViewArgs& a) {
     auto window = glfw::Window::create(*renderer, wd);
     if (!window) return report(window.error());
     if (a.device.verbose)
-        std::cerr << "lantern: window: " << window->target().width() << "x" << window->target().height()
-                  << ", present mode " << toString(window->target().presentMode()) << ", "
+        std::cerr << "lantern: window: " << window->target().width() << "x"
+                  << window->target().height() << ", present mode "
+                  << toString(window->target().presentMode()) << ", "
                   << window->target().imageCount() << " swapchain images, "
                   << window->target().framesInFlight() << " frames in flight\n";
     Viewer viewer(a, *renderer, *window);
@@ -691,22 +744,32 @@ Runner addViewCommand(CLI::App& app) {
         "view", "Open a window and play the scene: orbit/pan/zoom/fly, shading keys, a side panel "
                 "editing lights and materials (F1 lists the keys)");
     cmd->add_option("scene", args->scene, "glTF/GLB file, or builtin:NAME")->required();
-    cmd->add_option("--width", args->width, "Window width")->capture_default_str()->check(CLI::Range(1, 16384));
-    cmd->add_option("--height", args->height, "Window height")->capture_default_str()->check(CLI::Range(1, 16384));
+    cmd->add_option("--width", args->width, "Window width")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 16384));
+    cmd->add_option("--height", args->height, "Window height")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 16384));
     cmd->add_option("--scene", args->sceneIndex, "glTF scene index (default: the file's default)");
-    cmd->add_option("--time", args->time, "Animation time to start at, in seconds")->capture_default_str();
+    cmd->add_option("--time", args->time, "Animation time to start at, in seconds")
+        ->capture_default_str();
     cmd->add_flag("--paused", args->paused, "Start with the animation paused");
     cmd->add_option("--fps", args->fps, "Frame rate the arrow keys step by")
-        ->capture_default_str()->check(CLI::PositiveNumber);
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
     cmd->add_option("--present-mode", args->presentMode,
-                    "fifo (vsync, the default), mailbox or immediate (falls back to what the display offers)")
+                    "fifo (vsync, the default), mailbox or immediate (falls back to what the "
+                    "display offers)")
         ->capture_default_str();
     cmd->add_option("--frames-in-flight", args->framesInFlight,
                     "Frames the CPU may be ahead of the GPU (1-4; 2: double buffering)")
-        ->capture_default_str()->check(CLI::Range(1, 4));
-    cmd->add_flag("--watch", args->watch, "Reload the file when it changes on disk, keeping the camera");
-    cmd->add_option("--screenshot", args->screenshots,
-                    "With --after-frames: write the picture to PATH (.exr or .png; repeatable) and exit");
+        ->capture_default_str()
+        ->check(CLI::Range(1, 4));
+    cmd->add_flag("--watch", args->watch,
+                  "Reload the file when it changes on disk, keeping the camera");
+    cmd->add_option(
+        "--screenshot", args->screenshots,
+        "With --after-frames: write the picture to PATH (.exr or .png; repeatable) and exit");
     cmd->add_option("--after-frames", args->afterFrames,
                     "Exit after N frames (writing the --screenshot files of frame N)");
     cmd->add_option("--screenshot-dir", args->screenshotDir,

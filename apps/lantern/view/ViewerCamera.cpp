@@ -2,12 +2,11 @@
 // `lantern render` equivalent.
 #include "view/ViewerCamera.h"
 
-#include <glm/geometric.hpp>
-#include <glm/matrix.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 
 namespace lantern::cli {
 namespace {
@@ -28,7 +27,8 @@ std::string number(double v) {
 
 std::string numbers(std::initializer_list<double> values) {
     std::string s;
-    for (double v : values) s += (s.empty() ? "" : ",") + number(v);
+    for (double v : values)
+        s += (s.empty() ? "" : ",") + number(v);
     return s;
 }
 
@@ -89,9 +89,8 @@ void ViewerCamera::look(double dx, double dy) {
 }
 
 void ViewerCamera::pan(double dx, double dy, double viewHeight) {
-    const double height = m_orthographic
-                              ? 2.0 * m_halfHeight
-                              : 2.0 * m_distance * std::tan(m_yfovDeg * kPi / 360.0);
+    const double height =
+        m_orthographic ? 2.0 * m_halfHeight : 2.0 * m_distance * std::tan(m_yfovDeg * kPi / 360.0);
     const double perPixel = height / std::max(viewHeight, 1.0);
     const glm::dvec3 f = forward();
     const glm::dvec3 right = glm::normalize(glm::cross(f, kUp));
@@ -148,7 +147,7 @@ Projection ViewerCamera::projection(double aspect) const {
 CameraSpec ViewerCamera::spec(double aspect) const {
     if (!m_free) return m_base;
     CameraSpec s;
-    s.source = CameraSpec::Source::GlDefault;  // both parts are overridden below
+    s.source = CameraSpec::Source::GlDefault; // both parts are overridden below
     s.lookAt = LookAt{eye(), m_target, kUp};
     s.projection = projection(aspect);
     return s;
@@ -164,8 +163,8 @@ std::string ViewerCamera::commandLine(double aspect) const {
     }
     if (spec.lookAt) {
         const LookAt& l = *spec.lookAt;
-        s += " --look-at " + numbers({l.eye.x, l.eye.y, l.eye.z, l.target.x, l.target.y,
-                                      l.target.z, l.up.x, l.up.y, l.up.z});
+        s += " --look-at " + numbers({l.eye.x, l.eye.y, l.eye.z, l.target.x, l.target.y, l.target.z,
+                                      l.up.x, l.up.y, l.up.z});
     }
     if (spec.projection) {
         const Projection& p = *spec.projection;

@@ -5,10 +5,8 @@
 // Public API only; no window system here.
 #pragma once
 
-#include <lantern/Renderer.h>
-
 #include <glm/vec3.hpp>
-
+#include <lantern/Renderer.h>
 #include <string>
 
 namespace lantern::cli {
@@ -61,10 +59,10 @@ private:
     double m_radius = 1.0;
     glm::dvec3 m_target{0.0};
     double m_distance = 1.0;
-    double m_yaw = 0.0, m_pitch = 0.0;  ///< radians; yaw 0, pitch 0 looks down -Z
-    double m_yfovDeg = 45.0;            ///< degrees, as --perspective takes it
+    double m_yaw = 0.0, m_pitch = 0.0; ///< radians; yaw 0, pitch 0 looks down -Z
+    double m_yfovDeg = 45.0;           ///< degrees, as --perspective takes it
     bool m_orthographic = false;
-    double m_halfHeight = 1.0;          ///< orthographic: half the view's height at the target
+    double m_halfHeight = 1.0; ///< orthographic: half the view's height at the target
 };
 
 } // namespace lantern::cli

@@ -5,9 +5,13 @@
 
 namespace lantern::cli {
 
-double ViewerState::startTime() const { return animationRange(*scene).start; }
+double ViewerState::startTime() const {
+    return animationRange(*scene).start;
+}
 
-double ViewerState::endTime() const { return animationRange(*scene).end; }
+double ViewerState::endTime() const {
+    return animationRange(*scene).end;
+}
 
 void ViewerState::applyAnimationChoice() {
     if (animation < 0 || animation >= int(animations.size()))

@@ -5,7 +5,6 @@
 #include "view/ViewerCamera.h"
 
 #include <lantern/Lantern.h>
-
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,21 +20,21 @@ struct ViewerState {
     int animation = -1;                ///< the one playing; -1: all of them
     int root = -1;
 
-    double time = 0.0;     ///< seconds
-    double fps = 24.0;     ///< the arrow keys step one frame of this rate
+    double time = 0.0; ///< seconds
+    double fps = 24.0; ///< the arrow keys step one frame of this rate
     bool playing = true;
     double speed = 1.0;
 
-    RenderOptions options;  ///< shading switches, background...; cameras and views set per frame
+    RenderOptions options; ///< shading switches, background...; cameras and views set per frame
     bool quad = false;
-    bool headlight = false;  ///< lights follow the camera (options.lightsViewFromWorld)
-    int sceneCamera = -1;    ///< the scene camera picked (-1: the scene's default)
+    bool headlight = false; ///< lights follow the camera (options.lightsViewFromWorld)
+    int sceneCamera = -1;   ///< the scene camera picked (-1: the scene's default)
     ViewerCamera camera;
     bool fly = false;
 
     bool showPanel = true;
     bool showHelp = false;
-    bool edited = false;  ///< lights or materials changed in the panel (not in the command line)
+    bool edited = false; ///< lights or materials changed in the panel (not in the command line)
 
     // Requests the panel makes; the loop carries them out before the next frame.
     bool frameAllRequested = false;

@@ -1,12 +1,11 @@
 // The viewer's ImGui panel and help overlay, drawn in the WindowTarget's overlay pass.
 #include "view/ViewerUi.h"
 
-#include <imgui.h>
+#include <algorithm>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_vulkan.h>
-
-#include <algorithm>
 #include <cmath>
+#include <imgui.h>
 #include <string>
 
 namespace lantern::cli {
@@ -22,15 +21,19 @@ void checkImguiVk(VkResult r) {
 // Edits a linear RGB colour stored in doubles; true when changed.
 bool colour3(const char* label, glm::dvec3& c) {
     float f[3] = {float(c.x), float(c.y), float(c.z)};
-    if (!ImGui::ColorEdit3(label, f, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR)) return false;
-    for (int i = 0; i < 3; ++i) c[i] = std::max(0.0, double(std::isfinite(f[i]) ? f[i] : 0.0f));
+    if (!ImGui::ColorEdit3(label, f, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR))
+        return false;
+    for (int i = 0; i < 3; ++i)
+        c[i] = std::max(0.0, double(std::isfinite(f[i]) ? f[i] : 0.0f));
     return true;
 }
 
 bool colour4(const char* label, glm::dvec4& c) {
     float f[4] = {float(c.x), float(c.y), float(c.z), float(c.w)};
-    if (!ImGui::ColorEdit4(label, f, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR)) return false;
-    for (int i = 0; i < 4; ++i) c[i] = std::max(0.0, double(std::isfinite(f[i]) ? f[i] : 0.0f));
+    if (!ImGui::ColorEdit4(label, f, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR))
+        return false;
+    for (int i = 0; i < 4; ++i)
+        c[i] = std::max(0.0, double(std::isfinite(f[i]) ? f[i] : 0.0f));
     c.w = std::min(c.w, 1.0);
     return true;
 }
@@ -144,7 +147,7 @@ Result<std::unique_ptr<ViewerUi>> ViewerUi::create(GLFWwindow* window, WindowTar
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGuiIO& io = ImGui::GetIO();
-    io.IniFilename = nullptr;  // no imgui.ini left in the working folder
+    io.IniFilename = nullptr; // no imgui.ini left in the working folder
     ImGui::StyleColorsDark();
     ImGui::GetStyle().Alpha = 0.95f;
     if (!ImGui_ImplGlfw_InitForVulkan(window, true))
@@ -167,7 +170,8 @@ Result<std::unique_ptr<ViewerUi>> ViewerUi::create(GLFWwindow* window, WindowTar
     if (!ImGui_ImplVulkan_Init(&info, oc.renderPass))
         return makeError(ErrorCode::Internal, "ImGui's Vulkan backend failed to initialise");
     ui->m_vulkan = true;
-    LANTERN_TRY(target.submitOnce([](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); }));
+    LANTERN_TRY(
+        target.submitOnce([](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); }));
     ImGui_ImplVulkan_DestroyFontUploadObjects();
     if (g_imguiVkError != VK_SUCCESS)
         return makeError(ErrorCode::Internal, "ImGui's Vulkan backend failed (VkResult " +
@@ -181,8 +185,12 @@ ViewerUi::~ViewerUi() {
     ImGui::DestroyContext();
 }
 
-bool ViewerUi::wantsMouse() const { return ImGui::GetIO().WantCaptureMouse; }
-bool ViewerUi::wantsKeyboard() const { return ImGui::GetIO().WantCaptureKeyboard; }
+bool ViewerUi::wantsMouse() const {
+    return ImGui::GetIO().WantCaptureMouse;
+}
+bool ViewerUi::wantsKeyboard() const {
+    return ImGui::GetIO().WantCaptureKeyboard;
+}
 
 OverlayRecorder ViewerUi::recorder() const {
     return [](VkCommandBuffer cmd) {
@@ -235,7 +243,8 @@ void ViewerUi::build(ViewerState& st, const std::string& status) {
             ImGui::DragScalar("speed", ImGuiDataType_Double, &st.speed, 0.01f, &lo, &hi, "%.2fx");
             double t0 = st.startTime(), t1 = std::max(st.endTime(), st.startTime() + 1e-9);
             ImGui::SliderScalar("time", ImGuiDataType_Double, &st.time, &t0, &t1, "%.3f s");
-            std::string current = st.animation < 0 ? "all" : st.animations[std::size_t(st.animation)].name;
+            std::string current =
+                st.animation < 0 ? "all" : st.animations[std::size_t(st.animation)].name;
             if (ImGui::BeginCombo("animation", current.c_str())) {
                 if (ImGui::Selectable("all", st.animation < 0)) {
                     st.animation = -1;
@@ -265,7 +274,8 @@ void ViewerUi::build(ViewerState& st, const std::string& status) {
                 }
                 for (std::size_t i = 0; i < scene.cameras.size(); ++i) {
                     const std::string name = std::to_string(i) + ": " + scene.cameras[i].name;
-                    if (ImGui::Selectable(name.c_str(), !st.camera.isFree() && st.sceneCamera == int(i))) {
+                    if (ImGui::Selectable(name.c_str(),
+                                          !st.camera.isFree() && st.sceneCamera == int(i))) {
                         st.sceneCamera = int(i);
                         st.cameraPicked = true;
                     }
@@ -305,7 +315,8 @@ void ViewerUi::build(ViewerState& st, const std::string& status) {
         }
 
         if (ImGui::CollapsingHeader("Lights")) {
-            if (scene.lights.empty()) ImGui::TextDisabled("none: GL's default light 0 (a headlight)");
+            if (scene.lights.empty())
+                ImGui::TextDisabled("none: GL's default light 0 (a headlight)");
             for (std::size_t i = 0; i < scene.lights.size(); ++i) {
                 ImGui::PushID(int(i));
                 const std::string name = std::to_string(i) + ": " + scene.lights[i].name;

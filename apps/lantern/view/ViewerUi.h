@@ -6,7 +6,6 @@
 #include "view/ViewerState.h"
 
 #include <lantern/Window.h>
-
 #include <memory>
 
 struct GLFWwindow;
