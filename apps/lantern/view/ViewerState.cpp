@@ -1,7 +1,11 @@
-// ViewerState: the animation range and choice of `lantern view`, and its keys.
+// ViewerState: the animation range and choice of `lantern view`, the camera changes its keys
+// and panel ask for (take-over, scene cameras, frame all, headlight), and its keys' help.
 #include "view/ViewerState.h"
 
+#include "common/CliSupport.h"
+
 #include <algorithm>
+#include <cstdio>
 
 namespace lantern::cli {
 
@@ -18,6 +22,85 @@ void ViewerState::applyAnimationChoice() {
         scene->animations = animations;
     else
         scene->animations = {animations[std::size_t(animation)]};
+}
+
+double ViewerState::perspectiveAspect(int width, int height) const {
+    const int w = std::max(width, 1), h = std::max(height, 1);
+    if (!quad) return double(w) / double(h);
+    const int vw = std::max(w - w / 2, 1), vh = std::max(h - h / 2, 1);
+    return double(vw) / double(vh);
+}
+
+void ViewerState::ensureFree(double aspect) {
+    if (camera.isFree()) return;
+    auto placement = resolveCameraPlacement(*scene, camera.base(), aspect, root, time);
+    if (!placement) {
+        report(placement.error());
+        return;
+    }
+    camera.takeOver(*placement);
+}
+
+void ViewerState::applyRequests(double aspect) {
+    if (cameraPicked) {
+        cameraPicked = false;
+        CameraSpec spec = camera.base();
+        spec.source =
+            sceneCamera < 0 ? CameraSpec::Source::Automatic : CameraSpec::Source::SceneCamera;
+        spec.sceneCamera = sceneCamera;
+        spec.lookAt.reset();
+        spec.projection.reset();
+        if (auto p = resolveCameraPlacement(*scene, spec, aspect, root, time)) {
+            camera.setBase(spec);
+            fly = false;
+        } else {
+            report(p.error());
+            sceneCamera = -1;
+        }
+    }
+    if (frameAllRequested) {
+        frameAllRequested = false;
+        ensureFree(aspect);
+        if (camera.isFree()) camera.frameAll(aspect);
+    }
+    if (!camera.isFree()) fly = false;
+}
+
+void ViewerState::updateHeadlight(double aspect) {
+    RenderOptions& o = options;
+    if (!headlight) {
+        o.lightsViewFromWorld.reset();
+        return;
+    }
+    if (o.lightsViewFromWorld) return;
+    auto placement = resolveCameraPlacement(*scene, camera.spec(aspect), aspect, root, time);
+    if (placement)
+        o.lightsViewFromWorld = placement->viewFromWorld;
+    else
+        report(placement.error());
+}
+
+RenderOptions ViewerState::frameOptions(int width, int height) const {
+    RenderOptions o = options;
+    o.width = std::max(width, 1);
+    o.height = std::max(height, 1);
+    o.root = root;
+    const CameraSpec spec = camera.spec(perspectiveAspect(width, height));
+    o.camera = spec;
+    o.views.clear();
+    if (quad) o.views = quadLayout(o.width, o.height, spec);
+    return o;
+}
+
+std::string ViewerState::statusText() const {
+    const RenderOptions& o = options;
+    std::string s = std::string(toString(o.shading.value_or(ShadingMode::Phong))) + ", " +
+                    toString(o.specular.value_or(SpecularModel::Blinn)) +
+                    (camera.orthographic() ? ", ortho" : "") + (fly ? ", fly" : "") +
+                    (quad ? ", quad" : "") + (headlight ? ", headlight" : "");
+    char t[64];
+    std::snprintf(t, sizeof t, ", t=%.2f s%s", time, playing ? "" : " (paused)");
+    return s + t;
 }
 
 const std::vector<KeyHelp>& viewerKeys() {

@@ -1,5 +1,6 @@
-// ViewerState.h: what `lantern view` shows and how, shared by its input handling
-// (ViewCommand.cpp) and its ImGui panel (ViewerUi.cpp). Public API only.
+// ViewerState.h: what `lantern view` shows and how, shared by its frame loop (Viewer), its input
+// (ViewerInput) and its ImGui panel (ViewerUi), and the camera changes they ask of it. Public
+// API only; no window system here.
 #pragma once
 
 #include "view/ViewerCamera.h"
@@ -47,6 +48,23 @@ struct ViewerState {
     double endTime() const;
     /// Keeps only the chosen animation(s) in the scene.
     void applyAnimationChoice();
+
+    /// The aspect (width / height) of the perspective view in a `width` x `height` window: the
+    /// whole window, or its bottom-right quarter in quad view.
+    double perspectiveAspect(int width, int height) const;
+    /// The first camera move takes the scene's camera over exactly where it is (`aspect`: the
+    /// perspective view's); errors are reported and leave the camera as it was.
+    void ensureFree(double aspect);
+    /// Carries out a scene camera picked and frame all (the panel's and the keys' requests).
+    void applyRequests(double aspect);
+    /// Headlight: the lights keep the place relative to the camera they had when it was
+    /// switched on (options.lightsViewFromWorld set once, reset when off).
+    void updateHeadlight(double aspect);
+    /// The options of a frame in a `width` x `height` window: these options with the camera
+    /// and, in quad view, the four views.
+    RenderOptions frameOptions(int width, int height) const;
+    /// "phong, blinn, quad, t=1.25 s (paused)": the panel's and the title's summary.
+    std::string statusText() const;
 };
 
 /// One line of the help overlay (and of docs/viewer.md).
