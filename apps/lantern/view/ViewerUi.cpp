@@ -61,6 +61,79 @@ int lightNode(const Scene& scene, int index) {
     return -1;
 }
 
+// GL's falloff: constant, linear and quadratic attenuation; a spot's exponent and cutoff.
+bool editGlFalloff(Light& l) {
+    bool changed = false;
+    double k[3] = {l.attenuation.x, l.attenuation.y, l.attenuation.z};
+    const double lo = 0.0, hi = 1e6;
+    if (ImGui::DragScalarN("kc kl kq", ImGuiDataType_Double, k, 3, 0.01f, &lo, &hi, "%.4g",
+                           ImGuiSliderFlags_AlwaysClamp)) {
+        // GL refuses all three zero (the scene format too): keep kc at least tiny then.
+        if (k[0] == 0.0 && k[1] == 0.0 && k[2] == 0.0) k[0] = 1e-6;
+        l.attenuation = {k[0], k[1], k[2]};
+        changed = true;
+    }
+    if (l.type == LightType::Spot) {
+        changed |= dragDouble("spot exponent", l.spotExponent, 0.2, 0.0, 1e4);
+        bool cone = l.spotCutoffDeg != 180.0;
+        if (ImGui::Checkbox("cone", &cone)) {
+            l.spotCutoffDeg = cone ? 45.0 : 180.0;
+            changed = true;
+        }
+        if (cone) changed |= dragDouble("cutoff (deg)", l.spotCutoffDeg, 0.2, 0.0, 90.0);
+    }
+    return changed;
+}
+
+// glTF's falloff: a range (or none), a spot's outer and inner cone.
+bool editGltfFalloff(Light& l) {
+    bool changed = false;
+    bool limited = !std::isinf(l.range);
+    if (ImGui::Checkbox("limited range", &limited)) {
+        l.range = limited ? 10.0 : kInfinity;
+        changed = true;
+    }
+    if (limited) changed |= dragDouble("range", l.range, 0.05, 1e-6, 1e12);
+    if (l.type == LightType::Spot) {
+        double outer = l.outerConeAngle * 180.0 / kPi, inner = l.innerConeAngle * 180.0 / kPi;
+        if (dragDouble("outer cone (deg)", outer, 0.2, 0.01, 90.0)) {
+            l.outerConeAngle = outer * kPi / 180.0;
+            l.innerConeAngle = std::min(l.innerConeAngle, l.outerConeAngle * 0.999);
+            changed = true;
+        }
+        if (dragDouble("inner cone (deg)", inner, 0.2, 0.0, outer * 0.999)) {
+            l.innerConeAngle = std::min(inner * kPi / 180.0, l.outerConeAngle * 0.999);
+            changed = true;
+        }
+    }
+    return changed;
+}
+
+// The position of the node that places light `index` (its direction stays the node's).
+bool editLightPosition(Scene& scene, int index) {
+    const int node = lightNode(scene, index);
+    if (node < 0) {
+        ImGui::TextDisabled("(no node places this light)");
+        return false;
+    }
+    bool changed = false;
+    Node& n = scene.nodes[std::size_t(node)];
+    glm::dvec3 p = n.matrix ? glm::dvec3((*n.matrix)[3]) : n.translation;
+    double v[3] = {p.x, p.y, p.z};
+    const double lo = -1e12, hi = 1e12;
+    if (ImGui::DragScalarN("position", ImGuiDataType_Double, v, 3, 0.05f, &lo, &hi, "%.4g",
+                           ImGuiSliderFlags_AlwaysClamp)) {
+        if (n.matrix)
+            (*n.matrix)[3] = glm::dvec4(v[0], v[1], v[2], 1.0);
+        else
+            n.translation = {v[0], v[1], v[2]};
+        changed = true;
+    }
+    if (scene.lights[std::size_t(index)].type != LightType::Point)
+        ImGui::TextDisabled("direction: the node's -Z (rotate the node in the file)");
+    return changed;
+}
+
 bool editLight(Scene& scene, int index) {
     Light& l = scene.lights[std::size_t(index)];
     bool changed = false;
@@ -79,64 +152,8 @@ bool editLight(Scene& scene, int index) {
         l.falloff = LightFalloff(falloff);
         changed = true;
     }
-    if (l.falloff == LightFalloff::Gl) {
-        double k[3] = {l.attenuation.x, l.attenuation.y, l.attenuation.z};
-        const double lo = 0.0, hi = 1e6;
-        if (ImGui::DragScalarN("kc kl kq", ImGuiDataType_Double, k, 3, 0.01f, &lo, &hi, "%.4g",
-                               ImGuiSliderFlags_AlwaysClamp)) {
-            // GL refuses all three zero (the scene format too): keep kc at least tiny then.
-            if (k[0] == 0.0 && k[1] == 0.0 && k[2] == 0.0) k[0] = 1e-6;
-            l.attenuation = {k[0], k[1], k[2]};
-            changed = true;
-        }
-        if (l.type == LightType::Spot) {
-            changed |= dragDouble("spot exponent", l.spotExponent, 0.2, 0.0, 1e4);
-            bool cone = l.spotCutoffDeg != 180.0;
-            if (ImGui::Checkbox("cone", &cone)) {
-                l.spotCutoffDeg = cone ? 45.0 : 180.0;
-                changed = true;
-            }
-            if (cone) changed |= dragDouble("cutoff (deg)", l.spotCutoffDeg, 0.2, 0.0, 90.0);
-        }
-    } else {
-        bool limited = !std::isinf(l.range);
-        if (ImGui::Checkbox("limited range", &limited)) {
-            l.range = limited ? 10.0 : kInfinity;
-            changed = true;
-        }
-        if (limited) changed |= dragDouble("range", l.range, 0.05, 1e-6, 1e12);
-        if (l.type == LightType::Spot) {
-            double outer = l.outerConeAngle * 180.0 / kPi, inner = l.innerConeAngle * 180.0 / kPi;
-            if (dragDouble("outer cone (deg)", outer, 0.2, 0.01, 90.0)) {
-                l.outerConeAngle = outer * kPi / 180.0;
-                l.innerConeAngle = std::min(l.innerConeAngle, l.outerConeAngle * 0.999);
-                changed = true;
-            }
-            if (dragDouble("inner cone (deg)", inner, 0.2, 0.0, outer * 0.999)) {
-                l.innerConeAngle = std::min(inner * kPi / 180.0, l.outerConeAngle * 0.999);
-                changed = true;
-            }
-        }
-    }
-    const int node = lightNode(scene, index);
-    if (node >= 0) {
-        Node& n = scene.nodes[std::size_t(node)];
-        glm::dvec3 p = n.matrix ? glm::dvec3((*n.matrix)[3]) : n.translation;
-        double v[3] = {p.x, p.y, p.z};
-        const double lo = -1e12, hi = 1e12;
-        if (ImGui::DragScalarN("position", ImGuiDataType_Double, v, 3, 0.05f, &lo, &hi, "%.4g",
-                               ImGuiSliderFlags_AlwaysClamp)) {
-            if (n.matrix)
-                (*n.matrix)[3] = glm::dvec4(v[0], v[1], v[2], 1.0);
-            else
-                n.translation = {v[0], v[1], v[2]};
-            changed = true;
-        }
-        if (l.type != LightType::Point)
-            ImGui::TextDisabled("direction: the node's -Z (rotate the node in the file)");
-    } else {
-        ImGui::TextDisabled("(no node places this light)");
-    }
+    changed |= l.falloff == LightFalloff::Gl ? editGlFalloff(l) : editGltfFalloff(l);
+    changed |= editLightPosition(scene, index);
     return changed;
 }
 
@@ -199,157 +216,175 @@ OverlayRecorder ViewerUi::recorder() const {
     };
 }
 
+namespace {
+
+// F1: the keys, as docs/viewer.md lists them.
+void helpWindow(ViewerState& st) {
+    ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_Always);
+    ImGui::SetNextWindowBgAlpha(0.8f);
+    ImGui::Begin("Keys", &st.showHelp,
+                 ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove |
+                     ImGuiWindowFlags_NoSavedSettings);
+    if (ImGui::BeginTable("keys", 2)) {
+        for (const KeyHelp& k : viewerKeys()) {
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(k.keys);
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(k.action);
+        }
+        ImGui::EndTable();
+    }
+    ImGui::End();
+}
+
+// The panel's sections, top to bottom.
+
+void playbackSection(ViewerState& st) {
+    if (!ImGui::CollapsingHeader("Playback", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    ImGui::Checkbox("playing", &st.playing);
+    ImGui::SameLine();
+    const double lo = 0.0, hi = 16.0;
+    ImGui::SetNextItemWidth(100);
+    ImGui::DragScalar("speed", ImGuiDataType_Double, &st.speed, 0.01f, &lo, &hi, "%.2fx");
+    double t0 = st.startTime(), t1 = std::max(st.endTime(), st.startTime() + 1e-9);
+    ImGui::SliderScalar("time", ImGuiDataType_Double, &st.time, &t0, &t1, "%.3f s");
+    std::string current = st.animation < 0 ? "all" : st.animations[std::size_t(st.animation)].name;
+    if (!ImGui::BeginCombo("animation", current.c_str())) return;
+    if (ImGui::Selectable("all", st.animation < 0)) {
+        st.animation = -1;
+        st.applyAnimationChoice();
+    }
+    for (std::size_t i = 0; i < st.animations.size(); ++i) {
+        const std::string name = std::to_string(i) + ": " + st.animations[i].name;
+        if (ImGui::Selectable(name.c_str(), st.animation == int(i))) {
+            st.animation = int(i);
+            st.applyAnimationChoice();
+        }
+    }
+    ImGui::EndCombo();
+}
+
+void cameraSection(ViewerState& st) {
+    if (!ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    const Scene& scene = *st.scene;
+    std::string current = st.camera.isFree() ? "free (orbit / fly)"
+                          : st.sceneCamera < 0
+                              ? "scene default"
+                              : std::to_string(st.sceneCamera) + ": " +
+                                    scene.cameras[std::size_t(st.sceneCamera)].name;
+    if (ImGui::BeginCombo("camera", current.c_str())) {
+        if (ImGui::Selectable("scene default", !st.camera.isFree() && st.sceneCamera < 0)) {
+            st.sceneCamera = -1;
+            st.cameraPicked = true;
+        }
+        for (std::size_t i = 0; i < scene.cameras.size(); ++i) {
+            const std::string name = std::to_string(i) + ": " + scene.cameras[i].name;
+            if (ImGui::Selectable(name.c_str(), !st.camera.isFree() && st.sceneCamera == int(i))) {
+                st.sceneCamera = int(i);
+                st.cameraPicked = true;
+            }
+        }
+        ImGui::EndCombo();
+    }
+    if (ImGui::Button("frame all")) st.frameAllRequested = true;
+    ImGui::SameLine();
+    ImGui::Checkbox("fly", &st.fly);
+    ImGui::SameLine();
+    ImGui::Checkbox("headlight", &st.headlight);
+    ImGui::Checkbox("quad view", &st.quad);
+}
+
+void shadingSection(ViewerState& st) {
+    if (!ImGui::CollapsingHeader("Shading", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    RenderOptions& o = st.options;
+    // The viewer starts with the scene's lighting model resolved into the options.
+    int shading = int(o.shading.value_or(ShadingMode::Phong));
+    bool pressed = ImGui::RadioButton("flat", &shading, int(ShadingMode::Flat));
+    ImGui::SameLine();
+    pressed |= ImGui::RadioButton("gouraud", &shading, int(ShadingMode::Gouraud));
+    ImGui::SameLine();
+    pressed |= ImGui::RadioButton("phong", &shading, int(ShadingMode::Phong));
+    if (pressed) o.shading = ShadingMode(shading);
+    int specular = int(o.specular.value_or(SpecularModel::Blinn));
+    pressed = ImGui::RadioButton("blinn", &specular, int(SpecularModel::Blinn));
+    ImGui::SameLine();
+    pressed |= ImGui::RadioButton("phong specular", &specular, int(SpecularModel::Phong));
+    if (pressed) o.specular = SpecularModel(specular);
+    bool local = o.localViewer.value_or(false), twoSided = o.twoSided.value_or(false);
+    if (ImGui::Checkbox("local viewer", &local)) o.localViewer = local;
+    ImGui::SameLine();
+    if (ImGui::Checkbox("two-sided", &twoSided)) o.twoSided = twoSided;
+    ImGui::Checkbox("wireframe", &o.wireframe);
+    ImGui::SameLine();
+    ImGui::Checkbox("normals", &o.normals);
+}
+
+void lightsSection(ViewerState& st) {
+    if (!ImGui::CollapsingHeader("Lights")) return;
+    Scene& scene = *st.scene;
+    if (scene.lights.empty()) ImGui::TextDisabled("none: GL's default light 0 (a headlight)");
+    for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+        ImGui::PushID(int(i));
+        const std::string name = std::to_string(i) + ": " + scene.lights[i].name;
+        if (ImGui::TreeNode(name.c_str())) {
+            st.edited |= editLight(scene, int(i));
+            ImGui::TreePop();
+        }
+        ImGui::PopID();
+    }
+}
+
+void materialsSection(ViewerState& st) {
+    if (!ImGui::CollapsingHeader("Materials")) return;
+    Scene& scene = *st.scene;
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        ImGui::PushID(1000 + int(i));
+        Material& m = scene.materials[i];
+        const std::string name = std::to_string(i) + ": " + m.name;
+        if (ImGui::TreeNode(name.c_str())) {
+            if (m.back) ImGui::TextDisabled("front");
+            st.edited |= editSide(m.front);
+            if (m.back) {
+                ImGui::TextDisabled("back");
+                ImGui::PushID("back");
+                st.edited |= editSide(*m.back);
+                ImGui::PopID();
+            }
+            ImGui::TreePop();
+        }
+        ImGui::PopID();
+    }
+}
+
+// F2: the side panel along the window's right edge.
+void panel(ViewerState& st, const std::string& status) {
+    const ImGuiIO& io = ImGui::GetIO();
+    const float width = std::min(340.0f, io.DisplaySize.x * 0.45f);
+    ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - width, 0), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(width, io.DisplaySize.y), ImGuiCond_Always);
+    ImGui::Begin("Lantern", &st.showPanel,
+                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                     ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoCollapse);
+    ImGui::TextWrapped("%s", st.source.c_str());
+    ImGui::TextDisabled("%s", status.c_str());
+    playbackSection(st);
+    cameraSection(st);
+    shadingSection(st);
+    lightsSection(st);
+    materialsSection(st);
+    if (ImGui::Button("screenshot (F12)")) st.screenshotRequested = true;
+    ImGui::End();
+}
+
+} // namespace
+
 void ViewerUi::build(ViewerState& st, const std::string& status) {
     ImGui_ImplVulkan_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
-    const ImGuiIO& io = ImGui::GetIO();
-
-    if (st.showHelp) {
-        ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_Always);
-        ImGui::SetNextWindowBgAlpha(0.8f);
-        ImGui::Begin("Keys", &st.showHelp,
-                     ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove |
-                         ImGuiWindowFlags_NoSavedSettings);
-        if (ImGui::BeginTable("keys", 2)) {
-            for (const KeyHelp& k : viewerKeys()) {
-                ImGui::TableNextRow();
-                ImGui::TableNextColumn();
-                ImGui::TextUnformatted(k.keys);
-                ImGui::TableNextColumn();
-                ImGui::TextUnformatted(k.action);
-            }
-            ImGui::EndTable();
-        }
-        ImGui::End();
-    }
-
-    if (st.showPanel) {
-        const float width = std::min(340.0f, io.DisplaySize.x * 0.45f);
-        ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - width, 0), ImGuiCond_Always);
-        ImGui::SetNextWindowSize(ImVec2(width, io.DisplaySize.y), ImGuiCond_Always);
-        ImGui::Begin("Lantern", &st.showPanel,
-                     ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
-                         ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoCollapse);
-        ImGui::TextWrapped("%s", st.source.c_str());
-        ImGui::TextDisabled("%s", status.c_str());
-        Scene& scene = *st.scene;
-
-        if (ImGui::CollapsingHeader("Playback", ImGuiTreeNodeFlags_DefaultOpen)) {
-            ImGui::Checkbox("playing", &st.playing);
-            ImGui::SameLine();
-            const double lo = 0.0, hi = 16.0;
-            ImGui::SetNextItemWidth(100);
-            ImGui::DragScalar("speed", ImGuiDataType_Double, &st.speed, 0.01f, &lo, &hi, "%.2fx");
-            double t0 = st.startTime(), t1 = std::max(st.endTime(), st.startTime() + 1e-9);
-            ImGui::SliderScalar("time", ImGuiDataType_Double, &st.time, &t0, &t1, "%.3f s");
-            std::string current =
-                st.animation < 0 ? "all" : st.animations[std::size_t(st.animation)].name;
-            if (ImGui::BeginCombo("animation", current.c_str())) {
-                if (ImGui::Selectable("all", st.animation < 0)) {
-                    st.animation = -1;
-                    st.applyAnimationChoice();
-                }
-                for (std::size_t i = 0; i < st.animations.size(); ++i) {
-                    const std::string name = std::to_string(i) + ": " + st.animations[i].name;
-                    if (ImGui::Selectable(name.c_str(), st.animation == int(i))) {
-                        st.animation = int(i);
-                        st.applyAnimationChoice();
-                    }
-                }
-                ImGui::EndCombo();
-            }
-        }
-
-        if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) {
-            std::string current = st.camera.isFree() ? "free (orbit / fly)"
-                                  : st.sceneCamera < 0
-                                      ? "scene default"
-                                      : std::to_string(st.sceneCamera) + ": " +
-                                            scene.cameras[std::size_t(st.sceneCamera)].name;
-            if (ImGui::BeginCombo("camera", current.c_str())) {
-                if (ImGui::Selectable("scene default", !st.camera.isFree() && st.sceneCamera < 0)) {
-                    st.sceneCamera = -1;
-                    st.cameraPicked = true;
-                }
-                for (std::size_t i = 0; i < scene.cameras.size(); ++i) {
-                    const std::string name = std::to_string(i) + ": " + scene.cameras[i].name;
-                    if (ImGui::Selectable(name.c_str(),
-                                          !st.camera.isFree() && st.sceneCamera == int(i))) {
-                        st.sceneCamera = int(i);
-                        st.cameraPicked = true;
-                    }
-                }
-                ImGui::EndCombo();
-            }
-            if (ImGui::Button("frame all")) st.frameAllRequested = true;
-            ImGui::SameLine();
-            ImGui::Checkbox("fly", &st.fly);
-            ImGui::SameLine();
-            ImGui::Checkbox("headlight", &st.headlight);
-            ImGui::Checkbox("quad view", &st.quad);
-        }
-
-        if (ImGui::CollapsingHeader("Shading", ImGuiTreeNodeFlags_DefaultOpen)) {
-            RenderOptions& o = st.options;
-            // The viewer starts with the scene's lighting model resolved into the options.
-            int shading = int(o.shading.value_or(ShadingMode::Phong));
-            bool pressed = ImGui::RadioButton("flat", &shading, int(ShadingMode::Flat));
-            ImGui::SameLine();
-            pressed |= ImGui::RadioButton("gouraud", &shading, int(ShadingMode::Gouraud));
-            ImGui::SameLine();
-            pressed |= ImGui::RadioButton("phong", &shading, int(ShadingMode::Phong));
-            if (pressed) o.shading = ShadingMode(shading);
-            int specular = int(o.specular.value_or(SpecularModel::Blinn));
-            pressed = ImGui::RadioButton("blinn", &specular, int(SpecularModel::Blinn));
-            ImGui::SameLine();
-            pressed |= ImGui::RadioButton("phong specular", &specular, int(SpecularModel::Phong));
-            if (pressed) o.specular = SpecularModel(specular);
-            bool local = o.localViewer.value_or(false), twoSided = o.twoSided.value_or(false);
-            if (ImGui::Checkbox("local viewer", &local)) o.localViewer = local;
-            ImGui::SameLine();
-            if (ImGui::Checkbox("two-sided", &twoSided)) o.twoSided = twoSided;
-            ImGui::Checkbox("wireframe", &o.wireframe);
-            ImGui::SameLine();
-            ImGui::Checkbox("normals", &o.normals);
-        }
-
-        if (ImGui::CollapsingHeader("Lights")) {
-            if (scene.lights.empty())
-                ImGui::TextDisabled("none: GL's default light 0 (a headlight)");
-            for (std::size_t i = 0; i < scene.lights.size(); ++i) {
-                ImGui::PushID(int(i));
-                const std::string name = std::to_string(i) + ": " + scene.lights[i].name;
-                if (ImGui::TreeNode(name.c_str())) {
-                    st.edited |= editLight(scene, int(i));
-                    ImGui::TreePop();
-                }
-                ImGui::PopID();
-            }
-        }
-
-        if (ImGui::CollapsingHeader("Materials")) {
-            for (std::size_t i = 0; i < scene.materials.size(); ++i) {
-                ImGui::PushID(1000 + int(i));
-                Material& m = scene.materials[i];
-                const std::string name = std::to_string(i) + ": " + m.name;
-                if (ImGui::TreeNode(name.c_str())) {
-                    if (m.back) ImGui::TextDisabled("front");
-                    st.edited |= editSide(m.front);
-                    if (m.back) {
-                        ImGui::TextDisabled("back");
-                        ImGui::PushID("back");
-                        st.edited |= editSide(*m.back);
-                        ImGui::PopID();
-                    }
-                    ImGui::TreePop();
-                }
-                ImGui::PopID();
-            }
-        }
-        if (ImGui::Button("screenshot (F12)")) st.screenshotRequested = true;
-        ImGui::End();
-    }
+    if (st.showHelp) helpWindow(st);
+    if (st.showPanel) panel(st, status);
     ImGui::Render();
 }
 
