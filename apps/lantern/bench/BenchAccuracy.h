@@ -1,7 +1,9 @@
 // BenchAccuracy.h: the pieces of `lantern bench accuracy`: the analytic benchmark scenes
-// (numerics.md section 7.1, S1 and S2), one result row per configuration, the Pareto fronts and
-// the SVG plot.
+// (numerics.md section 7.1, S1 and S2), one result row per configuration, the Pareto fronts, the
+// CSV and markdown report and the SVG plot.
 #pragma once
+
+#include "bench/BenchHarness.h"
 
 #include <cstdint>
 #include <lantern/Lantern.h>
@@ -59,6 +61,24 @@ struct AccuracyRow {
 /// Marks the Pareto fronts (no other row of the group is at least as fast and at least as
 /// accurate, and better in one) for the interior and whole-image RMSE.
 void markParetoFronts(std::vector<AccuracyRow>& rows);
+
+/// accuracy.csv: a header line, then one line per row.
+std::string accuracyCsv(const std::vector<AccuracyRow>& rows);
+
+/// How the sweep was measured, as the summary's first paragraph says it.
+struct AccuracyMethod {
+    std::string machine;   ///< machineDescription()
+    bool gpuClock = false; ///< frame times from the device's timestamps, else render() wall time
+    TimingPlan plan;
+    int referenceSamples = 0; ///< the references' box filter: N x N rays per pixel
+    double referenceSeconds = 0.0;
+    std::string spread; ///< spreadSentence() of the configurations' round spreads
+};
+
+/// accuracy.md: how it was measured; per group, the Pareto fronts and the fastest setting that
+/// meets each error budget; the first frames' pipeline compiles; the non-finite values seen.
+std::string accuracySummaryMarkdown(const std::vector<AccuracyRow>& rows,
+                                    const AccuracyMethod& how);
 
 /// An SVG document: per group, error against ms per frame on log axes (interior RMSE on the
 /// left, whole-image RMSE on the right), one curve per shading mode and sample count, the
