@@ -87,22 +87,15 @@ public:
     }
 };
 
-void panel(Svg& svg, double ox, double oy, const std::vector<const AccuracyRow*>& rows,
-           bool interior, const std::string& title) {
-    auto error = [&](const AccuracyRow* r) {
-        const double e = interior ? r->error.interior.rmse : r->error.whole.rmse;
-        return std::isfinite(e) ? std::max(e, kErrorFloor) : kErrorFloor;
-    };
-    double msLo = 1e300, msHi = 0, eLo = kAcceptance, eHi = kAcceptance;
-    for (const AccuracyRow* r : rows) {
-        msLo = std::min(msLo, std::max(r->ms, 1e-3));
-        msHi = std::max(msHi, std::max(r->ms, 1e-3));
-        eLo = std::min(eLo, error(r));
-        eHi = std::max(eHi, error(r));
-    }
-    const LogAxis x = LogAxis::fit(msLo, msHi, ox + kLeft, ox + kPanelW - kRight);
-    const LogAxis y = LogAxis::fit(eLo, eHi, oy + kPanelH - kBottom, oy + kTop);
+// The error plotted for a row: a zero or non-finite error sits on the floor of the log axis.
+double plotError(const AccuracyRow* r, bool interior) {
+    const double e = interior ? r->error.interior.rmse : r->error.whole.rmse;
+    return std::isfinite(e) ? std::max(e, kErrorFloor) : kErrorFloor;
+}
 
+// The panel's frame, title, decade grid, axis labels and the acceptance line.
+void axes(Svg& svg, double ox, double oy, const LogAxis& x, const LogAxis& y, bool interior,
+          const std::string& title) {
     svg.out << "<rect x='" << x.from << "' y='" << y.to << "' width='" << x.to - x.from
             << "' height='" << y.from - y.to << "' fill='none' stroke='#444'/>\n";
     svg.text(ox + kPanelW / 2, oy + 22, title, "middle", 13, "font-weight='bold'");
@@ -131,8 +124,11 @@ void panel(Svg& svg, double ox, double oy, const std::vector<const AccuracyRow*>
     const double acceptance = y.at(kAcceptance);
     svg.line(x.from, acceptance, x.to, acceptance, "#888", 1, "stroke-dasharray='6 4'");
     svg.text(x.to - 4, acceptance - 4, "1e-3", "end", 10, "fill='#666'");
+}
 
-    // One curve per shading mode and sample count, in tessellation order.
+// One curve per shading mode and sample count, in tessellation order.
+void curves(Svg& svg, const LogAxis& x, const LogAxis& y,
+            const std::vector<const AccuracyRow*>& rows, bool interior) {
     std::vector<std::pair<ShadingMode, int>> series;
     for (const AccuracyRow* r : rows)
         if (std::find(series.begin(), series.end(), std::pair{r->shading, r->msaa}) == series.end())
@@ -147,35 +143,54 @@ void panel(Svg& svg, double ox, double oy, const std::vector<const AccuracyRow*>
         svg.out << "<polyline fill='none' stroke='" << modeColour(mode) << "' stroke-width='1.5' "
                 << (msaa > 1 ? "stroke-dasharray='5 3' " : "") << "points='";
         for (const AccuracyRow* r : pts)
-            svg.out << x.at(std::max(r->ms, 1e-3)) << ',' << y.at(error(r)) << ' ';
+            svg.out << x.at(std::max(r->ms, 1e-3)) << ',' << y.at(plotError(r, interior)) << ' ';
         svg.out << "'/>\n";
         for (const AccuracyRow* r : pts) {
-            const double px = x.at(std::max(r->ms, 1e-3)), py = y.at(error(r));
+            const double px = x.at(std::max(r->ms, 1e-3)), py = y.at(plotError(r, interior));
             svg.marker(px, py, msaa > 1, modeColour(mode));
             svg.text(px + 5, py - 5, std::to_string(r->segments), "start", 8,
                      ("fill='" + std::string(modeColour(mode)) + "'").c_str());
         }
     }
+}
 
-    // The Pareto front: a staircase through its points, each ringed.
+// The Pareto front: a staircase through its points, each ringed.
+void paretoFront(Svg& svg, const LogAxis& x, const LogAxis& y,
+                 const std::vector<const AccuracyRow*>& rows, bool interior) {
+    auto error = [&](const AccuracyRow* r) { return plotError(r, interior); };
     std::vector<const AccuracyRow*> front;
     for (const AccuracyRow* r : rows)
         if (interior ? r->paretoInterior : r->paretoWhole) front.push_back(r);
     std::sort(front.begin(), front.end(),
               [](const AccuracyRow* a, const AccuracyRow* b) { return a->ms < b->ms; });
-    if (!front.empty()) {
-        svg.out << "<polyline fill='none' stroke='#000' stroke-width='2' stroke-opacity='0.55' "
-                   "points='";
-        for (std::size_t i = 0; i < front.size(); ++i) {
-            const double px = x.at(std::max(front[i]->ms, 1e-3)), py = y.at(error(front[i]));
-            if (i > 0) svg.out << px << ',' << y.at(error(front[i - 1])) << ' ';
-            svg.out << px << ',' << py << ' ';
-        }
-        svg.out << "'/>\n";
-        for (const AccuracyRow* r : front)
-            svg.out << "<circle cx='" << x.at(std::max(r->ms, 1e-3)) << "' cy='" << y.at(error(r))
-                    << "' r='7' fill='none' stroke='#000' stroke-width='1.5'/>\n";
+    if (front.empty()) return;
+    svg.out << "<polyline fill='none' stroke='#000' stroke-width='2' stroke-opacity='0.55' "
+               "points='";
+    for (std::size_t i = 0; i < front.size(); ++i) {
+        const double px = x.at(std::max(front[i]->ms, 1e-3)), py = y.at(error(front[i]));
+        if (i > 0) svg.out << px << ',' << y.at(error(front[i - 1])) << ' ';
+        svg.out << px << ',' << py << ' ';
     }
+    svg.out << "'/>\n";
+    for (const AccuracyRow* r : front)
+        svg.out << "<circle cx='" << x.at(std::max(r->ms, 1e-3)) << "' cy='" << y.at(error(r))
+                << "' r='7' fill='none' stroke='#000' stroke-width='1.5'/>\n";
+}
+
+void panel(Svg& svg, double ox, double oy, const std::vector<const AccuracyRow*>& rows,
+           bool interior, const std::string& title) {
+    double msLo = 1e300, msHi = 0, eLo = kAcceptance, eHi = kAcceptance;
+    for (const AccuracyRow* r : rows) {
+        msLo = std::min(msLo, std::max(r->ms, 1e-3));
+        msHi = std::max(msHi, std::max(r->ms, 1e-3));
+        eLo = std::min(eLo, plotError(r, interior));
+        eHi = std::max(eHi, plotError(r, interior));
+    }
+    const LogAxis x = LogAxis::fit(msLo, msHi, ox + kLeft, ox + kPanelW - kRight);
+    const LogAxis y = LogAxis::fit(eLo, eHi, oy + kPanelH - kBottom, oy + kTop);
+    axes(svg, ox, oy, x, y, interior, title);
+    curves(svg, x, y, rows, interior);
+    paretoFront(svg, x, y, rows, interior);
 }
 
 } // namespace
