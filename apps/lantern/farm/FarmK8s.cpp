@@ -107,21 +107,24 @@ std::string dnsLabel(const std::string& name) {
     return out.empty() ? "lantern" : out;
 }
 
-} // namespace
-
-Result<std::string> k8sManifest(const Submission& s, const JobWork& work) {
-    const std::string n = std::to_string(work.tasks);
-    std::ostringstream script; // what `sh -c` runs in each pod
+// What `sh -c` runs in each pod: the setup lines, then the task's `lantern render`.
+std::string podScript(const Submission& s, const JobWork& work) {
+    std::ostringstream script;
     for (const std::string& line : s.setup)
         script << line << "\n";
     script << "exec";
     for (const std::string& word : renderCommand(s, work))
         script << " " << shellQuote(word);
-    script << " --shard \"$JOB_COMPLETION_INDEX/" << n << "\"";
+    script << " --shard \"$JOB_COMPLETION_INDEX/" << work.tasks << "\"";
     if (!hasRenderOption(s, "--encoder-threads") && s.cpusPerTask > 0)
         script << " --encoder-threads " << s.cpusPerTask;
+    return script.str();
+}
 
-    std::ostringstream o;
+// The comment heading the manifest: what it renders, that it was never run on a cluster, and
+// how to submit and check it.
+void manifestHeader(std::ostringstream& o, const Submission& s, const JobWork& work) {
+    const std::string n = std::to_string(work.tasks);
     const std::string what =
         work.wholeRange
             ? "frames " + std::to_string(s.range.first) + "-" + std::to_string(s.range.last)
@@ -141,6 +144,11 @@ Result<std::string> k8sManifest(const Submission& s, const JobWork& work) {
       << "# Submit with:  kubectl apply -f " << work.script.string() << "\n"
       << "# Then:         lantern farm check " << s.outputs.front()
       << "   (on a machine that mounts the claim)\n";
+}
+
+// The Job itself down to the container's command.
+Result<void> jobSpec(std::ostringstream& o, const Submission& s, const JobWork& work) {
+    const std::string n = std::to_string(work.tasks);
     o << "apiVersion: batch/v1\n"
       << "kind: Job\n"
       << "metadata:\n"
@@ -178,7 +186,12 @@ Result<std::string> k8sManifest(const Submission& s, const JobWork& work) {
       << q("metadata.annotations['batch.kubernetes.io/job-completion-index']") << "\n"
       << "          command: [\"/bin/sh\", \"-c\"]\n"
       << "          args:\n"
-      << "            - " << q(script.str()) << "\n";
+      << "            - " << q(podScript(s, work)) << "\n";
+    return {};
+}
+
+// The container's resources (memory, CPUs, GPUs) and the claim the frames go to.
+Result<void> resourcesAndVolumes(std::ostringstream& o, const Submission& s) {
     if (!s.mem.empty() || s.cpusPerTask > 0 || s.gpus > 0) {
         std::string mem;
         if (!s.mem.empty()) {
@@ -205,6 +218,16 @@ Result<std::string> k8sManifest(const Submission& s, const JobWork& work) {
           << "          persistentVolumeClaim:\n"
           << "            claimName: " << q(s.pvc) << "\n";
     }
+    return {};
+}
+
+} // namespace
+
+Result<std::string> k8sManifest(const Submission& s, const JobWork& work) {
+    std::ostringstream o;
+    manifestHeader(o, s, work);
+    LANTERN_TRY(jobSpec(o, s, work));
+    LANTERN_TRY(resourcesAndVolumes(o, s));
     return o.str();
 }
 
