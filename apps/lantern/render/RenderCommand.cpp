@@ -208,16 +208,17 @@ int runSequence(const RenderArgs& a, Renderer& renderer, const PreparedScene& pr
     return kOk;
 }
 
-int run(const RenderArgs& a) {
+// The options of the picture: size, scene, shading, camera, background and AOVs.
+Result<RenderOptions> renderOptions(const RenderArgs& a) {
     RenderOptions options;
     options.width = a.width;
     options.height = a.height;
     options.root = a.sceneIndex;
-    if (auto r = a.shading.apply(options); !r) return report(r.error());
-    if (auto r = a.camera.apply(options); !r) return report(r.error());
+    LANTERN_TRY(a.shading.apply(options));
+    LANTERN_TRY(a.camera.apply(options));
     if (!a.background.empty()) {
         auto background = parseBackground(a.background);
-        if (!background) return report(background.error());
+        if (!background) return std::move(background).error();
         options.background = *background;
     }
     if (!a.aov.empty()) {
@@ -229,10 +230,67 @@ int run(const RenderArgs& a) {
             else if (item == "normal")
                 options.aovs.normal = true;
             else
-                return report(makeError(ErrorCode::InvalidInput,
-                                        "unknown AOV \"" + item + "\" (depth, normal)", "--aov"));
+                return makeError(ErrorCode::InvalidInput,
+                                 "unknown AOV \"" + item + "\" (depth, normal)", "--aov");
         }
     }
+    return options;
+}
+
+// --explain and --probe: what the renderer will do, and the lighting equation at one pixel.
+Result<void> explainAndProbe(const RenderArgs& a, Renderer& renderer, const Scene& scene,
+                             const RenderOptions& options) {
+    if (a.explain) {
+        auto explained = renderer.explain(scene, options, a.time);
+        if (!explained) return std::move(explained).error();
+        std::cout << "features:\n";
+        for (const auto& f : explained->features)
+            std::cout << "  " << f << "\n";
+        std::cout << "pipeline variants:\n";
+        for (const auto& v : explained->variants)
+            std::cout << "  " << v << "\n";
+    }
+    if (!a.probe.empty()) {
+        auto xy = parseNumbers(a.probe, 2, "--probe");
+        if (!xy) return std::move(xy).error();
+        const double x = (*xy)[0], y = (*xy)[1];
+        if (x != std::floor(x) || y != std::floor(y) || x < 0 || y < 0 || x >= a.width ||
+            y >= a.height)
+            return makeError(ErrorCode::InvalidInput,
+                             "pixel " + a.probe + " is not a whole pixel inside the " +
+                                 std::to_string(a.width) + "x" + std::to_string(a.height) +
+                                 " image",
+                             "--probe");
+        auto probed = renderer.probe(scene, options, a.time, int(x), int(y));
+        if (!probed) return std::move(probed).error();
+        printProbe(std::cout, *probed);
+    }
+    return {};
+}
+
+// One frame, written to every output (the paths on stdout).
+int renderFrame(const RenderArgs& a, Renderer& renderer, const PreparedScene& prepared,
+                const RenderOptions& options, ExrOptions exr,
+                const std::vector<std::string>& outputs) {
+    if (!a.shard.empty())
+        return report(makeError(ErrorCode::Usage, "--shard needs --frames", "--shard"));
+    auto image = renderer.render(prepared, options, a.time);
+    if (!image) return report(image.error());
+    for (const std::string& out : outputs) {
+        std::uint64_t clamped = 0;
+        exr.clampedCount = &clamped;
+        if (auto w = writeImage(out, *image, exr); !w) return report(w.error());
+        if (clamped > 0)
+            std::cerr << "lantern: warning: " << out << ": " << clamped
+                      << " values exceeded the half range and were clamped to 65504\n";
+        std::cout << out << "\n";
+    }
+    return kOk;
+}
+
+int run(const RenderArgs& a) {
+    auto options = renderOptions(a);
+    if (!options) return report(options.error());
     ExrOptions exr;
     exr.half = a.half;
     const auto compression = parseExrCompression(a.compression);
@@ -263,48 +321,11 @@ int run(const RenderArgs& a) {
     if (a.device.verbose)
         std::cerr << "lantern: device: " << renderer->device().name << " ("
                   << renderer->device().driver << ")\n";
-    if (a.explain) {
-        auto report_ = renderer->explain(*shared, options, a.time);
-        if (!report_) return report(report_.error());
-        std::cout << "features:\n";
-        for (const auto& f : report_->features)
-            std::cout << "  " << f << "\n";
-        std::cout << "pipeline variants:\n";
-        for (const auto& v : report_->variants)
-            std::cout << "  " << v << "\n";
-    }
-    if (!a.probe.empty()) {
-        auto xy = parseNumbers(a.probe, 2, "--probe");
-        if (!xy) return report(xy.error());
-        const double x = (*xy)[0], y = (*xy)[1];
-        if (x != std::floor(x) || y != std::floor(y) || x < 0 || y < 0 || x >= a.width ||
-            y >= a.height)
-            return report(makeError(ErrorCode::InvalidInput,
-                                    "pixel " + a.probe + " is not a whole pixel inside the " +
-                                        std::to_string(a.width) + "x" + std::to_string(a.height) +
-                                        " image",
-                                    "--probe"));
-        auto probed = renderer->probe(*shared, options, a.time, int(x), int(y));
-        if (!probed) return report(probed.error());
-        printProbe(std::cout, *probed);
-    }
+    if (auto r = explainAndProbe(a, *renderer, *shared, *options); !r) return report(r.error());
     auto prepared = renderer->prepare(shared);
     if (!prepared) return report(prepared.error());
-    if (sequence) return runSequence(a, *renderer, *prepared, options, exr, outputs);
-    if (!a.shard.empty())
-        return report(makeError(ErrorCode::Usage, "--shard needs --frames", "--shard"));
-    auto image = renderer->render(*prepared, options, a.time);
-    if (!image) return report(image.error());
-    for (const std::string& out : outputs) {
-        std::uint64_t clamped = 0;
-        exr.clampedCount = &clamped;
-        if (auto w = writeImage(out, *image, exr); !w) return report(w.error());
-        if (clamped > 0)
-            std::cerr << "lantern: warning: " << out << ": " << clamped
-                      << " values exceeded the half range and were clamped to 65504\n";
-        std::cout << out << "\n";
-    }
-    return kOk;
+    if (sequence) return runSequence(a, *renderer, *prepared, *options, exr, outputs);
+    return renderFrame(a, *renderer, *prepared, *options, exr, outputs);
 }
 
 } // namespace
