@@ -58,6 +58,111 @@ Error tooLarge(const char* what) {
     return makeError(ErrorCode::OutOfMemory, std::string(what) + " exceeds the addressable size");
 }
 
+// Linear blits build the mip chain when the format supports them.
+bool canBlitMips(const Context& c) {
+    VkFormatProperties fp;
+    vkGetPhysicalDeviceFormatProperties(c.physicalDevice(), VK_FORMAT_R8G8B8A8_SRGB, &fp);
+    const VkFormatFeatureFlags blitNeeds = VK_FORMAT_FEATURE_BLIT_SRC_BIT |
+                                           VK_FORMAT_FEATURE_BLIT_DST_BIT |
+                                           VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+    return (fp.optimalTilingFeatures & blitNeeds) == blitNeeds;
+}
+
+struct TextureSource {
+    int width, height;
+    const std::uint8_t* pixels;
+};
+
+// A white 1x1 texture (for materials without one), then the scene's textures.
+std::vector<TextureSource> textureSources(const Scene& s) {
+    static const std::uint8_t kWhite[4] = {255, 255, 255, 255};
+    std::vector<TextureSource> sources{{1, 1, kWhite}};
+    for (const Texture& t : s.textures)
+        sources.push_back({t.width, t.height, t.rgba8.data()});
+    return sources;
+}
+
+// Every source's pixels in one host-visible buffer, one after the other.
+struct TextureStaging {
+    Buffer buffer;
+    std::vector<VkDeviceSize> offsets; ///< per source
+};
+
+Result<TextureStaging> stageTextures(Context& c, const std::vector<TextureSource>& sources) {
+    VkDeviceSize stagingSize = 0;
+    for (const TextureSource& src : sources)
+        stagingSize += VkDeviceSize(src.width) * src.height * 4;
+    auto staging = createBuffer(c, stagingSize, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                MemoryUsage::Upload, "texture staging");
+    if (!staging) return std::move(staging).error();
+    TextureStaging out{std::move(*staging), {}};
+    VkDeviceSize offset = 0;
+    for (const TextureSource& src : sources) {
+        out.offsets.push_back(offset);
+        const VkDeviceSize bytes = VkDeviceSize(src.width) * src.height * 4;
+        std::memcpy(static_cast<char*>(out.buffer.mapped) + offset, src.pixels, bytes);
+        offset += bytes;
+    }
+    LANTERN_TRY(flush(c, out.buffer));
+    return out;
+}
+
+// Source `i`'s image (0 is the white texture), with a full mip chain when `canMip`.
+Result<Image> createTextureImage(Context& c, const TextureSource& src, std::size_t i, bool canMip) {
+    ImageDesc d;
+    d.format = VK_FORMAT_R8G8B8A8_SRGB;
+    d.width = std::uint32_t(src.width);
+    d.height = std::uint32_t(src.height);
+    d.mipLevels =
+        canMip ? std::uint32_t(std::floor(std::log2(std::max(d.width, d.height)))) + 1 : 1;
+    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+              VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    d.name = i == 0 ? "white texture" : "texture " + std::to_string(i - 1);
+    return createImage(c, d);
+}
+
+// Level 0 copied from the staging buffer at `offset`, each further level blitted from the one
+// before; every level ends shader-readable.
+void recordTextureUpload(VkCommandBuffer cmd, const Image& img, VkBuffer staging,
+                         VkDeviceSize offset) {
+    const std::uint32_t mips = img.desc.mipLevels;
+    imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
+                 VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    VkBufferImageCopy region{};
+    region.bufferOffset = offset;
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {img.desc.width, img.desc.height, 1};
+    vkCmdCopyBufferToImage(cmd, staging, img.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                           &region);
+    std::int32_t w = std::int32_t(img.desc.width), h = std::int32_t(img.desc.height);
+    for (std::uint32_t m = 1; m < mips; ++m) {
+        imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT,
+                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                     VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, m - 1, 1);
+        const std::int32_t nw = std::max(w / 2, 1), nh = std::max(h / 2, 1);
+        VkImageBlit blit{};
+        blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m - 1, 0, 1};
+        blit.srcOffsets[1] = {w, h, 1};
+        blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m, 0, 1};
+        blit.dstOffsets[1] = {nw, nh, 1};
+        vkCmdBlitImage(cmd, img.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, img.get(),
+                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+        imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT,
+                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                     VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
+                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
+                     m - 1, 1);
+        w = nw;
+        h = nh;
+    }
+    imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                 VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                 VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, mips - 1, 1);
+}
+
 } // namespace
 
 SceneBuffers::~SceneBuffers() {
@@ -212,100 +317,31 @@ Result<void> SceneBuffers::ensureFlatStreams() {
 }
 
 Result<void> SceneBuffers::uploadTextures(VkDescriptorSetLayout layout) {
+    LANTERN_TRY(uploadTextureImages());
+    LANTERN_TRY(createSamplers());
+    return createTextureSets(layout);
+}
+
+Result<void> SceneBuffers::uploadTextureImages() {
     Context& c = *m_ctx;
-    const Scene& s = *m_scene;
-    // Linear blits build the mip chain when the format supports them.
-    VkFormatProperties fp;
-    vkGetPhysicalDeviceFormatProperties(c.physicalDevice(), VK_FORMAT_R8G8B8A8_SRGB, &fp);
-    const VkFormatFeatureFlags blitNeeds = VK_FORMAT_FEATURE_BLIT_SRC_BIT |
-                                           VK_FORMAT_FEATURE_BLIT_DST_BIT |
-                                           VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
-    const bool canMip = (fp.optimalTilingFeatures & blitNeeds) == blitNeeds;
-
-    struct Source {
-        int width, height;
-        const std::uint8_t* pixels;
-    };
-    static const std::uint8_t kWhite[4] = {255, 255, 255, 255};
-    std::vector<Source> sources{{1, 1, kWhite}};
-    for (const Texture& t : s.textures) sources.push_back({t.width, t.height, t.rgba8.data()});
-
-    VkDeviceSize stagingSize = 0;
-    for (const Source& src : sources) stagingSize += VkDeviceSize(src.width) * src.height * 4;
-    auto staging = createBuffer(c, stagingSize, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                     MemoryUsage::Upload, "texture staging");
+    const bool canMip = canBlitMips(c);
+    const std::vector<TextureSource> sources = textureSources(*m_scene);
+    auto staging = stageTextures(c, sources);
     if (!staging) return std::move(staging).error();
-    std::vector<VkDeviceSize> offsets;
-    VkDeviceSize offset = 0;
-    for (const Source& src : sources) {
-        offsets.push_back(offset);
-        const VkDeviceSize bytes = VkDeviceSize(src.width) * src.height * 4;
-        std::memcpy(static_cast<char*>(staging->mapped) + offset, src.pixels, bytes);
-        offset += bytes;
-    }
-    LANTERN_TRY(flush(c, *staging));
-
     for (std::size_t i = 0; i < sources.size(); ++i) {
-        ImageDesc d;
-        d.format = VK_FORMAT_R8G8B8A8_SRGB;
-        d.width = std::uint32_t(sources[i].width);
-        d.height = std::uint32_t(sources[i].height);
-        d.mipLevels = canMip ? std::uint32_t(std::floor(std::log2(std::max(d.width, d.height)))) + 1 : 1;
-        d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
-                  VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-        d.name = i == 0 ? "white texture" : "texture " + std::to_string(i - 1);
-        auto img = createImage(c, d);
+        auto img = createTextureImage(c, sources[i], i, canMip);
         if (!img) return std::move(img).error();
         m_textures.push_back(std::move(*img));
     }
-    LANTERN_TRY(c.submitAndWait([&](VkCommandBuffer cmd) {
-        for (std::size_t i = 0; i < m_textures.size(); ++i) {
-            const Image& img = m_textures[i];
-            const std::uint32_t mips = img.desc.mipLevels;
-            imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                              VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
-                              VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-            VkBufferImageCopy region{};
-            region.bufferOffset = offsets[i];
-            region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-            region.imageExtent = {img.desc.width, img.desc.height, 1};
-            vkCmdCopyBufferToImage(cmd, staging->get(), img.get(),
-                                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-            std::int32_t w = std::int32_t(img.desc.width), h = std::int32_t(img.desc.height);
-            for (std::uint32_t m = 1; m < mips; ++m) {
-                imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT,
-                                  VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                                  VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                                  VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
-                                  m - 1, 1);
-                const std::int32_t nw = std::max(w / 2, 1), nh = std::max(h / 2, 1);
-                VkImageBlit blit{};
-                blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m - 1, 0, 1};
-                blit.srcOffsets[1] = {w, h, 1};
-                blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m, 0, 1};
-                blit.dstOffsets[1] = {nw, nh, 1};
-                vkCmdBlitImage(cmd, img.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, img.get(),
-                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
-                imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT,
-                                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                                  VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
-                                  VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                                  VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, m - 1, 1);
-                w = nw;
-                h = nh;
-            }
-            imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT,
-                              VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                              VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                              VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                              VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, mips - 1, 1);
-        }
-    }));
+    return c.submitAndWait([&](VkCommandBuffer cmd) {
+        for (std::size_t i = 0; i < m_textures.size(); ++i)
+            recordTextureUpload(cmd, m_textures[i], staging->buffer.get(), staging->offsets[i]);
+    });
+}
 
-    // Samplers: index = nearest * 2 + clamp.
+// Samplers: index = nearest * 2 + clamp.
+Result<void> SceneBuffers::createSamplers() {
+    Context& c = *m_ctx;
     for (int i = 0; i < 4; ++i) {
         VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
         const bool nearest = i & 2, clamp = i & 1;
@@ -320,7 +356,13 @@ Result<void> SceneBuffers::uploadTextures(VkDescriptorSetLayout layout) {
         LANTERN_VK_TRY(vkCreateSampler(c.device(), &sci, nullptr, &sampler));
         m_samplers.emplace_back(c.device(), sampler);
     }
+    return {};
+}
 
+// One descriptor set per texture, with the sampler its texture asks for.
+Result<void> SceneBuffers::createTextureSets(VkDescriptorSetLayout layout) {
+    Context& c = *m_ctx;
+    const Scene& s = *m_scene;
     VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                                   std::uint32_t(m_textures.size())};
     VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};

@@ -57,7 +57,12 @@ public:
 
 private:
     SceneBuffers() = default;
+    // uploadTextures: the images (a white one first), the four samplers, one descriptor set
+    // per image.
     Result<void> uploadTextures(VkDescriptorSetLayout layout);
+    Result<void> uploadTextureImages();
+    Result<void> createSamplers();
+    Result<void> createTextureSets(VkDescriptorSetLayout layout);
 
     std::shared_ptr<Context> m_ctx;
     std::shared_ptr<const Scene> m_scene;
