@@ -59,7 +59,6 @@ VkPipelineRasterizationStateCreateInfo rasterizationState(const GraphicsPipeline
     rs.polygonMode = d.polygonMode;
     rs.cullMode = VK_CULL_MODE_NONE;                 // dynamic
     rs.frontFace = VK_FRONT_FACE_CLOCKWISE;          // dynamic
-    rs.frontFace = VK_FRONT_FACE_CLOCKWISE;          // dynamic
     rs.depthBiasEnable = d.depthBias ? VK_TRUE : VK_FALSE;
     rs.lineWidth = 1.0f;
     return rs;
