@@ -42,6 +42,7 @@ bool hookedBuild() {
 }
 
 TEST(Failure, DeviceLostMidSequenceExits3AndKeepsFinishedFrames) {
+    LANTERN_SKIP_IF_MISSING(lantern::test::missingVulkanDevice());
     if (!hookedBuild()) GTEST_SKIP() << "this build has no fault-injection hooks (LANTERN_TESTING_HOOKS=OFF)";
     const auto dir = testOutputDir();
     // Uploads use the queue too: skip enough submissions that several frames are written first.
@@ -57,6 +58,7 @@ TEST(Failure, DeviceLostMidSequenceExits3AndKeepsFinishedFrames) {
 }
 
 TEST(Failure, OutOfDeviceMemoryExits3) {
+    LANTERN_SKIP_IF_MISSING(lantern::test::missingVulkanDevice());
     if (!hookedBuild()) GTEST_SKIP() << "this build has no fault-injection hooks (LANTERN_TESTING_HOOKS=OFF)";
     const auto dir = testOutputDir();
     const auto r = runLantern({"render", "builtin:spheres", "--width", "48", "--height", "32", "-o",
@@ -72,6 +74,7 @@ TEST(Failure, OutOfDeviceMemoryExits3) {
 // uncompressed float frame is about 310 kB, 6 of the EXR stream's writes, so a few frames are
 // finished before the disk fills.
 TEST(Failure, FullDiskExits3AndKeepsFinishedFrames) {
+    LANTERN_SKIP_IF_MISSING(lantern::test::missingVulkanDevice());
     if (!hookedBuild()) GTEST_SKIP() << "this build has no fault-injection hooks (LANTERN_TESTING_HOOKS=OFF)";
     const auto dir = testOutputDir();
     const auto r = runLantern({"render", "builtin:spheres-animated", "--frames", "0-200", "--width",
@@ -96,6 +99,7 @@ TEST(Failure, FullDiskExits3AndKeepsFinishedFrames) {
 // fault-injection test above covers the behaviour there.
 TEST(Failure, FullTmpfsExits3AndKeepsFinishedFrames) {
     LANTERN_SKIP_IF_MISSING(test::missingUserNamespaceMount());
+    LANTERN_SKIP_IF_MISSING(lantern::test::missingVulkanDevice());
     const auto dir = testOutputDir();
     std::filesystem::create_directories(dir / "mnt");
     std::filesystem::create_directories(dir / "copy");

@@ -168,6 +168,17 @@ std::string missingProgram(const std::string& program, const std::string& debian
     return program + " is not installed (Debian package " + debianPackage + ")";
 }
 
+std::string missingVulkanDevice() {
+    if (sharedRenderer()) return {};
+    return "no Vulkan device: " + noDeviceReason();
+}
+
+std::vector<std::string> validationFlag() {
+    if (sharedRenderer() && sharedRenderer()->device().validationEnabled) return {"--validation"};
+    std::cerr << "note: VK_LAYER_KHRONOS_validation is not installed; validation not checked\n";
+    return {};
+}
+
 std::string missingUserNamespaceMount(const std::vector<std::string>& environment) {
     // Mounted over /tmp inside the private namespace, so nothing outside it sees the mount.
     const auto r = runProcess({"unshare", "-rm", "sh", "-c",

@@ -50,6 +50,14 @@ private:
 ///
 /// An executable on $PATH (`debianPackage` installs it).
 std::string missingProgram(const std::string& program, const std::string& debianPackage);
+/// A Vulkan device (for tests that render through the `lantern` command or a window; GpuTest
+/// fixtures check it themselves). Creates sharedRenderer() once per process.
+std::string missingVulkanDevice();
+/// {"--validation"} for a `lantern` command line when VK_LAYER_KHRONOS_validation is
+/// installed; otherwise nothing, and a note on stderr (the command would warn that the layer
+/// is missing, and tests check that it prints nothing about validation). As in GpuTest, a
+/// missing layer means validation is not checked, not that the test fails or skips.
+std::vector<std::string> validationFlag();
 /// An unprivileged user namespace in which a tmpfs can be mounted (`unshare -rm`): Linux
 /// refuses one inside a chroot, and Docker's default seccomp profile inside a container.
 std::string missingUserNamespaceMount(const std::vector<std::string>& environment = {});
