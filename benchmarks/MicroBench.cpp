@@ -3,7 +3,7 @@
 // these are the parts a host pays on its own thread. Compare rows of one run (ratios), never
 // absolute numbers across runs. See docs/performance.md for the results and the command.
 #include "reference/Lighting.h"
-#include "render/FramePlan.h"
+#include "render/FrameRender.h"
 
 #include <lantern/Lantern.h>
 
@@ -68,7 +68,7 @@ void BM_BuildFramePlan(benchmark::State& state) {
     options.width = 640;
     options.height = 360;
     for (auto _ : state) {
-        auto plan = render::buildFramePlan(scene, options, 0.0);
+        auto plan = render::planFrame(scene, options, 0.0);
         if (!plan) {
             state.SkipWithError(plan.error().describe().c_str());
             break;

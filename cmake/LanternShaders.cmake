@@ -7,7 +7,7 @@ find_program(LANTERN_GLSLANG_VALIDATOR glslangValidator REQUIRED)
 # Appends the compiled header to the LANTERN_SHADER_HEADERS / LANTERN_SHADER_IDS globals.
 function(lantern_add_shader id)
     cmake_parse_arguments(ARG "" "SOURCE" "DEFINES" ${ARGN})
-    set(src "${CMAKE_CURRENT_SOURCE_DIR}/${ARG_SOURCE}")
+    cmake_path(ABSOLUTE_PATH ARG_SOURCE BASE_DIRECTORY "${CMAKE_CURRENT_SOURCE_DIR}" OUTPUT_VARIABLE src)
     set(out "${CMAKE_CURRENT_BINARY_DIR}/spv/${id}.h")
     set(defs "")
     foreach(d IN LISTS ARG_DEFINES)
@@ -17,11 +17,19 @@ function(lantern_add_shader id)
     if(LANTERN_SHADER_DEBUG_INFO)
         set(dbg "-g")
     endif()
+    # The folder exists before any generator runs the command (Ninja creates output folders
+    # itself, Unix Makefiles does not). glslangValidator exits 0 when it cannot write its
+    # output: the old header is removed first (a stale one must not be embedded) and its
+    # absence afterwards fails the build with a message naming the shader.
+    file(MAKE_DIRECTORY "${CMAKE_CURRENT_BINARY_DIR}/spv")
     add_custom_command(
         OUTPUT "${out}"
+        COMMAND "${CMAKE_COMMAND}" -E rm -f "${out}"
         COMMAND "${LANTERN_GLSLANG_VALIDATOR}" -V --target-env vulkan1.3 --quiet ${dbg}
                 -I${CMAKE_CURRENT_SOURCE_DIR}/include ${defs}
                 --depfile "${out}.d" --vn lantern_spv_${id} -o "${out}" "${src}"
+        COMMAND "${CMAKE_COMMAND}" "-DOUTPUT=${out}" "-DSOURCE=${src}"
+                -P "${CMAKE_CURRENT_FUNCTION_LIST_DIR}/CheckShaderOutput.cmake"
         DEPENDS "${src}"
         DEPFILE "${out}.d"
         COMMENT "glslang: ${ARG_SOURCE} -> ${id}"
@@ -44,8 +52,8 @@ function(lantern_shader_registry target)
         string(APPEND table "    {\"${id}\", lantern_spv_${id}, sizeof(lantern_spv_${id}) / 4},\n")
     endforeach()
     list(LENGTH ids count)
-    configure_file("${PROJECT_SOURCE_DIR}/cmake/ShaderBlobs.h.in" "${gen}/ShaderBlobs.h" @ONLY)
-    configure_file("${PROJECT_SOURCE_DIR}/cmake/ShaderBlobs.cpp.in" "${gen}/ShaderBlobs.cpp" @ONLY)
+    configure_file("${CMAKE_CURRENT_FUNCTION_LIST_DIR}/ShaderBlobs.h.in" "${gen}/ShaderBlobs.h" @ONLY)
+    configure_file("${CMAKE_CURRENT_FUNCTION_LIST_DIR}/ShaderBlobs.cpp.in" "${gen}/ShaderBlobs.cpp" @ONLY)
     add_library(${target} OBJECT "${gen}/ShaderBlobs.cpp" ${headers})
     target_include_directories(${target} PUBLIC "${gen}" PRIVATE "${CMAKE_CURRENT_BINARY_DIR}")
     target_compile_features(${target} PUBLIC cxx_std_20)

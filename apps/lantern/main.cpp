@@ -1,11 +1,10 @@
 // `lantern`: the command line (spec/cli.md). Exit status: 0 success, 1 input refused,
 // 2 usage error, 3 the renderer failed.
-#include "CliSupport.h"
-#include "Commands.h"
-
-#include <lantern/Version.h>
+#include "common/CliSupport.h"
+#include "common/Commands.h"
 
 #include <iostream>
+#include <lantern/Version.h>
 
 int main(int argc, char** argv) {
     using namespace lantern::cli;

@@ -21,6 +21,12 @@
 #define LANTERN_LOC_CENTROID 4       // flat shading only: the triangle's centroid
 #define LANTERN_VERTEX_BINDINGS 5
 
+// Fragment outputs (colour attachments of the render pass, in this order).
+#define LANTERN_OUT_COLOR 0
+#define LANTERN_OUT_NORMAL_DEPTH 1   // AOV variants: float bits of the eye normal and depth
+#define LANTERN_OUT_ID 2             // AOV variants: draw index + 1, primitive id
+#define LANTERN_OUT_COUNT_AOV 3
+
 // Specialisation constants: the features a pipeline variant compiles in.
 #define LANTERN_SC_LIGHT_TYPES 0     // bit mask of LANTERN_LIGHT_BIT_*
 #define LANTERN_SC_GL_ATTENUATION 1  // a GL light has attenuation other than (1,0,0)

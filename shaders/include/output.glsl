@@ -7,10 +7,10 @@
 
 #include "lighting.glsl"
 
-layout(location = 0) out vec4 outColor;
+layout(location = LANTERN_OUT_COLOR) out vec4 outColor;
 #ifdef LANTERN_AOV
-layout(location = 1) out uvec4 outNormalDepth;  // float bits: N.x, N.y, N.z, Z (= -z_eye)
-layout(location = 2) out uvec2 outId;           // draw index + 1, gl_PrimitiveID
+layout(location = LANTERN_OUT_NORMAL_DEPTH) out uvec4 outNormalDepth;  // float bits: N.x, N.y, N.z, Z (= -z_eye)
+layout(location = LANTERN_OUT_ID) out uvec2 outId;           // draw index + 1, gl_PrimitiveID
 #endif
 
 // c: linear colour; alpha: opacity; n: the surface normal before any two-sided flip;

@@ -1,5 +1,5 @@
 // uniforms.glsl: the shader side of Lantern's GPU data. Mirrored in C++ by
-// engine/src/render/GpuLayouts.h (static_asserted, and checked against this SPIR-V by a test).
+// engine/src/gpu/GpuLayouts.h (static_asserted, and checked against this SPIR-V by a test).
 // All positions and directions are in eye space (camera-relative, composed in double on the CPU).
 #ifndef LANTERN_UNIFORMS_GLSL
 #define LANTERN_UNIFORMS_GLSL

@@ -63,7 +63,7 @@ TEST_P(SphereLighting, MatchesTheExactSphereAtPixelCentres) {
     // The reference: exact ray-sphere intersection in eye space (sphere centre (0,0,-4)).
     const Pose pose = evaluatePose(scene, -1, 0.0);
     const glm::dmat4 viewFromWorld = lookAt(ss.lookAt.eye, ss.lookAt.target, ss.lookAt.up);
-    const auto lights = ref::eyeLights(scene, pose, viewFromWorld, false);
+    const auto lights = frame::placeLights(scene, pose, viewFromWorld, false);
     ref::Settings st;
     st.specular = c.specular;
     const double t = std::tan(fovy / 2);

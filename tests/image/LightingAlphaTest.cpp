@@ -35,7 +35,7 @@ TEST_F(LightingAlpha, BlendedDrawsAreSortedBackToFrontAfterTheOpaqueOnes) {
                          test::translation({0, 0, -1.0})});
     const Scene scene = s.build();
     const RenderOptions o = test::optionsFor(64, 64, ShadingMode::Phong);
-    auto plan = render::buildFramePlan(scene, o, 0.0);
+    auto plan = frame::buildFrame(scene, o, 0.0);
     ASSERT_TRUE(plan);
     const auto& draws = plan->views[0].draws;
     ASSERT_EQ(draws.size(), 4u);

@@ -98,22 +98,37 @@ std::string ReferenceComparison::describe(const std::string& name) const {
           << worstReport.colour.b << ", " << worstReport.colour.a << "), triangle "
           << worstReport.triangle << ", back facing " << worstReport.backFacing;
     }
-    s << "\n" << saveComparison(frame.frame.image, expected, name);
+    s << "\n" << saveComparison(frame.readback.image, expected, name);
     return s.str();
 }
 
-ReferenceComparison compareWithReference(Renderer& renderer, const Scene& scene,
-                                         const RenderOptions& options, const PixelCheck& check) {
+Result<render::RenderedFrame> renderWithIds(gpu::Device& device, const Scene& scene,
+                                            const RenderOptions& options,
+                                            const render::FrameEdits& edits) {
+    RenderOptions o = options;
+    o.aovs.depth = o.aovs.normal = true;
+    LANTERN_TRY(render::checkOptions(device, o));
+    LANTERN_TRY(scene.validate());
+    // Not owned: the scene outlives the synchronous render.
+    auto buffers = device.upload(std::shared_ptr<const Scene>(std::shared_ptr<const Scene>(), &scene));
+    if (!buffers) return std::move(buffers).error();
+    FrameStats stats;
+    return render::renderFrame(device, *buffers, scene, o, 0.0, stats, edits);
+}
+
+ReferenceComparison compareWithReference(gpu::Device& device, const Scene& scene,
+                                         const RenderOptions& options, const PixelCheck& check,
+                                         const render::FrameEdits& edits) {
     ReferenceComparison c;
-    auto f = render::RendererAccess::renderExplained(renderer, scene, options, 0.0);
+    auto f = renderWithIds(device, scene, options, edits);
     if (!f) {
         ADD_FAILURE() << f.error().describe();
         return c;
     }
     c.frame = std::move(*f);
-    const Image& img = c.frame.frame.image;
-    const std::vector<std::uint32_t>& ids = c.frame.frame.ids;
-    const render::PixelReference reference(scene, c.frame.plan, c.frame.options);
+    const Image& img = c.frame.readback.image;
+    const std::vector<std::uint32_t>& ids = c.frame.readback.ids;
+    const ref::PixelReference reference(scene, c.frame.frame, img.height);
     c.expected = Image(img.width, img.height);
     c.reports.resize(img.pixelCount());
     auto drawAt = [&](int x, int y) -> std::uint32_t {

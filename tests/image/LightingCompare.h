@@ -5,7 +5,8 @@
 #pragma once
 
 #include "TestSupport.h"
-#include "render/Probe.h"
+#include "reference/PixelReference.h"
+#include "render/FrameRender.h"
 
 #include <functional>
 #include <glm/gtc/matrix_transform.hpp>
@@ -56,7 +57,7 @@ struct PixelCheck {
 
 /// The outcome of comparing every covered pixel of an opaque render with the reference.
 struct ReferenceComparison {
-    render::ExplainedFrame frame;
+    render::RenderedFrame frame;  ///< the frame model and what was read back
     Image expected;           ///< the reference colour of every covered pixel
     std::size_t compared = 0; ///< pixels compared
     /// The largest |rendered - reference| / max(1, |reference|) over compared pixels and
@@ -67,18 +68,25 @@ struct ReferenceComparison {
     std::vector<ProbeReport> reports; ///< per pixel (hit = false for the background)
 
     const ProbeReport& at(int x, int y) const {
-        return reports[std::size_t(y) * frame.frame.image.width + x];
+        return reports[std::size_t(y) * frame.readback.image.width + x];
     }
-    const float* pixel(int x, int y) const { return frame.frame.image.pixel(x, y); }
+    const float* pixel(int x, int y) const { return frame.readback.image.pixel(x, y); }
     /// The worst pixel, both colours, and the paths of saved actual/expected/diff images.
     std::string describe(const std::string& name) const;
 };
 
 /// Renders `scene` (AOVs on, optionally edited plan) and compares every covered pixel with
 /// the reference. Fails the current test on a render error.
-ReferenceComparison compareWithReference(Renderer& renderer, const Scene& scene,
+/// Renders `scene` on the engine's device with the depth, normal and id AOVs on; `edits` may
+/// change the frame or the draw list before submission.
+Result<render::RenderedFrame> renderWithIds(gpu::Device& device, const Scene& scene,
+                                            const RenderOptions& options,
+                                            const render::FrameEdits& edits = {});
+
+ReferenceComparison compareWithReference(gpu::Device& device, const Scene& scene,
                                          const RenderOptions& options,
-                                         const PixelCheck& check = {});
+                                         const PixelCheck& check = {},
+                                         const render::FrameEdits& edits = {});
 
 /// RenderOptions of the given size and shading mode.
 RenderOptions optionsFor(int width, int height, ShadingMode mode);

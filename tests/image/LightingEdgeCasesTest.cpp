@@ -39,8 +39,8 @@ protected:
                                     double tolerance = kStep, bool perLight = true) {
         test::PixelCheck pc;
         pc.perLight = perLight;
-        test::ReferenceComparison c = test::compareWithReference(renderer(), scene, o, pc);
-        EXPECT_EQ(c.frame.frame.nonFinite, 0u) << name << ": NaN/Inf counted at readback";
+        test::ReferenceComparison c = test::compareWithReference(device(), scene, o, pc);
+        EXPECT_EQ(c.frame.readback.nonFinite, 0u) << name << ": NaN/Inf counted at readback";
         EXPECT_GT(c.compared, 0u) << name;
         EXPECT_LE(c.worst, tolerance) << name << ": " << c.describe(name);
         return c;
@@ -199,8 +199,8 @@ TEST_P(EdgeCases, LN6_LightExactlyOnAVertex) {
     s.lookAt = {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}};
     const test::ReferenceComparison c =
         check(s.build(), test::optionsFor(64, 64, GetParam()), "ln6");
-    ASSERT_EQ(c.frame.plan.views[0].camera.viewFromWorld, glm::dmat4(1.0));
-    const float brightest = test::brightestColour(c.frame.frame.image);
+    ASSERT_EQ(c.frame.frame.views[0].camera.viewFromWorld, glm::dmat4(1.0));
+    const float brightest = test::brightestColour(c.frame.readback.image);
     if (GetParam() == ShadingMode::Gouraud)
         EXPECT_GT(brightest, 1e20f) << "the vertex on the light is lit with att = 1e30";
     else
@@ -295,7 +295,7 @@ TEST_F(EdgeCasesPhong, SpotCutoffZeroLightsOnlyTheAxis) {
     const LitScene s = spotOnPlane(4.0, 0.0, 0.0, test::aimed({0, 0, 4}, {0, 0, -1}));
     const test::ReferenceComparison c =
         check(s.build(), test::optionsFor(64, 64, ShadingMode::Phong), "cutoff0");
-    for (float v : c.frame.frame.image.rgba)
+    for (float v : c.frame.readback.image.rgba)
         EXPECT_TRUE(v == 0.0f || v == 1.0f);
 }
 
@@ -311,8 +311,8 @@ TEST_F(EdgeCasesPhong, NarrowSpotConeKeepsItsEdge) {
     test::PixelCheck pc;
     pc.perLight = true;
     const test::ReferenceComparison c = test::compareWithReference(
-        renderer(), s.build(), test::optionsFor(64, 64, ShadingMode::Phong), pc);
-    EXPECT_EQ(c.frame.frame.nonFinite, 0u);
+        device(), s.build(), test::optionsFor(64, 64, ShadingMode::Phong), pc);
+    EXPECT_EQ(c.frame.readback.nonFinite, 0u);
     std::size_t inside = 0, compared = 0;
     for (int y = 0; y < 64; ++y)
         for (int x = 0; x < 64; ++x) {
@@ -347,8 +347,8 @@ TEST_F(EdgeCasesPhong, LN9_ShininessSweep) {
         const std::string name = "ln9_s" + std::to_string(shininess);
         test::PixelCheck pc;
         const test::ReferenceComparison c = test::compareWithReference(
-            renderer(), s.build(), test::optionsFor(65, 65, ShadingMode::Phong), pc);
-        EXPECT_EQ(c.frame.frame.nonFinite, 0u) << name;
+            device(), s.build(), test::optionsFor(65, 65, ShadingMode::Phong), pc);
+        EXPECT_EQ(c.frame.readback.nonFinite, 0u) << name;
         double sum = 0.0, peakGot = 0.0, peakWant = 0.0;
         for (int y = 0; y < 65; ++y)
             for (int x = 0; x < 65; ++x) {
@@ -476,10 +476,10 @@ TEST_F(EdgeCasesPhong, LN8_NonUniformAndSingularScale) {
             {test::makeLight(LightType::Directional), test::aimed({0, 0, 0}, {0.3, -0.2, -1})});
         const std::string name = "ln8_sz" + std::to_string(sz);
         const test::ReferenceComparison c = test::compareWithReference(
-            renderer(), s.build(), test::optionsFor(64, 64, ShadingMode::Phong), {});
-        EXPECT_EQ(c.frame.frame.nonFinite, 0u) << name;
+            device(), s.build(), test::optionsFor(64, 64, ShadingMode::Phong), {});
+        EXPECT_EQ(c.frame.readback.nonFinite, 0u) << name;
         EXPECT_LE(c.worst, kStep) << name << ": " << c.describe(name);
-        const std::vector<float>& normals = c.frame.frame.image.normal;
+        const std::vector<float>& normals = c.frame.readback.image.normal;
         ASSERT_EQ(normals.size(), 64u * 64u * 3u);
         double worstDeg = 0.0;
         std::size_t covered = 0;
@@ -522,16 +522,17 @@ TEST_F(EdgeCasesPhong, LN13_NaNStaysVisibleThroughEveryClamp) {
         RenderOptions o = test::optionsFor(32, 32, row.mode);
         o.clamp = row.clamp;
         o.glCompat = row.glCompat;
-        auto clean = render::RendererAccess::renderExplained(renderer(), scene, o, 0.0);
+        auto clean = test::renderWithIds(device(), scene, o);
         ASSERT_TRUE(clean) << clean.error().describe();
-        EXPECT_EQ(clean->frame.nonFinite, 0u) << row.name << ": the control has no NaN";
-        auto poisoned = render::RendererAccess::renderExplained(
-            renderer(), scene, o, 0.0, [](render::FramePlan& plan) {
-                plan.materials[0].front.emission.x = std::numeric_limits<float>::quiet_NaN();
-            });
+        EXPECT_EQ(clean->readback.nonFinite, 0u) << row.name << ": the control has no NaN";
+        render::FrameEdits poison;
+        poison.list = [](gpu::DrawList& list) {
+            list.materials[0].front.emission.x = std::numeric_limits<float>::quiet_NaN();
+        };
+        auto poisoned = test::renderWithIds(device(), scene, o, poison);
         ASSERT_TRUE(poisoned) << poisoned.error().describe();
-        EXPECT_GT(poisoned->frame.nonFinite, 100u) << row.name;
-        EXPECT_EQ(test::countNonFinite(poisoned->frame.image), 0u) << row.name << ": scrubbed";
+        EXPECT_GT(poisoned->readback.nonFinite, 100u) << row.name;
+        EXPECT_EQ(test::countNonFinite(poisoned->readback.image), 0u) << row.name << ": scrubbed";
     }
 }
 
@@ -545,7 +546,7 @@ TEST_F(EdgeCasesPhong, HdrValuesAboveTheHalfRange) {
     s.lights.push_back({l, test::aimed({0, 0, 0}, {0, 0, -1})});
     const test::ReferenceComparison c =
         check(s.build(), test::optionsFor(64, 64, ShadingMode::Phong), "hdr");
-    EXPECT_GT(test::brightestColour(c.frame.frame.image), 65504.0f);
+    EXPECT_GT(test::brightestColour(c.frame.readback.image), 65504.0f);
 }
 
 // LN-14: 4x MSAA with gouraud shading: no resolved pixel is below 0 or above the largest
@@ -569,11 +570,11 @@ TEST_F(EdgeCasesPhong, LN14_MsaaGouraudNeverExtrapolates) {
     ASSERT_TRUE(img) << img.error().describe();
     EXPECT_EQ(renderer().lastFrameStats().nonFinite, 0u);
     // The largest colour lit at any vertex, by the reference.
-    auto plan = render::buildFramePlan(scene, o, 0.0);
+    auto plan = frame::buildFrame(scene, o, 0.0);
     ASSERT_TRUE(plan);
-    const render::DrawItem& d = plan->views[0].draws[0];
+    const frame::Draw& d = plan->views[0].draws[0];
     const auto lights =
-        ref::eyeLights(scene, plan->pose, plan->views[0].camera.viewFromWorld, false);
+        frame::placeLights(scene, plan->pose, plan->views[0].camera.viewFromWorld, false);
     const glm::dmat3 normals = normalMatrix(d.viewFromModel);
     glm::dvec3 largest(0.0);
     const Primitive& p = scene.meshes[0].primitives[0];

@@ -48,8 +48,8 @@ class LightingGlCompat : public GpuTest {
 protected:
     test::ReferenceComparison compare(const Scene& scene, const RenderOptions& o,
                                       const std::string& name) {
-        test::ReferenceComparison c = test::compareWithReference(renderer(), scene, o);
-        EXPECT_EQ(c.frame.frame.nonFinite, 0u) << name;
+        test::ReferenceComparison c = test::compareWithReference(device(), scene, o);
+        EXPECT_EQ(c.frame.readback.nonFinite, 0u) << name;
         EXPECT_GT(c.compared, 500u) << name;
         EXPECT_LE(c.worst, kStep) << name << ": " << c.describe(name);
         return c;
@@ -62,16 +62,16 @@ protected:
 };
 
 // GL_FLAT: the whole triangle has the (clamped) colour lit at its last vertex.
-TEST_F(LightingGlCompat, FlatTakesTheProvokingVertexColour) {
+TEST_F(LightingGlCompat, FlatTakesTheProvokingVertexColor) {
     const Scene scene = litSphere(1.0);
     RenderOptions o = test::optionsFor(64, 64, ShadingMode::Flat);
     o.glCompat = true;
     const test::ReferenceComparison c = compare(scene, o, "gl_flat");
-    ASSERT_EQ(c.frame.plan.lighting.program, render::Program::GlFlat);
+    ASSERT_EQ(c.frame.frame.lighting.program, frame::Program::GlFlat);
     // The rule matters: the first vertex's colour, or Lantern's centroid, would differ.
-    const render::DrawItem& d = c.frame.plan.views[0].draws[0];
+    const frame::Draw& d = c.frame.frame.views[0].draws[0];
     const auto lights =
-        ref::eyeLights(scene, c.frame.plan.pose, c.frame.plan.views[0].camera.viewFromWorld, true);
+        frame::placeLights(scene, c.frame.frame.pose, c.frame.frame.views[0].camera.viewFromWorld, true);
     const Primitive& p = scene.meshes[0].primitives[0];
     std::size_t unlikeFirst = 0, lit = 0;
     for (int y = 0; y < 64; ++y)
@@ -97,22 +97,22 @@ TEST_F(LightingGlCompat, FlatTakesTheProvokingVertexColour) {
     EXPECT_GT(unlikeFirst, lit / 4) << "the first vertex's colour must differ on many pixels";
     RenderOptions lantern = o;
     lantern.glCompat = false;
-    EXPECT_GT(differing(c.frame.frame.image, plain(scene, lantern)), 200u)
+    EXPECT_GT(differing(c.frame.readback.image, plain(scene, lantern)), 200u)
         << "Lantern's flat (centroid)";
 }
 
 // Lit colours clamp to [0, 1] at each vertex, before interpolation: a bright light gives a
 // different picture from clamping the interpolated colour (--clamp).
-TEST_F(LightingGlCompat, GouraudClampsEachVertexColour) {
+TEST_F(LightingGlCompat, GouraudClampsEachVertexColor) {
     const Scene scene = litSphere(3.0);
     RenderOptions o = test::optionsFor(64, 64, ShadingMode::Gouraud);
     o.glCompat = true;
     const test::ReferenceComparison c = compare(scene, o, "gl_gouraud");
-    EXPECT_LE(test::brightestColour(c.frame.frame.image), 1.0f);
+    EXPECT_LE(test::brightestColour(c.frame.readback.image), 1.0f);
     RenderOptions clampAfter = o;
     clampAfter.glCompat = false;
     clampAfter.clamp = true;
-    EXPECT_GT(differing(c.frame.frame.image, plain(scene, clampAfter)), 100u);
+    EXPECT_GT(differing(c.frame.readback.image, plain(scene, clampAfter)), 100u);
 }
 
 // Shininess 1000 and spot exponent 500 are limited to GL's 128.
@@ -129,13 +129,18 @@ TEST_F(LightingGlCompat, ShininessAndSpotExponentLimitedTo128) {
         }
     EXPECT_TRUE(sawLimit);
     const auto lights =
-        ref::eyeLights(scene, c.frame.plan.pose, c.frame.plan.views[0].camera.viewFromWorld, true);
+        frame::placeLights(scene, c.frame.frame.pose, c.frame.frame.views[0].camera.viewFromWorld, true);
     EXPECT_EQ(lights[0].exponent, 128.0);
-    EXPECT_EQ(c.frame.plan.views[0].lights[0].spot.x, 128.0f);
-    EXPECT_EQ(c.frame.plan.materials[0].front.specular.w, 128.0f);
+    EXPECT_EQ(c.frame.frame.views[0].lights[0].exponent, 128.0);
+    EXPECT_EQ(c.frame.frame.materials[0].front.shininess, 128.0);
+    // And as packed for the GPU.
+    auto plan = render::planFrame(scene, o, 0.0);
+    ASSERT_TRUE(plan);
+    EXPECT_EQ(plan->list.views[0].lights[0].spot.x, 128.0f);
+    EXPECT_EQ(plan->list.materials[0].front.specular.w, 128.0f);
     RenderOptions unlimited = o;
     unlimited.glCompat = false;
-    EXPECT_GT(differing(c.frame.frame.image, plain(scene, unlimited)), 50u);
+    EXPECT_GT(differing(c.frame.readback.image, plain(scene, unlimited)), 50u);
 }
 
 // GL's default is GL_SMOOTH: with --gl-compat a scene that chooses no shading is gouraud; an
@@ -149,13 +154,13 @@ TEST(LightingGlCompatPlan, DefaultShadingIsGouraudUnlessChosen) {
     const Scene chosen = s.build();
     RenderOptions o;
     o.glCompat = true;
-    EXPECT_EQ(render::resolveLighting(unchosen, -1, o).program, render::Program::Gouraud);
-    EXPECT_EQ(render::resolveLighting(chosen, -1, o).program, render::Program::Phong);
+    EXPECT_EQ(frame::resolveLighting(unchosen, -1, o).program, frame::Program::Gouraud);
+    EXPECT_EQ(frame::resolveLighting(chosen, -1, o).program, frame::Program::Phong);
     o.shading = ShadingMode::Flat;
-    EXPECT_EQ(render::resolveLighting(unchosen, -1, o).program, render::Program::GlFlat);
+    EXPECT_EQ(frame::resolveLighting(unchosen, -1, o).program, frame::Program::GlFlat);
     o.glCompat = false;
     o.shading.reset();
-    EXPECT_EQ(render::resolveLighting(unchosen, -1, o).program, render::Program::Phong);
+    EXPECT_EQ(frame::resolveLighting(unchosen, -1, o).program, frame::Program::Phong);
 }
 
 } // namespace

@@ -70,16 +70,16 @@ TEST_F(LightingVariants, OneDirectionalLightWithoutSpecularCompilesNothingElse) 
           "alpha-mask", "two-sided", "local-viewer"})
         EXPECT_EQ(r->variants[0].find(absent), std::string::npos) << absent << "\n" << all;
     // The constants themselves, as the pipeline receives them.
-    auto plan = render::buildFramePlan(scene, o, 0.0);
+    auto plan = render::planFrame(scene, o, 0.0);
     ASSERT_TRUE(plan);
-    const auto& sc = plan->views[0].draws[0].key.constants;
+    const auto& sc = plan->list.views[0].draws[0].pipeline.constants;
     EXPECT_EQ(sc[LANTERN_SC_LIGHT_TYPES], std::uint32_t(LANTERN_LIGHT_BIT_DIRECTIONAL));
     EXPECT_EQ(sc[LANTERN_SC_GL_ATTENUATION], 0u);
     EXPECT_EQ(sc[LANTERN_SC_GL_SPOT], 0u);
     EXPECT_EQ(sc[LANTERN_SC_GLTF_FALLOFF], 0u);
     EXPECT_EQ(sc[LANTERN_SC_SPECULAR], std::uint32_t(LANTERN_SPECULAR_NONE));
     // And the specialised pipeline renders the equation.
-    const test::ReferenceComparison c = test::compareWithReference(renderer(), scene, o);
+    const test::ReferenceComparison c = test::compareWithReference(device(), scene, o);
     EXPECT_LE(c.worst, 1.0 / 255.0) << c.describe("variant_minimal");
 }
 
@@ -139,4 +139,52 @@ TEST_F(LightingExplainCli, PrintsFeaturesAndVariants) {
         EXPECT_NE(r.out.find(text), std::string::npos) << text << "\n" << r.out;
 }
 
+// The reference is independent of the pipeline variants: it reads the scene's materials and
+// the frame's lighting switches, not the specialisation constants. So a variant compiled
+// with one term switched off that the scene needs (here the specular term of a shiny sphere,
+// or the vertex colours of a coloured one) renders a picture the reference refuses, while
+// the right variant agrees to one 8-bit step.
+TEST_F(LightingVariants, AWrongSpecialisationFailsAgainstTheReference) {
+    struct Row {
+        const char* name;
+        int constant;
+        std::uint32_t wrongValue;
+        ShadingMode mode;
+    };
+    LitScene shiny;
+    shiny.objects.push_back(
+        {makeSphere(1.0, 32, 16),
+         test::phongMaterial({0.1, 0.1, 0.1}, {0.5, 0.5, 0.5, 1}, {1, 1, 1}, 20.0), glm::dmat4(1.0)});
+    shiny.lights.push_back(
+        {test::makeLight(LightType::Directional), test::aimed({0, 0, 0}, {0.3, -0.3, -1})});
+    LitScene coloured = shiny;
+    Primitive& p = coloured.objects[0].primitive;
+    for (const glm::vec3& v : p.positions) p.colors.push_back(glm::vec4(v * 0.5f + 0.5f, 1.0f));
+    for (const Row& row : {Row{"specular_off", LANTERN_SC_SPECULAR, LANTERN_SPECULAR_NONE, ShadingMode::Phong},
+                           Row{"specular_off_gouraud", LANTERN_SC_SPECULAR, LANTERN_SPECULAR_NONE,
+                               ShadingMode::Gouraud},
+                           Row{"vertex_colors_off", LANTERN_SC_VERTEX_COLOR, 0u, ShadingMode::Phong}}) {
+        const Scene scene = row.constant == LANTERN_SC_VERTEX_COLOR ? coloured.build() : shiny.build();
+        const RenderOptions o = test::optionsFor(64, 64, row.mode);
+        test::PixelCheck check;
+        check.skipSilhouettes = true;
+        const test::ReferenceComparison right = test::compareWithReference(device(), scene, o, check);
+        EXPECT_GT(right.compared, 500u) << row.name;
+        EXPECT_LE(right.worst, 1.0 / 255.0) << row.name << ": " << right.describe(row.name);
+        render::FrameEdits wrong;
+        wrong.list = [&](gpu::DrawList& list) {
+            for (gpu::ViewCommands& v : list.views)
+                for (gpu::DrawCommand& d : v.draws) {
+                    ASSERT_NE(d.pipeline.constants[std::size_t(row.constant)], row.wrongValue)
+                        << row.name << ": the scene needs this term";
+                    d.pipeline.constants[std::size_t(row.constant)] = row.wrongValue;
+                }
+        };
+        const test::ReferenceComparison c =
+            test::compareWithReference(device(), scene, o, check, wrong);
+        EXPECT_GT(c.worst, 0.1) << row.name << ": the reference did not notice the missing term";
+    }
+}
+
 } // namespace
+

@@ -178,7 +178,7 @@ Scene mirroredTwoSided() {
     return s.build();
 }
 
-Scene vertexColours() {
+Scene vertexColors() {
     LitScene s;
     s.objects.push_back({colouredSphere(24), plastic({1, 1, 1}), glm::dmat4(1.0)});
     s.lights.push_back(
@@ -186,7 +186,7 @@ Scene vertexColours() {
     return s.build();
 }
 
-Scene unlitVertexColours() {
+Scene unlitVertexColors() {
     LitScene s;
     Material m;
     m.unlit = true;
@@ -196,7 +196,7 @@ Scene unlitVertexColours() {
 }
 
 // The PBR fallback's ambient = diffuse: COLOR_0 and the texture scale both.
-Scene pbrMappedVertexColours() {
+Scene pbrMappedVertexColors() {
     LitScene s;
     Material m = plastic({0.6, 0.5, 0.4});
     m.front.ambient = glm::dvec3(m.front.diffuse);
@@ -236,9 +236,9 @@ const SceneRow kScenes[] = {
     {"two_sided_back_material", twoSidedBackMaterial, SpecularModel::Blinn, 1.0 / 255,
      "one 8-bit step"},
     {"mirrored_two_sided", mirroredTwoSided, SpecularModel::Blinn, 1.0 / 255, "one 8-bit step"},
-    {"vertex_colours", vertexColours, SpecularModel::Blinn, 1.0 / 255, "one 8-bit step"},
-    {"unlit_vertex_colours", unlitVertexColours, SpecularModel::Blinn, 1.0 / 255, "one 8-bit step"},
-    {"pbr_mapped_vertex_colours", pbrMappedVertexColours, SpecularModel::Blinn, 1.0 / 255,
+    {"vertex_colors", vertexColors, SpecularModel::Blinn, 1.0 / 255, "one 8-bit step"},
+    {"unlit_vertex_colors", unlitVertexColors, SpecularModel::Blinn, 1.0 / 255, "one 8-bit step"},
+    {"pbr_mapped_vertex_colors", pbrMappedVertexColors, SpecularModel::Blinn, 1.0 / 255,
      "one 8-bit step"},
     {"hdr_above_half_range", hdrBright, SpecularModel::Blinn, 1.0 / 255,
      "one 8-bit step relative to the value (HDR)"},
@@ -256,8 +256,8 @@ TEST_P(ShadingModes, EveryPixelMatchesTheReferenceUnderTheSameInterpolationRule)
     const Scene scene = row.build();
     RenderOptions o = test::optionsFor(64, 64, mode);
     o.specular = row.specular;
-    const test::ReferenceComparison c = test::compareWithReference(renderer(), scene, o);
-    EXPECT_EQ(c.frame.frame.nonFinite, 0u) << "NaN/Inf counted at readback, before any scrub";
+    const test::ReferenceComparison c = test::compareWithReference(device(), scene, o);
+    EXPECT_EQ(c.frame.readback.nonFinite, 0u) << "NaN/Inf counted at readback, before any scrub";
     EXPECT_GT(c.compared, 600u) << "the object should cover a good part of the image";
     const std::string name = std::string("shading_") + row.name + "_" + toString(mode);
     EXPECT_LE(c.worst, row.tolerance) << row.why << "; " << c.describe(name);

@@ -44,7 +44,7 @@ TEST_F(TeapotGrid, TwentyFourTeapotsEachInItsOwnMaterial) {
     ASSERT_EQ(materials.size(), 24u);
 
     const Pose pose = evaluatePose(scene, -1, 0.0);
-    const auto lights = ref::eyeLights(scene, pose, glm::dmat4(1.0), false);
+    const auto lights = frame::placeLights(scene, pose, glm::dmat4(1.0), false);
     ref::Settings settings;
     settings.globalAmbient = {0.2, 0.2, 0.2};
     settings.localViewer = false;

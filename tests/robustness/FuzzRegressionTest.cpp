@@ -5,7 +5,7 @@
 #include "TestSupport.h"
 
 #include "io/GltfLoad.h"
-#include "render/FramePlan.h"
+#include "render/FrameRender.h"
 
 #include <gtest/gtest.h>
 
@@ -40,7 +40,7 @@ TEST(FuzzRegressions, EveryInputIsRefusedOrLoadedSafely) {
         RenderOptions o;
         o.width = 32;
         o.height = 32;
-        for (double t : {0.0, 1.0}) (void)render::buildFramePlan(*scene, o, t);
+        for (double t : {0.0, 1.0}) (void)render::planFrame(*scene, o, t);
     }
     EXPECT_GE(inputs, 10);
 }

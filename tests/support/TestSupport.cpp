@@ -48,6 +48,12 @@ std::filesystem::path testOutputDir() {
 }
 
 namespace {
+void logToStderr(LogLevel level, std::string_view message) {
+    if (level < LogLevel::Warning) return;
+    std::lock_guard lock(g_logMutex);
+    std::cerr << "[lantern " << logLevelName(level) << "] " << message << "\n";
+}
+
 struct Shared {
     std::unique_ptr<Renderer> renderer;
     std::string reason;
@@ -57,11 +63,7 @@ Shared& shared() {
         Shared r;
         RendererDesc desc;
         desc.validation = true;
-        desc.log = [](LogLevel level, std::string_view message) {
-            if (level < LogLevel::Warning) return;
-            std::lock_guard lock(g_logMutex);
-            std::cerr << "[lantern " << logLevelName(level) << "] " << message << "\n";
-        };
+        desc.log = logToStderr;
         auto created = Renderer::create(desc);
         if (created)
             r.renderer = std::make_unique<Renderer>(std::move(*created));
@@ -71,9 +73,36 @@ Shared& shared() {
     }();
     return s;
 }
+
+// The engine's own device, for tests that look inside the renderer (frames, draw lists, ids):
+// made on first use, with validation on, beside the public renderer.
+std::shared_ptr<gpu::Device>& sharedDeviceSlot() {
+    static std::shared_ptr<gpu::Device> device;
+    return device;
+}
 } // namespace
 
 Renderer* sharedRenderer() { return shared().renderer.get(); }
+
+gpu::Device* sharedDevice() {
+    std::shared_ptr<gpu::Device>& device = sharedDeviceSlot();
+    if (!device && sharedRenderer()) {
+        gpu::DeviceDesc desc;
+        desc.validation = true;
+        desc.log = logToStderr;
+        auto created = gpu::Device::create(desc);
+        if (created) device = std::move(*created);
+    }
+    return device.get();
+}
+
+namespace {
+std::uint64_t deviceValidationCount() {
+    const auto& device = sharedDeviceSlot();
+    return device ? device->validationMessageCount() : 0;
+}
+} // namespace
+
 std::string noDeviceReason() { return shared().reason; }
 
 void GpuTest::SetUp() {
@@ -81,13 +110,22 @@ void GpuTest::SetUp() {
     if (!m_renderer) GTEST_SKIP() << "no Vulkan device: " << noDeviceReason();
     if (!m_renderer->device().validationEnabled)
         std::cerr << "note: VK_LAYER_KHRONOS_validation is not installed; validation not checked\n";
-    m_validationBefore = m_renderer->validationMessageCount();
+    m_validationBefore = m_renderer->validationMessageCount() + deviceValidationCount();
 }
 
 void GpuTest::TearDown() {
     if (!m_renderer) return;
-    EXPECT_EQ(m_renderer->validationMessageCount(), m_validationBefore)
+    EXPECT_EQ(m_renderer->validationMessageCount() + deviceValidationCount(), m_validationBefore)
         << "the Vulkan validation layer reported messages during this test (see stderr)";
+}
+
+gpu::Device& GpuTest::device() {
+    gpu::Device* d = sharedDevice();
+    if (!d) {
+        ADD_FAILURE() << "the engine's device could not be created beside the renderer";
+        std::abort();
+    }
+    return *d;
 }
 
 void execChild(const std::vector<std::string>& args, const std::vector<std::string>& environment) {

@@ -5,6 +5,8 @@
 // writes actual/expected/diff images on failure.
 #pragma once
 
+#include "gpu/Device.h"
+
 #include <lantern/Lantern.h>
 
 #include <gtest/gtest.h>
@@ -28,6 +30,9 @@ std::filesystem::path testOutputDir();
 /// exists (the reason is in noDeviceReason()).
 Renderer* sharedRenderer();
 std::string noDeviceReason();
+/// The engine's own gpu::Device (validation on) for tests that look inside the renderer
+/// (frames, draw lists, pixel ids); made on first use; nullptr without a Vulkan device.
+gpu::Device* sharedDevice();
 
 /// Base fixture for tests that render: skips (reported as skipped) without a device and
 /// fails the test if the validation layer reported anything during it.
@@ -36,6 +41,8 @@ protected:
     void SetUp() override;
     void TearDown() override;
     Renderer& renderer() { return *m_renderer; }
+    /// sharedDevice(); its validation messages fail the test too.
+    gpu::Device& device();
 
 private:
     Renderer* m_renderer = nullptr;

@@ -1,8 +1,8 @@
-// Precision by design, without a GPU: the float matrices FramePlan uploads put points where
+// Precision by design, without a GPU: the float matrices the draw list uploads put points where
 // double precision does even 1e7 units from the origin (numerics.md LW-1), while world-space
 // floats would be tens of pixels off; normals survive scales from 0 and 1e-20 to 1e20
 // (numerics.md 3.5); extreme but valid projections stay finite.
-#include "render/FramePlan.h"
+#include "render/FrameRender.h"
 
 #include <cmath>
 #include <cstdio>
@@ -158,10 +158,11 @@ TEST(CameraMathPrecision, MirroringIsDetectedForIllConditionedTransforms) {
             scene.roots.push_back(SceneRoot{"root", {0}, std::nullopt});
             RenderOptions options;
             options.camera.source = CameraSpec::Source::GlDefault;
-            auto plan = render::buildFramePlan(scene, options, 0.0);
+            auto plan = render::planFrame(scene, options, 0.0);
             ASSERT_TRUE(plan) << plan.error().describe();
-            ASSERT_EQ(plan->views.at(0).draws.size(), 1u) << row.why;
-            EXPECT_EQ(plan->views[0].draws[0].mirrored, s.x * s.y * s.z < 0) << row.why << " " << k;
+            ASSERT_EQ(plan->list.views.at(0).draws.size(), 1u) << row.why;
+            EXPECT_EQ(plan->list.views[0].draws[0].frontClockwise, s.x * s.y * s.z < 0)
+                << row.why << " " << k;
         }
 }
 
@@ -213,7 +214,7 @@ TEST(CameraMathPrecision, ExtremeValidProjectionsAreFiniteAndOrdered) {
 // --- Large world coordinates (numerics.md LW-1) ----------------------------------------------
 
 // One object 10 m ahead of a 1920x1080, 60-degree camera at (X, 0, 0). Returns the screen
-// error in pixels of a vertex projected (a) with the float matrices the plan uploads, applied
+// error in pixels of a vertex projected (a) with the float matrices the draw list uploads, applied
 // in float as the GPU does, and (b) with world-space floats (the path Lantern avoids), both
 // against the double-precision projection.
 struct Errors {
@@ -238,11 +239,11 @@ Errors projectionErrors(double x) {
     RenderOptions options;
     options.width = w;
     options.height = h;
-    auto plan = render::buildFramePlan(scene, options, 0.0);
+    auto plan = render::planFrame(scene, options, 0.0);
     EXPECT_TRUE(plan) << plan.error().describe();
     if (!plan) return {1e30, 1e30};
-    const render::ViewPlan& view = plan->views.at(0);
-    const render::DrawItem& draw = view.draws.at(0);
+    const gpu::ViewCommands& view = plan->list.views.at(0);
+    const gpu::DrawCommand& draw = view.draws.at(0);
 
     glm::mat4 viewFromModel, clipFromView;
     for (int c = 0; c < 4; ++c)

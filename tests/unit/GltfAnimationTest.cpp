@@ -3,7 +3,7 @@
 // keys, the InterpolationTest sample, and cameras and lights riding on animated nodes.
 #include "GltfTestSupport.h"
 
-#include "render/FramePlan.h"
+#include "frame/Frame.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -203,20 +203,20 @@ TEST(GltfAnimation, CamerasAndLightsMoveWithTheirAnimatedNodes) {
     RenderOptions options;
     options.width = options.height = 64;
     for (double t : {0.0, 0.5, 1.0}) {
-        auto plan = render::buildFramePlan(*o.scene, options, t);
+        auto plan = frame::buildFrame(*o.scene, options, t);
         ASSERT_TRUE(plan) << plan.error().describe();
-        const render::ViewPlan& view = plan->views.at(0);
+        const frame::View& view = plan->views.at(0);
         // The camera sits at (10t, 0, 5) in the world: that point is the eye-space origin.
         const glm::dvec4 eye = view.camera.viewFromWorld * glm::dvec4(10 * t, 0, 5, 1);
         EXPECT_LT(glm::length(glm::dvec3(eye)), 1e-9) << "t=" << t;
         ASSERT_EQ(view.lights.size(), 2u);
         // The rig's light rides with the camera: always (0, 2, -5) in eye space.
-        const render::Vec4 p = view.lights[0].position;
+        const glm::dvec3 p = view.lights[0].position;
         EXPECT_NEAR(p.x, 0.0, 1e-5);
         EXPECT_NEAR(p.y, 2.0, 1e-5);
         EXPECT_NEAR(p.z, -5.0, 1e-5);
         // The lone light moves to (0, 0, -4t) in the world, i.e. (-10t, 0, -5-4t) in eye space.
-        const render::Vec4 q = view.lights[1].position;
+        const glm::dvec3 q = view.lights[1].position;
         EXPECT_NEAR(q.x, -10 * t, 1e-5) << "t=" << t;
         EXPECT_NEAR(q.z, -5 - 4 * t, 1e-5) << "t=" << t;
     }

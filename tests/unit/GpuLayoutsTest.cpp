@@ -1,6 +1,6 @@
-// The C++ mirrors in render/GpuLayouts.h against the member offsets in the SPIR-V that ships
+// The C++ mirrors in gpu/GpuLayouts.h against the member offsets in the SPIR-V that ships
 // (the embedded blobs), so a change on either side without the other fails here.
-#include "render/GpuLayouts.h"
+#include "gpu/GpuLayouts.h"
 
 #include "ShaderBlobs.h"
 
@@ -68,7 +68,7 @@ struct Row {
     std::size_t offset;  // offsetof in the C++ mirror
 };
 
-#define LANTERN_ROW(T, M) Row{#T, #M, offsetof(lantern::render::T, M)}
+#define LANTERN_ROW(T, M) Row{#T, #M, offsetof(lantern::gpu::T, M)}
 
 TEST(GpuLayouts, MirrorsMatchTheShippedSpirv) {
     const Layouts layouts = allLayouts();
@@ -109,7 +109,7 @@ TEST(GpuLayouts, EveryShaderMemberIsMirrored) {
 }
 
 TEST(GpuLayouts, PushConstantsFitTheGuaranteedMinimum) {
-    EXPECT_LE(sizeof(lantern::render::DrawBlock), 128u);
+    EXPECT_LE(sizeof(lantern::gpu::DrawBlock), 128u);
 }
 
 } // namespace

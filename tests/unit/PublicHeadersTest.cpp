@@ -3,7 +3,8 @@
 // installed package provides on the include path, and links them in here), no header pulls
 // in Vulkan (except the three that take the host's Vulkan objects), tinygltf, OpenEXR or
 // the engine's sources, every declaration a shared libLantern must export is marked
-// LANTERN_API, and the `lantern` command includes nothing from engine/src.
+// LANTERN_API, and the `lantern` command includes nothing from engine/src (and its subcommands
+// nothing from each other).
 #include "TestSupport.h"
 
 #include <gtest/gtest.h>
@@ -187,30 +188,60 @@ TEST(PublicHeaders, MarkWhatTheLibraryExports) {
     }
 }
 
-// Issue 10: the `lantern` command and the viewer use the public API only.
+// Issue 10: the `lantern` command and the viewer use the public API only. A quoted include
+// names one of the app's own headers from apps/lantern ("common/CliSupport.h").
 TEST(AppsUsePublicApiOnly, NothingFromEngineSrc) {
     const fs::path apps = sourceDir() / "apps" / "lantern";
     const fs::path engineSrc = sourceDir() / "engine" / "src";
     std::size_t files = 0;
-    for (const auto& entry : fs::directory_iterator(apps)) {
+    for (const auto& entry : fs::recursive_directory_iterator(apps)) {
         const fs::path p = entry.path();
         if (p.extension() != ".cpp" && p.extension() != ".h") continue;
         ++files;
+        const fs::path name = p.lexically_relative(apps);
         for (const std::string& inc : includesOf(readFile(p))) {
             const std::string target = inc.substr(1, inc.size() - 2);
-            EXPECT_EQ(inc.find("engine/src"), std::string::npos)
-                << p.filename() << " includes " << inc;
-            if (inc[0] == '"') {  // a quoted include must be the app's own header
+            EXPECT_EQ(inc.find("engine/src"), std::string::npos) << name << " includes " << inc;
+            if (inc[0] == '"') { // a quoted include must be the app's own header
                 EXPECT_TRUE(fs::exists(apps / target) && !fs::exists(engineSrc / target))
-                    << p.filename() << " includes " << inc
-                    << ", which is not one of apps/lantern's own headers";
+                    << name << " includes " << inc
+                    << ", which is not one of apps/lantern's own headers named from apps/lantern";
             } else {
                 EXPECT_FALSE(fs::exists(engineSrc / target))
-                    << p.filename() << " includes " << inc << " from engine/src";
+                    << name << " includes " << inc << " from engine/src";
             }
         }
     }
     EXPECT_GE(files, 10u) << "apps/lantern moved?";
+}
+
+// Issue 15: apps/lantern has one folder per subcommand and common/ for what several share. A
+// subcommand's files include their own folder's headers and common/'s, never another
+// subcommand's; common/ includes only common/. (main.cpp, beside the folders, wires them up.)
+TEST(AppsUsePublicApiOnly, SubcommandsIncludeOnlyTheirFolderAndCommon) {
+    const fs::path apps = sourceDir() / "apps" / "lantern";
+    std::set<std::string> folders;
+    for (const auto& entry : fs::recursive_directory_iterator(apps)) {
+        const fs::path p = entry.path();
+        if (p.extension() != ".cpp" && p.extension() != ".h") continue;
+        const fs::path name = p.lexically_relative(apps);
+        if (name.parent_path().empty()) continue; // main.cpp
+        const std::string folder = name.begin()->string();
+        folders.insert(folder);
+        for (const std::string& inc : includesOf(readFile(p))) {
+            if (inc[0] != '"') continue;
+            const std::string from = fs::path(inc.substr(1, inc.size() - 2)).begin()->string();
+            if (folder == "common")
+                EXPECT_EQ(from, "common")
+                    << name << " includes " << inc << ": common/ must not depend on a subcommand";
+            else
+                EXPECT_TRUE(from == folder || from == "common")
+                    << name << " includes " << inc
+                    << ": a subcommand includes its own folder and common/ only";
+        }
+    }
+    for (const char* expected : {"common", "render", "view", "bench", "farm", "info"})
+        EXPECT_TRUE(folders.count(expected)) << "apps/lantern/" << expected << " moved?";
 }
 
 } // namespace

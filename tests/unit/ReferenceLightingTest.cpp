@@ -146,7 +146,7 @@ TEST(ReferenceLighting, GlSpotConeEdgesAtTheExtremes) {
                 1.0, 1e-9);
 }
 
-TEST(ReferenceLighting, VertexColourReplacesOrScales) {
+TEST(ReferenceLighting, VertexColorReplacesOrScales) {
     MaterialSide m;
     m.ambient = {0.2, 0.3, 0.4};
     m.diffuse = {0.5, 0.6, 0.7, 0.8};

@@ -1,11 +1,11 @@
-// The viewer's camera (apps/lantern/ViewerCamera): taking a scene camera over keeps the view,
-// orbit/pan/zoom/fly move it as documented, the orthographic switch keeps the size of what is
-// at the pivot, framing contains the bounds, and the printed command line gives back the very
+// The viewer's camera (apps/lantern/view/ViewerCamera): taking a scene camera over keeps the
+// view, orbit/pan/zoom/fly move it as documented, the orthographic switch keeps the size of what
+// is at the pivot, framing contains the bounds, and the printed command line gives back the very
 // same doubles.
-#include "CliSupport.h"
 #include "TestSupport.h"
-#include "ViewerCamera.h"
-#include "ViewerState.h"
+#include "common/CliSupport.h"
+#include "view/ViewerCamera.h"
+#include "view/ViewerState.h"
 
 #include <gtest/gtest.h>
 

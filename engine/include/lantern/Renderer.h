@@ -6,6 +6,8 @@
 #include <lantern/Export.h>
 #include <lantern/Image.h>
 #include <lantern/Log.h>
+#include <lantern/Options.h>
+#include <lantern/Probe.h>
 #include <lantern/Result.h>
 #include <lantern/Scene.h>
 #include <lantern/Sequence.h>
@@ -20,76 +22,11 @@
 
 namespace lantern {
 
-namespace render {
-class GpuScene;
-struct RendererAccess;
+namespace gpu {
+class SceneBuffers;
 }
 class WindowTarget;
 struct ExternalDevice;  // lantern/ExternalDevice.h (includes vulkan.h)
-
-/// Which camera a view uses, and optional overrides of its parts.
-struct CameraSpec {
-    enum class Source {
-        Automatic,    ///< the scene's first camera, else automatic framing of the bounds
-        SceneCamera,  ///< Scene::cameras[sceneCamera] on the first node that carries it
-        Framing,      ///< automatic framing of the scene's bounds
-        GlDefault,    ///< GL's default: origin, looking down -Z, the 2x2x2 orthographic cube
-    };
-    Source source = Source::Automatic;
-    int sceneCamera = -1;
-    std::optional<LookAt> lookAt;          ///< replaces the view (gluLookAt), world space
-    std::optional<Projection> projection;  ///< replaces the projection
-
-    /// Which fixed direction automatic framing looks from (world space, towards the scene):
-    /// the default is the GL camera's -Z. The quad layout uses -Y (top) and -X (side) too.
-    glm::dvec3 framingDirection{0.0, 0.0, -1.0};
-    bool framingOrthographic = false;  ///< frame with an orthographic projection
-};
-
-/// A pixel rectangle in GL's convention (origin at the bottom-left of the image, as
-/// glViewport) drawn with its own camera.
-struct View {
-    int x = 0, y = 0, width = 0, height = 0;
-    CameraSpec camera;
-};
-
-/// Which pipeline features are compiled in: only those the scene needs (the default), or all
-/// of them (for measuring what specialisation saves). Floor draws the same geometry with a
-/// trivial shader (constant white, no lighting): the cost of rasterising alone, the floor that
-/// `lantern bench speed` divides frame times by.
-enum class FeatureMode { Specialised, AllFeatures, Floor };
-
-/// Everything that affects a render besides the scene and the time.
-struct RenderOptions {
-    int width = 1280;
-    int height = 720;
-    int root = -1;  ///< glTF scene index; -1: the scene's default
-    std::optional<ShadingMode> shading;     ///< default: the scene's, else Phong
-    std::optional<SpecularModel> specular;  ///< default: the scene's, else Blinn
-    std::optional<bool> localViewer;        ///< default: the scene's
-    std::optional<bool> twoSided;           ///< default: the scene's
-    bool clamp = false;     ///< clamp lit colours to [0,1] (GL's behaviour)
-    bool glCompat = false;  ///< reproduce GL fixed function: provoking-vertex flat, per-vertex
-                            ///< clamp, shininess and spot exponent limited to [0,128]
-    int msaa = 1;           ///< samples per pixel: 1, 2, 4 or 8 (as the device supports)
-    DepthMode depth = DepthMode::ReversedZ;
-    CameraSpec camera;       ///< the camera when `views` is empty
-    std::vector<View> views; ///< several views in one image; empty: one full-image view
-    AovSet aovs;
-    FeatureMode features = FeatureMode::Specialised;
-    glm::vec4 background{0.0f, 0.0f, 0.0f, 0.0f};  ///< linear, premultiplied
-    /// Lights that follow the camera (a headlight rig): when set, every scene light is placed
-    /// in eye space through this viewFromWorld instead of each view's own, so the lights keep
-    /// their place relative to the camera however it moves. The viewer sets it to the camera
-    /// of the moment the mode is switched on. GL's default light 0 is always eye-space.
-    std::optional<glm::dmat4> lightsViewFromWorld;
-    /// Display overlays (for viewers; not combinable with AOVs): every drawn triangle's edges,
-    /// and each vertex normal as a line from its vertex.
-    bool wireframe = false;
-    bool normals = false;
-    /// Length of the normal lines in world units; 0: 3% of the radius of the drawn bounds.
-    double normalLength = 0.0;
-};
 
 /// How the renderer is created.
 struct RendererDesc {
@@ -124,8 +61,7 @@ public:
 private:
     friend class Renderer;
     friend class WindowTarget;
-    friend struct render::RendererAccess;
-    std::shared_ptr<render::GpuScene> m_gpu;
+    std::shared_ptr<gpu::SceneBuffers> m_gpu;
 };
 
 /// Measurements of the last frame rendered.
@@ -173,70 +109,6 @@ LANTERN_API Result<CameraPlacement> resolveCameraPlacement(const Scene& scene,
 /// and Renderer::explain print). InvalidInput when the scene or the options are refused.
 LANTERN_API Result<FeatureReport> explainScene(const Scene& scene, const RenderOptions& options,
                                                double timeSeconds = 0.0);
-
-/// One light's share of a probed colour (see ProbeReport). Linear RGB.
-struct ProbeLight {
-    std::string name;  ///< the light's name, or "light N" (N: its index in Scene::lights)
-    LightType type = LightType::Directional;  ///< as drawn: a GL spot with cutoff 180 is Point
-    double attenuation = 1.0;  ///< att_i
-    double spot = 1.0;         ///< spot_i
-    double nDotL = 0.0;        ///< n.l_i (the highlight needs it > 0)
-    double specularTerm = 0.0; ///< spec_i: the Blinn or Phong lobe (0 on the dark side)
-    glm::dvec3 ambient{0.0};   ///< att spot a_m a_i
-    glm::dvec3 diffuse{0.0};   ///< att spot max(n.l, 0) d_m d_i
-    glm::dvec3 specular{0.0};  ///< att spot f_i spec_i s_m s_i
-};
-
-/// One evaluation of the lighting equation that a probed pixel's colour is made of: at the
-/// surface point (phong shading), at the triangle's centroid with its face normal (flat), at
-/// a vertex (gouraud: three, weighted by the pixel's perspective-correct barycentrics; GL
-/// flat: the provoking vertex).
-struct ProbeEvaluation {
-    std::string where;      ///< "surface point", "triangle centroid", "vertex 17", ...
-    double weight = 1.0;    ///< its share of the pixel's colour
-    glm::dvec3 position{0.0};  ///< eye space, where the equation was evaluated
-    glm::dvec3 normal{0.0};    ///< eye space, unit (zero: no direction) as lit (back side negated)
-    glm::dvec3 ambientM{0.0}, diffuseM{0.0};  ///< a_m and d_m after COLOR_0
-    glm::dvec3 emission{0.0};       ///< e_m
-    glm::dvec3 globalAmbient{0.0};  ///< a_m * A_global
-    std::vector<ProbeLight> lights;  ///< in the renderer's order
-    glm::dvec3 colour{0.0};  ///< the equation's result here (per-vertex clamp with --gl-compat)
-    double alpha = 1.0;
-};
-
-/// What Renderer::probe() reports for one pixel: the lighting equation made visible,
-/// evaluated in double precision by the CPU reference at the surface point the renderer drew
-/// at that pixel's centre, under the same shading rule as the render.
-struct ProbeReport {
-    int x = 0, y = 0;  ///< the pixel: x from the left, y from the top row (as image viewers)
-    bool hit = false;  ///< false: no surface covers the pixel (everything below is empty)
-    int view = 0;      ///< RenderOptions::views index (0 without views)
-    int node = -1, mesh = -1, primitive = -1;
-    std::uint32_t triangle = 0;      ///< index of the triangle in the primitive
-    std::uint32_t vertices[3] = {};  ///< its vertex indices
-    glm::dvec3 barycentric{0.0};     ///< perspective-correct weights of the vertices at the centre
-    std::string nodeName;
-    glm::dvec3 position{0.0};  ///< eye space: the pixel centre's ray meets the triangle here
-    glm::dvec3 normal{0.0};    ///< eye space, unit: the shading normal there (interpolated and
-                               ///< renormalised; the face normal with flat shading), front side
-    bool backFacing = false;   ///< the renderer saw the back of the triangle
-    bool backMaterial = false; ///< two-sided lighting: the back material and -normal were used
-    int material = -1;         ///< Scene::materials index; -1: the default material
-    std::string materialName;
-    MaterialSide materialSide; ///< the side used, after GL-compat limits
-    bool unlit = false;
-    bool textured = false;  ///< a base-colour texture modulates the pixel; the probe does not
-                            ///< sample it (colour assumes a white texel)
-    ShadingMode shading = ShadingMode::Phong;
-    SpecularModel specular = SpecularModel::Blinn;
-    bool specularPresent = false;  ///< the pipeline variant has a specular term
-    bool localViewer = false, twoSided = false, glCompat = false;
-    bool clamped = false;          ///< --clamp or --gl-compat clamp to [0, 1]
-    std::vector<ProbeEvaluation> evaluations;  ///< their weighted sum is `colour`
-    double materialAlpha = 1.0;  ///< the material's alpha there (what alpha-mask compares)
-    glm::dvec4 colour{0.0};  ///< the reference's linear RGB and alpha for the surface
-    glm::dvec4 pixel{0.0};   ///< what the renderer wrote at the pixel (after blending)
-};
 
 /// The headless renderer. Move-only; one per thread (see docs/library.md for thread rules).
 class LANTERN_API Renderer {
@@ -309,7 +181,6 @@ public:
 
 private:
     friend class WindowTarget;
-    friend struct render::RendererAccess;  ///< the engine's own tests and --probe
     struct Impl;
     explicit Renderer(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> m_impl;

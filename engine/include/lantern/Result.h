@@ -3,9 +3,9 @@
 // aborts or exits the host process.
 #pragma once
 
+#include <lantern/Assert.h>
 #include <lantern/Export.h>
 
-#include <cassert>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -50,7 +50,8 @@ inline Error makeError(ErrorCode code, std::string message, std::string object =
 }
 
 /// Either a value or an Error (an expected-like type, API-compatible with the parts of
-/// std::expected it offers). Accessing the value of a failed Result is a programming error.
+/// std::expected it offers). Accessing the value of a failed Result, or the error of a successful
+/// one, is a programming error: LANTERN_ASSERT aborts, in every build type.
 template <class T>
 class [[nodiscard]] Result {
 public:
@@ -61,23 +62,23 @@ public:
     explicit operator bool() const noexcept { return has_value(); }
 
     T& value() & {
-        assert(has_value());
+        LANTERN_ASSERT(has_value(), "value() of a failed Result");
         return std::get<0>(m_state);
     }
     const T& value() const& {
-        assert(has_value());
+        LANTERN_ASSERT(has_value(), "value() of a failed Result");
         return std::get<0>(m_state);
     }
     T&& value() && {
-        assert(has_value());
+        LANTERN_ASSERT(has_value(), "value() of a failed Result");
         return std::get<0>(std::move(m_state));
     }
     const Error& error() const& {
-        assert(!has_value());
+        LANTERN_ASSERT(!has_value(), "error() of a successful Result");
         return std::get<1>(m_state);
     }
     Error&& error() && {
-        assert(!has_value());
+        LANTERN_ASSERT(!has_value(), "error() of a successful Result");
         return std::get<1>(std::move(m_state));
     }
     T& operator*() & { return value(); }
@@ -100,11 +101,11 @@ public:
     bool has_value() const noexcept { return !m_failed; }
     explicit operator bool() const noexcept { return has_value(); }
     const Error& error() const& {
-        assert(m_failed);
+        LANTERN_ASSERT(m_failed, "error() of a successful Result");
         return m_error;
     }
     Error&& error() && {
-        assert(m_failed);
+        LANTERN_ASSERT(m_failed, "error() of a successful Result");
         return std::move(m_error);
     }
 

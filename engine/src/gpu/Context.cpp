@@ -1,15 +1,16 @@
-// Instance, validation messenger, device selection (with reasons for each rejection) and
-// device creation.
+// Context: the instance and validation messenger, the logical device with the optional
+// features it offers, adopting a host's device, and one-off submissions. The choice and checks
+// of the physical device are in DeviceSelection.cpp.
 #include "gpu/Context.h"
+
+#include "gpu/DeviceSelection.h"
 
 #if defined(LANTERN_ASAN)
 #include "core/SanitizerSupport.h"
 #endif
 
 #include <algorithm>
-#include <cctype>
 #include <cstring>
-#include <sstream>
 #include <utility>
 
 namespace lantern::gpu {
@@ -17,86 +18,46 @@ namespace {
 
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 
-std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-    return s;
+Result<void> checkLoaderVersion() {
+    std::uint32_t loaderVersion = 0;
+    if (vkEnumerateInstanceVersion(&loaderVersion) != VK_SUCCESS ||
+        loaderVersion < VK_API_VERSION_1_3)
+        return makeError(ErrorCode::NoDevice,
+                         "the Vulkan loader does not support Vulkan 1.3 (install libvulkan1 "
+                         "from Debian 12 or newer)");
+    return {};
 }
 
-const char* typeName(VkPhysicalDeviceType t) {
-    switch (t) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete-gpu";
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated-gpu";
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual-gpu";
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "cpu";
-    default: return "other";
-    }
+bool validationLayerInstalled() {
+    std::uint32_t nl = 0;
+    vkEnumerateInstanceLayerProperties(&nl, nullptr);
+    std::vector<VkLayerProperties> layers(nl);
+    vkEnumerateInstanceLayerProperties(&nl, layers.data());
+    return std::any_of(layers.begin(), layers.end(), [](const VkLayerProperties& l) {
+        return std::strcmp(l.layerName, kValidationLayer) == 0;
+    });
 }
 
-int typeRank(VkPhysicalDeviceType t) {
-    switch (t) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 3;
-    default: return 4;
-    }
+std::vector<VkExtensionProperties> instanceExtensionProperties() {
+    std::uint32_t ne = 0;
+    vkEnumerateInstanceExtensionProperties(nullptr, &ne, nullptr);
+    std::vector<VkExtensionProperties> instExts(ne);
+    vkEnumerateInstanceExtensionProperties(nullptr, &ne, instExts.data());
+    return instExts;
 }
 
-bool hasExtension(const std::vector<VkExtensionProperties>& exts, const char* name) {
-    return std::any_of(exts.begin(), exts.end(),
-                       [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
-}
-
-std::vector<VkExtensionProperties> deviceExtensions(VkPhysicalDevice pd) {
-    std::uint32_t n = 0;
-    vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, nullptr);
-    std::vector<VkExtensionProperties> exts(n);
-    vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, exts.data());
-    exts.resize(n);
-    return exts;
-}
-
-struct Candidate {
-    VkPhysicalDevice device;
-    VkPhysicalDeviceProperties props;
-    std::uint32_t queueFamily;
-    std::string rejection;  // empty: usable
-};
-
-Candidate examine(VkPhysicalDevice pd, bool needSwapchain) {
-    Candidate c{pd, {}, 0, {}};
-    vkGetPhysicalDeviceProperties(pd, &c.props);
-    if (c.props.apiVersion < VK_API_VERSION_1_3) {
-        c.rejection = "supports Vulkan " + std::to_string(VK_API_VERSION_MAJOR(c.props.apiVersion)) +
-                      "." + std::to_string(VK_API_VERSION_MINOR(c.props.apiVersion)) +
-                      ", Lantern needs 1.3";
-        return c;
-    }
-    VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-    VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13, {}};
-    vkGetPhysicalDeviceFeatures2(pd, &f2);
-    if (!f13.dynamicRendering || !f13.synchronization2) {
-        c.rejection = "lacks dynamicRendering or synchronization2";
-        return c;
-    }
-    std::uint32_t nq = 0;
-    vkGetPhysicalDeviceQueueFamilyProperties(pd, &nq, nullptr);
-    std::vector<VkQueueFamilyProperties> families(nq);
-    vkGetPhysicalDeviceQueueFamilyProperties(pd, &nq, families.data());
-    bool found = false;
-    for (std::uint32_t i = 0; i < nq; ++i)
-        if (families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) {
-            c.queueFamily = i;
-            found = true;
-            break;
-        }
-    if (!found) {
-        c.rejection = "has no graphics queue";
-        return c;
-    }
-    if (needSwapchain && !hasExtension(deviceExtensions(pd), VK_KHR_SWAPCHAIN_EXTENSION_NAME))
-        c.rejection = "lacks VK_KHR_swapchain";
-    return c;
+VkDebugUtilsMessengerCreateInfoEXT
+messengerCreateInfo(PFN_vkDebugUtilsMessengerCallbackEXT callback, void* user) {
+    VkDebugUtilsMessengerCreateInfoEXT messengerInfo{
+        VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    messengerInfo.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                                    VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    messengerInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                                VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                                VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    messengerInfo.pfnUserCallback = callback;
+    messengerInfo.pUserData = user;
+    return messengerInfo;
 }
 
 } // namespace
@@ -127,34 +88,30 @@ Result<std::shared_ptr<Context>> Context::create(const ContextDesc& desc) {
 #endif
     std::shared_ptr<Context> ctx(new Context());
     ctx->m_log = desc.log;
+    LANTERN_TRY(ctx->createInstance(desc));
+    Result<ChosenDevice> chosen =
+        choosePhysicalDevice(ctx->m_instance, desc.deviceName, desc.swapchain);
+    if (!chosen) return std::move(chosen).error();
+    ctx->m_physical = chosen->device;
+    ctx->m_queueFamily = chosen->queueFamily;
+    const VkPhysicalDeviceFeatures core = ctx->readOptionalFeatures();
+    LANTERN_TRY(ctx->createDevice(core, desc.swapchain));
+    LANTERN_TRY(ctx->finishSetup());
+    return ctx;
+}
 
-    std::uint32_t loaderVersion = 0;
-    if (vkEnumerateInstanceVersion(&loaderVersion) != VK_SUCCESS ||
-        loaderVersion < VK_API_VERSION_1_3)
-        return makeError(ErrorCode::NoDevice,
-                         "the Vulkan loader does not support Vulkan 1.3 (install libvulkan1 "
-                         "from Debian 12 or newer)");
+Result<void> Context::createInstance(const ContextDesc& desc) {
+    LANTERN_TRY(checkLoaderVersion());
 
     // Layers and instance extensions.
-    std::uint32_t nl = 0;
-    vkEnumerateInstanceLayerProperties(&nl, nullptr);
-    std::vector<VkLayerProperties> layers(nl);
-    vkEnumerateInstanceLayerProperties(&nl, layers.data());
     const bool wantValidation = desc.validation || desc.synchronizationValidation;
-    const bool haveValidation =
-        std::any_of(layers.begin(), layers.end(), [](const VkLayerProperties& l) {
-            return std::strcmp(l.layerName, kValidationLayer) == 0;
-        });
+    const bool haveValidation = validationLayerInstalled();
     if (wantValidation && !haveValidation)
-        ctx->log(LogLevel::Warning, "validation requested but VK_LAYER_KHRONOS_validation is not "
-                                    "installed (Debian package vulkan-validationlayers)");
-    ctx->m_validation = wantValidation && haveValidation;
+        log(LogLevel::Warning, "validation requested but VK_LAYER_KHRONOS_validation is not "
+                               "installed (Debian package vulkan-validationlayers)");
+    m_validation = wantValidation && haveValidation;
 
-    std::uint32_t ne = 0;
-    vkEnumerateInstanceExtensionProperties(nullptr, &ne, nullptr);
-    std::vector<VkExtensionProperties> instExts(ne);
-    vkEnumerateInstanceExtensionProperties(nullptr, &ne, instExts.data());
-
+    const std::vector<VkExtensionProperties> instExts = instanceExtensionProperties();
     std::vector<const char*> extensions;
     for (const auto& e : desc.instanceExtensions) {
         if (!hasExtension(instExts, e.c_str()))
@@ -162,26 +119,18 @@ Result<std::shared_ptr<Context>> Context::create(const ContextDesc& desc) {
         extensions.push_back(e.c_str());
     }
     const bool debugUtils =
-        ctx->m_validation && hasExtension(instExts, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+        m_validation && hasExtension(instExts, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     if (debugUtils) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     std::vector<const char*> enabledLayers;
-    if (ctx->m_validation) enabledLayers.push_back(kValidationLayer);
+    if (m_validation) enabledLayers.push_back(kValidationLayer);
 
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     app.pApplicationName = "lantern";
     app.pEngineName = "Lantern";
     app.apiVersion = VK_API_VERSION_1_3;
 
-    VkDebugUtilsMessengerCreateInfoEXT messengerInfo{
-        VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-    messengerInfo.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
-                                    VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-    messengerInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                                VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                                VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-    messengerInfo.pfnUserCallback = &Context::debugCallback;
-    messengerInfo.pUserData = ctx.get();
-
+    VkDebugUtilsMessengerCreateInfoEXT messengerInfo =
+        messengerCreateInfo(&Context::debugCallback, this);
     VkValidationFeatureEnableEXT syncFeature =
         VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
     VkValidationFeaturesEXT validationFeatures{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
@@ -199,69 +148,37 @@ Result<std::shared_ptr<Context>> Context::create(const ContextDesc& desc) {
         ici.pNext = &messengerInfo;
         if (desc.synchronizationValidation) messengerInfo.pNext = &validationFeatures;
     }
-    VkResult r = vkCreateInstance(&ici, nullptr, &ctx->m_instance);
+    const VkResult r = vkCreateInstance(&ici, nullptr, &m_instance);
     if (r == VK_ERROR_INCOMPATIBLE_DRIVER || r == VK_ERROR_INITIALIZATION_FAILED)
         return makeError(ErrorCode::NoDevice,
                          std::string("no Vulkan driver could be loaded (") + vkResultName(r) +
                              "); install mesa-vulkan-drivers for the lavapipe CPU device");
     if (r != VK_SUCCESS) return vkError(r, "vkCreateInstance");
+    if (debugUtils) LANTERN_TRY(createMessenger(messengerInfo));
+    return {};
+}
 
-    if (debugUtils) {
-        auto createMessenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-            vkGetInstanceProcAddr(ctx->m_instance, "vkCreateDebugUtilsMessengerEXT"));
-        messengerInfo.pNext = nullptr;
-        if (createMessenger)
-            LANTERN_VK_TRY(createMessenger(ctx->m_instance, &messengerInfo, nullptr,
-                                           &ctx->m_messenger));
-        ctx->m_setObjectName = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
-            vkGetInstanceProcAddr(ctx->m_instance, "vkSetDebugUtilsObjectNameEXT"));
-        ctx->m_caps.debugUtils = true;
-    }
+Result<void> Context::createMessenger(VkDebugUtilsMessengerCreateInfoEXT messengerInfo) {
+    auto createMessenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(m_instance, "vkCreateDebugUtilsMessengerEXT"));
+    messengerInfo.pNext = nullptr;
+    if (createMessenger)
+        LANTERN_VK_TRY(createMessenger(m_instance, &messengerInfo, nullptr, &m_messenger));
+    m_setObjectName = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
+        vkGetInstanceProcAddr(m_instance, "vkSetDebugUtilsObjectNameEXT"));
+    m_caps.debugUtils = true;
+    return {};
+}
 
-    // Physical device.
-    std::uint32_t nd = 0;
-    r = vkEnumeratePhysicalDevices(ctx->m_instance, &nd, nullptr);
-    if (r != VK_SUCCESS && r != VK_INCOMPLETE) return vkError(r, "vkEnumeratePhysicalDevices");
-    if (nd == 0)
-        return makeError(ErrorCode::NoDevice,
-                         "no Vulkan device found; install mesa-vulkan-drivers for the lavapipe "
-                         "CPU device, or a GPU driver");
-    std::vector<VkPhysicalDevice> devices(nd);
-    vkEnumeratePhysicalDevices(ctx->m_instance, &nd, devices.data());
-
-    std::vector<Candidate> candidates;
-    for (VkPhysicalDevice pd : devices) candidates.push_back(examine(pd, desc.swapchain));
-    const std::string wanted = lower(desc.deviceName);
-    const Candidate* chosen = nullptr;
-    for (const Candidate& c : candidates) {
-        if (!c.rejection.empty()) continue;
-        if (!wanted.empty() && lower(c.props.deviceName).find(wanted) == std::string::npos)
-            continue;
-        if (!chosen || typeRank(c.props.deviceType) < typeRank(chosen->props.deviceType))
-            chosen = &c;
-    }
-    if (!chosen) {
-        std::ostringstream msg;
-        msg << (wanted.empty() ? "no usable Vulkan device"
-                               : "no usable Vulkan device matches \"" + desc.deviceName + "\"")
-            << "; devices present:";
-        for (const Candidate& c : candidates)
-            msg << " [" << c.props.deviceName << " (" << typeName(c.props.deviceType) << ")"
-                << (c.rejection.empty() ? "" : ": " + c.rejection) << "]";
-        return makeError(ErrorCode::NoDevice, msg.str());
-    }
-    ctx->m_physical = chosen->device;
-    ctx->m_queueFamily = chosen->queueFamily;
-
-    // Optional features.
-    const auto exts = deviceExtensions(ctx->m_physical);
+VkPhysicalDeviceFeatures Context::readOptionalFeatures() {
+    const auto exts = deviceExtensions(m_physical);
     VkPhysicalDeviceProvokingVertexFeaturesEXT provoking{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROVOKING_VERTEX_FEATURES_EXT};
     VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     const bool haveProvoking = hasExtension(exts, VK_EXT_PROVOKING_VERTEX_EXTENSION_NAME);
     if (haveProvoking) f13.pNext = &provoking;
     VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13, {}};
-    vkGetPhysicalDeviceFeatures2(ctx->m_physical, &supported);
+    vkGetPhysicalDeviceFeatures2(m_physical, &supported);
 
     VkPhysicalDeviceFeatures core{};
     core.fillModeNonSolid = supported.features.fillModeNonSolid;
@@ -270,12 +187,15 @@ Result<std::shared_ptr<Context>> Context::create(const ContextDesc& desc) {
     core.independentBlend = supported.features.independentBlend;
     // The id AOV reads gl_PrimitiveID in fragment shaders: SPIR-V's Geometry capability.
     core.geometryShader = supported.features.geometryShader;
-    ctx->m_caps.primitiveIdInFragment = core.geometryShader;
-    ctx->m_caps.fillModeNonSolid = core.fillModeNonSolid;
-    ctx->m_caps.wideLines = core.wideLines;
-    ctx->m_caps.shaderFloat64 = core.shaderFloat64;
-    ctx->m_caps.provokingVertexLast = haveProvoking && provoking.provokingVertexLast;
+    m_caps.primitiveIdInFragment = core.geometryShader;
+    m_caps.fillModeNonSolid = core.fillModeNonSolid;
+    m_caps.wideLines = core.wideLines;
+    m_caps.shaderFloat64 = core.shaderFloat64;
+    m_caps.provokingVertexLast = haveProvoking && provoking.provokingVertexLast;
+    return core;
+}
 
+Result<void> Context::createDevice(const VkPhysicalDeviceFeatures& core, bool swapchain) {
     VkPhysicalDeviceVulkan13Features enable13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     enable13.dynamicRendering = VK_TRUE;
     enable13.synchronization2 = VK_TRUE;
@@ -283,16 +203,16 @@ Result<std::shared_ptr<Context>> Context::create(const ContextDesc& desc) {
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROVOKING_VERTEX_FEATURES_EXT};
     enableProvoking.provokingVertexLast = VK_TRUE;
     std::vector<const char*> devExts;
-    if (ctx->m_caps.provokingVertexLast) {
+    if (m_caps.provokingVertexLast) {
         enable13.pNext = &enableProvoking;
         devExts.push_back(VK_EXT_PROVOKING_VERTEX_EXTENSION_NAME);
     }
-    if (desc.swapchain) devExts.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+    if (swapchain) devExts.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
     VkPhysicalDeviceFeatures2 enable{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &enable13, core};
 
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-    qci.queueFamilyIndex = ctx->m_queueFamily;
+    qci.queueFamilyIndex = m_queueFamily;
     qci.queueCount = 1;
     qci.pQueuePriorities = &priority;
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &enable};
@@ -300,66 +220,10 @@ Result<std::shared_ptr<Context>> Context::create(const ContextDesc& desc) {
     dci.pQueueCreateInfos = &qci;
     dci.enabledExtensionCount = std::uint32_t(devExts.size());
     dci.ppEnabledExtensionNames = devExts.data();
-    LANTERN_VK_TRY(vkCreateDevice(ctx->m_physical, &dci, nullptr, &ctx->m_device));
-    vkGetDeviceQueue(ctx->m_device, ctx->m_queueFamily, 0, &ctx->m_queue);
-    LANTERN_TRY(ctx->finishSetup());
-    return ctx;
+    LANTERN_VK_TRY(vkCreateDevice(m_physical, &dci, nullptr, &m_device));
+    vkGetDeviceQueue(m_device, m_queueFamily, 0, &m_queue);
+    return {};
 }
-
-namespace {
-
-// The features a host enabled on its device, gathered from what it gave vkCreateDevice.
-struct EnabledFeatures {
-    VkPhysicalDeviceFeatures core{};
-    bool dynamicRendering = false;
-    bool synchronization2 = false;
-    bool provokingVertexLast = false;
-};
-
-EnabledFeatures readEnabledFeatures(const ExternalDevice& e) {
-    EnabledFeatures f;
-    if (e.enabledCoreFeatures) f.core = *e.enabledCoreFeatures;
-    // Every feature structure starts with sType and pNext (VkBaseInStructure).
-    for (auto* s = static_cast<const VkBaseInStructure*>(e.enabledFeatures); s; s = s->pNext) {
-        switch (s->sType) {
-        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2:
-            f.core = reinterpret_cast<const VkPhysicalDeviceFeatures2*>(s)->features;
-            break;
-        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES: {
-            const auto* v = reinterpret_cast<const VkPhysicalDeviceVulkan13Features*>(s);
-            f.dynamicRendering = f.dynamicRendering || v->dynamicRendering;
-            f.synchronization2 = f.synchronization2 || v->synchronization2;
-            break;
-        }
-        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES:
-            f.dynamicRendering =
-                f.dynamicRendering ||
-                reinterpret_cast<const VkPhysicalDeviceDynamicRenderingFeatures*>(s)
-                    ->dynamicRendering;
-            break;
-        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES:
-            f.synchronization2 =
-                f.synchronization2 ||
-                reinterpret_cast<const VkPhysicalDeviceSynchronization2Features*>(s)
-                    ->synchronization2;
-            break;
-        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROVOKING_VERTEX_FEATURES_EXT:
-            f.provokingVertexLast =
-                reinterpret_cast<const VkPhysicalDeviceProvokingVertexFeaturesEXT*>(s)
-                    ->provokingVertexLast;
-            break;
-        default:
-            break;
-        }
-    }
-    return f;
-}
-
-std::string versionText(std::uint32_t v) {
-    return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v));
-}
-
-} // namespace
 
 Result<std::shared_ptr<Context>> Context::adopt(const ExternalDevice& e, bool swapchain,
                                                 LogSink log) {
@@ -367,78 +231,9 @@ Result<std::shared_ptr<Context>> Context::adopt(const ExternalDevice& e, bool sw
 #if defined(LANTERN_ASAN)
     core::pinVulkanLibraries();
 #endif
-    const std::pair<const char*, bool> handles[] = {{"instance", e.instance != VK_NULL_HANDLE},
-                                                    {"physicalDevice", e.physicalDevice != VK_NULL_HANDLE},
-                                                    {"device", e.device != VK_NULL_HANDLE},
-                                                    {"queue", e.queue != VK_NULL_HANDLE}};
-    for (const auto& [name, set] : handles)
-        if (!set)
-            return makeError(ErrorCode::Usage,
-                             std::string(name) + " is VK_NULL_HANDLE: the host's instance, "
-                                                 "physical device, device and queue are all needed",
-                             std::string("ExternalDevice.") + name);
-    if (e.instanceApiVersion < VK_API_VERSION_1_3)
-        return makeError(ErrorCode::Unsupported,
-                         "the instance was created for Vulkan " +
-                             versionText(e.instanceApiVersion) +
-                             " (VkApplicationInfo::apiVersion); Lantern records Vulkan 1.3 "
-                             "commands and needs an instance created for 1.3 or newer",
-                         "ExternalDevice.instanceApiVersion");
-
-    // The physical device must be one of the instance's (handles from two instances mix badly).
-    std::uint32_t nd = 0;
-    LANTERN_VK_TRY(vkEnumeratePhysicalDevices(e.instance, &nd, nullptr));
-    std::vector<VkPhysicalDevice> devices(nd);
-    const VkResult listed = vkEnumeratePhysicalDevices(e.instance, &nd, devices.data());
-    if (listed != VK_SUCCESS && listed != VK_INCOMPLETE)
-        return vkError(listed, "vkEnumeratePhysicalDevices");
-    if (std::find(devices.begin(), devices.end(), e.physicalDevice) == devices.end())
-        return makeError(ErrorCode::Usage, "physicalDevice is not one of the instance's devices",
-                         "ExternalDevice.physicalDevice");
-
-    VkPhysicalDeviceProperties props{};
-    vkGetPhysicalDeviceProperties(e.physicalDevice, &props);
-    if (props.apiVersion < VK_API_VERSION_1_3)
-        return makeError(ErrorCode::Unsupported,
-                         std::string(props.deviceName) + " supports Vulkan " +
-                             versionText(props.apiVersion) + ", Lantern needs 1.3",
-                         "ExternalDevice.physicalDevice");
-
-    std::uint32_t nq = 0;
-    vkGetPhysicalDeviceQueueFamilyProperties(e.physicalDevice, &nq, nullptr);
-    std::vector<VkQueueFamilyProperties> families(nq);
-    vkGetPhysicalDeviceQueueFamilyProperties(e.physicalDevice, &nq, families.data());
-    if (e.queueFamily >= nq)
-        return makeError(ErrorCode::Usage,
-                         "queue family " + std::to_string(e.queueFamily) +
-                             " does not exist (the "
-                             "device has " +
-                             std::to_string(nq) + ")",
-                         "ExternalDevice.queueFamily");
-    if (!(families[e.queueFamily].queueFlags & VK_QUEUE_GRAPHICS_BIT))
-        return makeError(ErrorCode::Unsupported,
-                         "queue family " + std::to_string(e.queueFamily) +
-                             " has no VK_QUEUE_GRAPHICS_BIT; Lantern draws on a graphics queue",
-                         "ExternalDevice.queueFamily");
-
-    const EnabledFeatures f = readEnabledFeatures(e);
-    std::string missing;
-    if (!f.dynamicRendering) missing += " dynamicRendering";
-    if (!f.synchronization2) missing += " synchronization2";
-    if (!missing.empty())
-        return makeError(ErrorCode::Unsupported,
-                         "the device was created without" + missing +
-                             " (VkPhysicalDeviceVulkan13Features in VkDeviceCreateInfo::pNext); "
-                             "Lantern renders with both",
-                         "ExternalDevice.enabledFeatures");
-    const auto enabled = [&](const char* name) {
-        return std::find(e.enabledExtensions.begin(), e.enabledExtensions.end(), name) !=
-               e.enabledExtensions.end();
-    };
-    if (swapchain && !enabled(VK_KHR_SWAPCHAIN_EXTENSION_NAME))
-        return makeError(ErrorCode::Unsupported,
-                         "RendererDesc::presentation needs VK_KHR_swapchain enabled on the device",
-                         "ExternalDevice.enabledExtensions");
+    Result<EnabledFeatures> checked = checkExternalDevice(e, swapchain);
+    if (!checked) return std::move(checked).error();
+    const EnabledFeatures& f = *checked;
 
     std::shared_ptr<Context> ctx(new Context());
     ctx->m_log = std::move(log);
@@ -455,7 +250,7 @@ Result<std::shared_ptr<Context>> Context::adopt(const ExternalDevice& e, bool sw
     ctx->m_caps.wideLines = f.core.wideLines;
     ctx->m_caps.shaderFloat64 = f.core.shaderFloat64;
     ctx->m_caps.provokingVertexLast =
-        f.provokingVertexLast && enabled(VK_EXT_PROVOKING_VERTEX_EXTENSION_NAME);
+        f.provokingVertexLast && extensionEnabled(e, VK_EXT_PROVOKING_VERTEX_EXTENSION_NAME);
     LANTERN_TRY(ctx->finishSetup());
     return ctx;
 }
@@ -486,7 +281,7 @@ Result<void> Context::finishSetup() {
     m_oneShotPool = UniqueCommandPool(m_device, pool);
 
     log(LogLevel::Info, std::string("device: ") + m_properties.deviceName + " (" +
-                            typeName(m_properties.deviceType) + ", " + m_driverInfo + ")" +
+                            deviceTypeName(m_properties.deviceType) + ", " + m_driverInfo + ")" +
                             (m_external ? ", the host's" : "") +
                             (m_validation ? ", validation on" : ""));
     return {};

@@ -99,6 +99,12 @@ public:
 
 private:
     Context() = default;
+    // The steps of create(): the instance (and messenger), then, once the physical device is
+    // chosen, the optional features it offers (filling m_caps) and the device with its queue.
+    Result<void> createInstance(const ContextDesc& desc);
+    Result<void> createMessenger(VkDebugUtilsMessengerCreateInfoEXT messengerInfo);
+    VkPhysicalDeviceFeatures readOptionalFeatures();
+    Result<void> createDevice(const VkPhysicalDeviceFeatures& core, bool swapchain);
     Result<void> finishSetup();
     static VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(
         VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,

@@ -198,8 +198,12 @@ Result<std::string> checkRelativeUri(std::string_view uri, const std::string& ob
     return path;
 }
 
-Result<RawFacts> inspectJson(std::string_view text, const Source& source, const Diagnostics& diag) {
-    using nlohmann::json;
+namespace {
+
+using nlohmann::json;
+
+// The document, or the parser's message; its top level must be an object.
+Result<json> parseJson(std::string_view text, const Diagnostics& diag) {
     json doc;
     try {
         doc = json::parse(text.begin(), text.end());
@@ -211,75 +215,115 @@ Result<RawFacts> inspectJson(std::string_view text, const Source& source, const 
         return diag.error("JSON", what);
     }
     if (!doc.is_object()) return diag.error("JSON", "the top level is not a JSON object");
-    RawFacts facts;
+    return doc;
+}
 
-    auto array = [&](const char* name) -> const json* {
-        auto it = doc.find(name);
-        return (it != doc.end() && it->is_array()) ? &*it : nullptr;
-    };
-    // External files: the URI must stay inside the folder; buffers must exist and fit the
-    // size bound (tinygltf's own message would be a bare "file not found").
+// The top-level array `name`, or null when absent or not an array.
+const json* arrayOf(const json& doc, const char* name) {
+    auto it = doc.find(name);
+    return (it != doc.end() && it->is_array()) ? &*it : nullptr;
+}
+
+// Buffer `i` without a uri: only a GLB's buffer 0 may have none, and then the file has a BIN
+// chunk.
+Result<void> checkBufferWithoutUri(std::size_t i, const std::string& object, const Source& source,
+                                   const Diagnostics& diag) {
+    if (!source.glb)
+        return diag.error(object, "has no uri: a .gltf buffer's data must come from "
+                                  "a file or a data: URI");
+    if (i != 0)
+        return diag.error(object, "has no uri: only buffer 0 can refer to the GLB's "
+                                  "BIN chunk");
+    if (!source.glbHasBin)
+        return diag.error(object, "refers to the GLB's BIN chunk, but the file has "
+                                  "none");
+    return {};
+}
+
+// Why the external file `relative` cannot be read (missing, or over the size bound); empty when
+// it can.
+std::string externalFileProblem(const std::string& relative, const Source& source) {
+    const std::filesystem::path file = source.folder / relative;
+    std::error_code ec;
+    std::string problem;
+    if (!std::filesystem::is_regular_file(file, ec))
+        problem = "\"" + relative + "\" does not exist in the scene's folder";
+    else if (const auto size = std::filesystem::file_size(file, ec); !ec && size > source.maxBytes)
+        problem = "\"" + relative + "\" is " + std::to_string(size) +
+                  " bytes, more than --max-size (" + std::to_string(source.maxBytes) + " bytes)";
+    return problem;
+}
+
+// One buffer or image (item `i` of `kind`): its URI stays inside the folder; a buffer's file must
+// exist and fit the size bound; an image's missing file is recorded in `facts` (an error only
+// if a material uses it).
+Result<void> checkExternalItem(const json& item, const char* kind, std::size_t i,
+                               const Source& source, const Diagnostics& diag, RawFacts& facts) {
+    const bool buffers = std::string_view(kind) == "buffers";
+    const std::string object = at(kind, i);
+    auto uri = item.find("uri");
+    if (uri == item.end() || !uri->is_string()) {
+        if (!buffers) return {};
+        return checkBufferWithoutUri(i, object, source, diag);
+    }
+    const std::string& value = uri->get_ref<const std::string&>();
+    if (isDataUri(value)) {
+        // tinygltf would take a data: URI it cannot decode for a file name.
+        if (!tinygltf::IsDataURI(value))
+            return diag.error(object + ".uri",
+                              "data: URI with an unsupported MIME type or encoding "
+                              "(read: base64 with application/octet-stream, "
+                              "application/gltf-buffer or an image type)");
+        return {};
+    }
+    auto relative = checkRelativeUri(value, object + ".uri", diag);
+    if (!relative) return std::move(relative).error();
+    const std::string problem = externalFileProblem(*relative, source);
+    if (problem.empty()) return {};
+    if (buffers || problem.find("--max-size") != std::string::npos)
+        return diag.error(object + ".uri", problem);
+    facts.imageProblems[int(i)] = problem; // an error only if a material uses it
+    return {};
+}
+
+// External files: the URI must stay inside the folder; buffers must exist and fit the
+// size bound (tinygltf's own message would be a bare "file not found").
+Result<void> checkExternalFiles(const json& doc, const Source& source, const Diagnostics& diag,
+                                RawFacts& facts) {
     for (const char* kind : {"buffers", "images"}) {
-        const json* items = array(kind);
+        const json* items = arrayOf(doc, kind);
         if (!items) continue;
-        const bool buffers = std::string_view(kind) == "buffers";
         for (std::size_t i = 0; i < items->size(); ++i) {
             const json& item = (*items)[i];
             if (!item.is_object()) continue;
-            const std::string object = at(kind, i);
-            auto uri = item.find("uri");
-            if (uri == item.end() || !uri->is_string()) {
-                if (!buffers) continue;
-                if (!source.glb)
-                    return diag.error(object, "has no uri: a .gltf buffer's data must come from "
-                                              "a file or a data: URI");
-                if (i != 0)
-                    return diag.error(object, "has no uri: only buffer 0 can refer to the GLB's "
-                                              "BIN chunk");
-                if (!source.glbHasBin)
-                    return diag.error(object, "refers to the GLB's BIN chunk, but the file has "
-                                              "none");
-                continue;
-            }
-            const std::string& value = uri->get_ref<const std::string&>();
-            if (isDataUri(value)) {
-                // tinygltf would take a data: URI it cannot decode for a file name.
-                if (!tinygltf::IsDataURI(value))
-                    return diag.error(object + ".uri",
-                                      "data: URI with an unsupported MIME type or encoding "
-                                      "(read: base64 with application/octet-stream, "
-                                      "application/gltf-buffer or an image type)");
-                continue;
-            }
-            auto relative = checkRelativeUri(value, object + ".uri", diag);
-            if (!relative) return std::move(relative).error();
-            const std::filesystem::path file = source.folder / *relative;
-            std::error_code ec;
-            std::string problem;
-            if (!std::filesystem::is_regular_file(file, ec))
-                problem = "\"" + *relative + "\" does not exist in the scene's folder";
-            else if (const auto size = std::filesystem::file_size(file, ec);
-                     !ec && size > source.maxBytes)
-                problem = "\"" + *relative + "\" is " + std::to_string(size) +
-                          " bytes, more than --max-size (" + std::to_string(source.maxBytes) +
-                          " bytes)";
-            if (problem.empty()) continue;
-            if (buffers || problem.find("--max-size") != std::string::npos)
-                return diag.error(object + ".uri", problem);
-            facts.imageProblems[int(i)] = problem; // an error only if a material uses it
+            LANTERN_TRY(checkExternalItem(item, kind, i, source, diag, facts));
         }
     }
-    if (const json* cameras = array("cameras")) {
+    return {};
+}
+
+// Per camera: whether its perspective block has a zfar (tinygltf does not keep the difference
+// between an absent zfar and its default).
+std::vector<bool> perspectiveHasZfar(const json& doc) {
+    std::vector<bool> out;
+    if (const json* cameras = arrayOf(doc, "cameras")) {
         for (const json& c : *cameras) {
             bool hasZfar = false;
             if (c.is_object()) {
                 auto p = c.find("perspective");
                 if (p != c.end() && p->is_object()) hasZfar = p->contains("zfar");
             }
-            facts.perspectiveHasZfar.push_back(hasZfar);
+            out.push_back(hasZfar);
         }
     }
-    if (const json* meshes = array("meshes")) {
+    return out;
+}
+
+// Per mesh: the number of primitives written. tinygltf drops a primitive without an attributes
+// object silently, which would shift every later primitive's index: refuse instead.
+Result<std::vector<std::size_t>> primitiveCounts(const json& doc, const Diagnostics& diag) {
+    std::vector<std::size_t> counts;
+    if (const json* meshes = arrayOf(doc, "meshes")) {
         for (std::size_t m = 0; m < meshes->size(); ++m) {
             const json& mesh = (*meshes)[m];
             std::size_t count = 0;
@@ -287,8 +331,6 @@ Result<RawFacts> inspectJson(std::string_view text, const Source& source, const 
                 auto prims = mesh.find("primitives");
                 if (prims != mesh.end() && prims->is_array()) {
                     count = prims->size();
-                    // tinygltf drops a primitive without an attributes object silently, which
-                    // would shift every later primitive's index: refuse instead.
                     for (std::size_t p = 0; p < prims->size(); ++p) {
                         const json& prim = (*prims)[p];
                         const std::string object = at("meshes", m) + "." + at("primitives", p);
@@ -300,9 +342,23 @@ Result<RawFacts> inspectJson(std::string_view text, const Source& source, const 
                     }
                 }
             }
-            facts.primitiveCounts.push_back(count);
+            counts.push_back(count);
         }
     }
+    return counts;
+}
+
+} // namespace
+
+Result<RawFacts> inspectJson(std::string_view text, const Source& source, const Diagnostics& diag) {
+    auto doc = parseJson(text, diag);
+    if (!doc) return std::move(doc).error();
+    RawFacts facts;
+    LANTERN_TRY(checkExternalFiles(*doc, source, diag, facts));
+    facts.perspectiveHasZfar = perspectiveHasZfar(*doc);
+    auto counts = primitiveCounts(*doc, diag);
+    if (!counts) return std::move(counts).error();
+    facts.primitiveCounts = std::move(*counts);
     return facts;
 }
 

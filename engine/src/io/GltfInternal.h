@@ -8,8 +8,10 @@
 //   2. tinygltf           JSON -> tinygltf::Model, buffers read through confined callbacks.
 //   3. GltfValidate.cpp   every reference, buffer view, accessor, index, count and enum, with
 //                         the glTF object path in each message, before any data is read.
-//   4. GltfGeometry.cpp,  data -> Scene: meshes (strips/fans to lists, normals computed),
-//      GltfConvert.cpp    materials, textures, lights, cameras, nodes, animations, extensions.
+//   4. conversion        data -> Scene: GltfGeometry.cpp meshes (strips/fans to lists, normals
+//                         computed), GltfMaterials.cpp materials and textures,
+//                         GltfLightsCameras.cpp lights and cameras, GltfConvert.cpp nodes,
+//                         scenes, animations, extensions and the whole model.
 //   5. Scene::validate()  the scene model's own checks, as a final net.
 #pragma once
 
@@ -173,7 +175,16 @@ Result<std::vector<std::uint32_t>> readIndices(const tinygltf::Model& model, int
                                                std::size_t vertexCount, const std::string& object,
                                                const Diagnostics& diag);
 
-// --- Pass 4: conversion (GltfGeometry.cpp, GltfConvert.cpp) ----------------------------------
+// --- Pass 4: conversion (GltfGeometry/Materials/LightsCameras/Convert.cpp) -------------------
+
+/// glTF number arrays as vectors: the first three numbers; the first four (1 when only three).
+glm::dvec3 vec3(const std::vector<double>& v);
+glm::dvec4 vec4(const std::vector<double>& v);
+bool allFinite(const std::vector<double>& v);
+/// Attaches the file to errors from the scene model's checkers (checkProjection, ...).
+Error inFile(Error e, const Diagnostics& diag);
+/// Extension `name` of an object, or null.
+const tinygltf::Value* extension(const tinygltf::ExtensionMap& map, const char* name);
 
 /// Encoded image bytes kept by the image callback (decoding waits until a material uses the
 /// image), per image index.
@@ -186,7 +197,20 @@ struct ImageStore {
 Result<Mesh> convertMesh(const tinygltf::Model& model, std::size_t meshIndex,
                          const Diagnostics& diag);
 
-/// The whole scene: everything except meshes is converted here; meshes via convertMesh.
+/// The materials into scene.materials, and the textures they use (decoded on first use) into
+/// scene.textures (GltfMaterials.cpp).
+Result<void> convertMaterials(const tinygltf::Model& model, const RawFacts& raw,
+                              const ImageStore& images, const LoadOptions& options,
+                              const Diagnostics& diag, Scene& scene);
+
+/// A KHR_lights_punctual light, with LANTERN_lights_phong (GltfLightsCameras.cpp).
+Result<Light> convertLight(const tinygltf::Light& src, std::size_t index, const Diagnostics& diag);
+
+/// A camera, with LANTERN_camera; `hasZfar`: the perspective block has a zfar (RawFacts).
+Result<Camera> convertCamera(const tinygltf::Camera& src, std::size_t index, bool hasZfar,
+                             const Diagnostics& diag);
+
+/// The whole scene (GltfConvert.cpp), with the converters above and convertMesh.
 Result<Scene> convertModel(const tinygltf::Model& model, const RawFacts& raw,
                            const ImageStore& images, const LoadOptions& options,
                            const Diagnostics& diag);

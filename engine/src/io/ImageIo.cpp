@@ -154,92 +154,123 @@ std::optional<ExrCompression> parseExrCompression(std::string_view t) noexcept {
     return std::nullopt;
 }
 
+namespace {
+
+// The RGBA values as half. Values beyond the half range clamp to +-65504 (never Inf), counted in
+// `clamped`; non-finite values become 0.
+std::vector<half> toHalves(const std::vector<float>& rgba, std::uint64_t& clamped) {
+    constexpr float kHalfMax = 65504.0f;
+    std::vector<half> halves(rgba.size());
+    for (std::size_t i = 0; i < rgba.size(); ++i) {
+        float v = rgba[i];
+        if (!std::isfinite(v)) v = 0.0f;
+        if (v > kHalfMax || v < -kHalfMax) {
+            v = std::clamp(v, -kHalfMax, kHalfMax);
+            ++clamped;
+        }
+        halves[i] = half(v);
+    }
+    return halves;
+}
+
+// R, G, B and A: as half (from `halves`, which must outlive the write) or as float (the image).
+void addColorChannels(Imf::Header& header, Imf::FrameBuffer& fb, const Image& image, bool asHalf,
+                      const std::vector<half>& halves) {
+    const int w = image.width;
+    const Imf::PixelType colorType = asHalf ? Imf::HALF : Imf::FLOAT;
+    const char* names[4] = {"R", "G", "B", "A"};
+    if (asHalf) {
+        for (int c = 0; c < 4; ++c) {
+            header.channels().insert(names[c], Imf::Channel(colorType));
+            fb.insert(names[c], Imf::Slice(Imf::HALF,
+                                           const_cast<char*>(
+                                               reinterpret_cast<const char*>(halves.data() + c)),
+                                           sizeof(half) * 4, sizeof(half) * 4 * std::size_t(w)));
+        }
+    } else {
+        for (int c = 0; c < 4; ++c) {
+            header.channels().insert(names[c], Imf::Channel(colorType));
+            fb.insert(
+                names[c],
+                Imf::Slice(Imf::FLOAT,
+                           const_cast<char*>(reinterpret_cast<const char*>(image.rgba.data() + c)),
+                           sizeof(float) * 4, sizeof(float) * 4 * std::size_t(w)));
+        }
+    }
+}
+
+// The depth (Z) and normal (N.X, N.Y, N.Z) planes the image has. AOVs are always 32-bit float:
+// half has 0.5-unit spacing at depth 1000.
+void addAovChannels(Imf::Header& header, Imf::FrameBuffer& fb, const Image& image) {
+    const int w = image.width;
+    if (!image.depth.empty()) {
+        header.channels().insert("Z", Imf::Channel(Imf::FLOAT));
+        fb.insert("Z",
+                  Imf::Slice(Imf::FLOAT,
+                             const_cast<char*>(reinterpret_cast<const char*>(image.depth.data())),
+                             sizeof(float), sizeof(float) * std::size_t(w)));
+    }
+    if (!image.normal.empty()) {
+        const char* nn[3] = {"N.X", "N.Y", "N.Z"};
+        for (int c = 0; c < 3; ++c) {
+            header.channels().insert(nn[c], Imf::Channel(Imf::FLOAT));
+            fb.insert(nn[c], Imf::Slice(Imf::FLOAT,
+                                        const_cast<char*>(
+                                            reinterpret_cast<const char*>(image.normal.data() + c)),
+                                        sizeof(float) * 3, sizeof(float) * 3 * std::size_t(w)));
+        }
+    }
+}
+
+// The standard worldToCamera and worldToNDC attributes.
+void addCameraAttributes(Imf::Header& header, const CameraMetadata& camera) {
+    // OpenEXR's camera space is left-handed, looking down +Z: flip z. Imath's matrices
+    // transform row vectors, which makes their element [i][j] GLM's [i][j].
+    glm::dmat4 flipZ(1.0);
+    flipZ[2][2] = -1.0;
+    const glm::dmat4 worldToCamera = flipZ * camera.viewFromWorld;
+    // NDC: (0,0) top-left to (1,1) bottom-right of the display window; Vulkan's clip
+    // space already has y down.
+    glm::dmat4 ndcFromClip(1.0);
+    ndcFromClip[0][0] = 0.5, ndcFromClip[1][1] = 0.5;
+    ndcFromClip[3][0] = 0.5, ndcFromClip[3][1] = 0.5;
+    const glm::dmat4 worldToNdc = ndcFromClip * camera.clipFromView * camera.viewFromWorld;
+    auto toImath = [](const glm::dmat4& m) {
+        Imath::M44f r;
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j)
+                r[i][j] = float(m[i][j]);
+        return r;
+    };
+    Imf::addWorldToCamera(header, toImath(worldToCamera));
+    Imf::addWorldToNDC(header, toImath(worldToNdc));
+}
+
+} // namespace
+
 Result<void> writeExr(const std::filesystem::path& path, const Image& image,
                       const ExrOptions& options) {
     LANTERN_TRY(checkImage(image, path));
     io::AtomicFile file(path);
     LANTERN_TRY(file.checkWritable());
     AtomicFileStream stream(file);
-    const int w = image.width, h = image.height;
-    const std::size_t n = image.pixelCount();
     std::vector<half> halves;
     std::uint64_t clamped = 0;
     try {
-        Imf::Header header(w, h);
+        Imf::Header header(image.width, image.height);
         header.compression() = toImf(options.compression);
-        const Imf::PixelType colorType = options.half ? Imf::HALF : Imf::FLOAT;
         Imf::FrameBuffer fb;
-        const char* names[4] = {"R", "G", "B", "A"};
-        if (options.half) {
-            // Values beyond the half range clamp to +-65504 (never Inf); the caller is told.
-            constexpr float kHalfMax = 65504.0f;
-            halves.resize(n * 4);
-            for (std::size_t i = 0; i < n * 4; ++i) {
-                float v = image.rgba[i];
-                if (!std::isfinite(v)) v = 0.0f;
-                if (v > kHalfMax || v < -kHalfMax) {
-                    v = std::clamp(v, -kHalfMax, kHalfMax);
-                    ++clamped;
-                }
-                halves[i] = half(v);
-            }
-            for (int c = 0; c < 4; ++c) {
-                header.channels().insert(names[c], Imf::Channel(colorType));
-                fb.insert(names[c], Imf::Slice(Imf::HALF, reinterpret_cast<char*>(halves.data() + c),
-                                               sizeof(half) * 4, sizeof(half) * 4 * std::size_t(w)));
-            }
-        } else {
-            for (int c = 0; c < 4; ++c) {
-                header.channels().insert(names[c], Imf::Channel(colorType));
-                fb.insert(names[c],
-                          Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(image.rgba.data() + c)),
-                                     sizeof(float) * 4, sizeof(float) * 4 * std::size_t(w)));
-            }
-        }
-        // AOVs are always 32-bit float: half has 0.5-unit spacing at depth 1000.
-        if (!image.depth.empty()) {
-            header.channels().insert("Z", Imf::Channel(Imf::FLOAT));
-            fb.insert("Z", Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(image.depth.data())),
-                                      sizeof(float), sizeof(float) * std::size_t(w)));
-        }
-        if (!image.normal.empty()) {
-            const char* nn[3] = {"N.X", "N.Y", "N.Z"};
-            for (int c = 0; c < 3; ++c) {
-                header.channels().insert(nn[c], Imf::Channel(Imf::FLOAT));
-                fb.insert(nn[c], Imf::Slice(Imf::FLOAT,
-                                            const_cast<char*>(reinterpret_cast<const char*>(image.normal.data() + c)),
-                                            sizeof(float) * 3, sizeof(float) * 3 * std::size_t(w)));
-            }
-        }
+        if (options.half) halves = toHalves(image.rgba, clamped);
+        addColorChannels(header, fb, image, options.half, halves);
+        addAovChannels(header, fb, image);
         for (const auto& [key, value] : image.metadata) header.insert(key, Imf::StringAttribute(value));
-        if (image.camera) {
-            // OpenEXR's camera space is left-handed, looking down +Z: flip z. Imath's matrices
-            // transform row vectors, which makes their element [i][j] GLM's [i][j].
-            glm::dmat4 flipZ(1.0);
-            flipZ[2][2] = -1.0;
-            const glm::dmat4 worldToCamera = flipZ * image.camera->viewFromWorld;
-            // NDC: (0,0) top-left to (1,1) bottom-right of the display window; Vulkan's clip
-            // space already has y down.
-            glm::dmat4 ndcFromClip(1.0);
-            ndcFromClip[0][0] = 0.5, ndcFromClip[1][1] = 0.5;
-            ndcFromClip[3][0] = 0.5, ndcFromClip[3][1] = 0.5;
-            const glm::dmat4 worldToNdc =
-                ndcFromClip * image.camera->clipFromView * image.camera->viewFromWorld;
-            auto toImath = [](const glm::dmat4& m) {
-                Imath::M44f r;
-                for (int i = 0; i < 4; ++i)
-                    for (int j = 0; j < 4; ++j) r[i][j] = float(m[i][j]);
-                return r;
-            };
-            Imf::addWorldToCamera(header, toImath(worldToCamera));
-            Imf::addWorldToNDC(header, toImath(worldToNdc));
-        }
+        if (image.camera) addCameraAttributes(header, *image.camera);
         if (image.framesPerSecond > 0.0)
             Imf::addFramesPerSecond(header, Imf::guessExactFps(image.framesPerSecond));
         // The OutputFile is destroyed (writing its offset table) before the stream finishes.
         Imf::OutputFile out(stream, header);
         out.setFrameBuffer(fb);
-        out.writePixels(h);
+        out.writePixels(image.height);
     } catch (const std::exception& e) {
         // A full disk shows up here as the stream's exception: report the stream's own error,
         // which names the errno, rather than OpenEXR's rewording of it.

@@ -105,7 +105,7 @@ LightSums evaluateLighting(const glm::dvec3& V, const glm::dvec3& n, const Mater
         s.diffuse += (k * std::max(c.nDotL, 0.0)) * L.diffuse;
         c.ambient = k * L.ambient;
         c.diffuse = (k * std::max(c.nDotL, 0.0)) * L.diffuse;
-        if (st.specularOn && c.nDotL > 0.0) {
+        if (c.nDotL > 0.0) {
             c.specularTerm = specularTerm(n, l, v, m.shininess, st.specular);
             c.specular = (k * c.specularTerm) * (m.specular * L.specular);
             s.emissiveSpecular += c.specular;
@@ -115,14 +115,14 @@ LightSums evaluateLighting(const glm::dvec3& V, const glm::dvec3& n, const Mater
     return s;
 }
 
-MaterialColours materialColours(const MaterialSide& m, const glm::dvec4* vertexColour,
+MaterialColours materialColours(const MaterialSide& m, const glm::dvec4* vertexColor,
                                 bool scales) {
     MaterialColours r{m.ambient, glm::dvec3(m.diffuse), m.diffuse.a};
-    if (vertexColour) {
-        const glm::dvec3 rgb(*vertexColour);
+    if (vertexColor) {
+        const glm::dvec3 rgb(*vertexColor);
         r.ambient = scales ? r.ambient * rgb : rgb;
         r.diffuse = scales ? r.diffuse * rgb : rgb;
-        r.alpha *= vertexColour->a;
+        r.alpha *= vertexColor->a;
     }
     return r;
 }
@@ -149,49 +149,6 @@ glm::dvec3 shade(const glm::dvec3& V, const glm::dvec3& n, const MaterialSide& m
     const LightSums s = evaluateLighting(V, n, m, lights, settings);
     const SplitColour c = splitColour(s, m.ambient, glm::dvec3(m.diffuse), false, false);
     return c.base + c.textured;
-}
-
-std::vector<EyeLight> eyeLights(const Scene& scene, const Pose& pose,
-                                const glm::dmat4& viewFromWorld, bool glCompat) {
-    std::vector<EyeLight> out;
-    auto place = [&](const Light& l, const std::string& fallbackName,
-                     const glm::dmat4& viewFromLight) {
-        EyeLight e;
-        e.name = l.name.empty() ? fallbackName : l.name;
-        e.falloff = l.falloff;
-        e.type = l.type;
-        if (l.type == LightType::Spot && l.falloff == LightFalloff::Gl && l.spotCutoffDeg == 180.0)
-            e.type = LightType::Point;
-        e.position = glm::dvec3(viewFromLight[3]);
-        glm::dvec3 axis = glm::dmat3(viewFromLight) * glm::dvec3(0, 0, -1);
-        const double len = glm::length(axis);
-        axis = (len > 0.0 && std::isfinite(len)) ? axis / len : glm::dvec3(0, 0, -1);
-        e.spotAxis = axis;
-        e.toLight = -axis;
-        e.ambient = l.ambient;
-        e.diffuse = l.diffuse;
-        e.specular = l.specular;
-        e.attenuation = l.attenuation;
-        e.invRange = std::isinf(l.range) ? 0.0 : 1.0 / l.range;
-        const double halfCutoff = std::min(l.spotCutoffDeg, 90.0) * 3.14159265358979323846 / 360.0;
-        e.oneMinusCosCutoff = 2.0 * std::sin(halfCutoff) * std::sin(halfCutoff);
-        e.exponent = glCompat ? std::min(l.spotExponent, 128.0) : l.spotExponent;
-        e.cosOuter = std::cos(l.outerConeAngle);
-        e.coneScale = 1.0 / std::max(std::cos(l.innerConeAngle) - e.cosOuter, 1e-6);
-        out.push_back(e);
-    };
-    for (std::size_t i = 0; i < scene.nodes.size(); ++i)
-        if (pose.visible[i] && scene.nodes[i].light >= 0)
-            place(scene.lights[scene.nodes[i].light],
-                  "light " + std::to_string(scene.nodes[i].light),
-                  viewFromWorld * pose.worldFromNode[i]);
-    if (out.empty()) {
-        Light l;
-        l.name = "GL default light 0";
-        l.type = LightType::Directional;
-        place(l, l.name, glm::dmat4(1.0));
-    }
-    return out;
 }
 
 } // namespace lantern::ref

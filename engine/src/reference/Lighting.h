@@ -1,10 +1,12 @@
 // reference/Lighting.h: the CPU reference of Lantern's lighting equation in double precision:
 // the C++ twin of shaders/include/lighting.glsl, with the same function names and the same
-// guards, evaluated from the scene's own (double) data. Used by tests, --probe and the
-// accuracy benchmark.
+// guards, evaluated from the scene's own (double) data. Every term is always evaluated: the
+// reference has no notion of which terms a pipeline variant compiled. Used by tests, --probe
+// and the accuracy benchmark.
 #pragma once
 
-#include <lantern/Renderer.h>
+#include "frame/Frame.h"
+
 #include <lantern/Scene.h>
 
 #include <glm/mat4x4.hpp>
@@ -14,27 +16,14 @@
 
 namespace lantern::ref {
 
-/// A light in eye space, in double precision.
-struct EyeLight {
-    LightType type = LightType::Point;  ///< Spot with GL cutoff 180 is stored as Point
-    LightFalloff falloff = LightFalloff::Gl;
-    glm::dvec3 position{0.0};   ///< eye space (positional lights)
-    glm::dvec3 toLight{0, 0, 1};  ///< unit, towards the light (directional lights)
-    glm::dvec3 spotAxis{0, 0, -1};
-    glm::dvec3 ambient{0.0}, diffuse{1.0}, specular{1.0};
-    glm::dvec3 attenuation{1, 0, 0};
-    double invRange = 0.0;
-    double oneMinusCosCutoff = 1.0, exponent = 0.0;  ///< GL spot: 1 - cos(cutoff), exponent
-    double cosOuter = 0.0, coneScale = 1.0;        ///< glTF spot: 1/max(cos inner - cos outer, 1e-6)
-    std::string name;  ///< the light's name, or "light N" (N: index in Scene::lights)
-};
+/// Lights are placed once, by the frame model (frame::placeLights).
+using EyeLight = frame::EyeLight;
 
 /// The lighting switches that change the equation.
 struct Settings {
     glm::dvec3 globalAmbient{0.2, 0.2, 0.2};
     bool localViewer = false;
     SpecularModel specular = SpecularModel::Blinn;
-    bool specularOn = true;  ///< false: the specular term is absent (as the variant compiles it)
     bool unlit = false;
 };
 
@@ -81,7 +70,7 @@ struct MaterialColours {
     glm::dvec3 ambient{0.0}, diffuse{0.0};
     double alpha = 1.0;
 };
-MaterialColours materialColours(const MaterialSide& m, const glm::dvec4* vertexColour,
+MaterialColours materialColours(const MaterialSide& m, const glm::dvec4* vertexColor,
                                 bool scales);
 
 /// colour = base + texel * textured, as splitColour in the shaders.
@@ -94,10 +83,5 @@ SplitColour splitColour(const LightSums& s, const glm::dvec3& ambientM,
 /// The full colour at a point without textures or vertex colours (unclamped).
 glm::dvec3 shade(const glm::dvec3& V, const glm::dvec3& n, const MaterialSide& m,
                  const std::vector<EyeLight>& lights, const Settings& settings);
-
-/// Eye-space lights of a scene at a pose, as the renderer places them (GL's light 0 when the
-/// scene has none), in the renderer's order. `glCompat` limits spot exponents to 128.
-std::vector<EyeLight> eyeLights(const Scene& scene, const Pose& pose,
-                                const glm::dmat4& viewFromWorld, bool glCompat);
 
 } // namespace lantern::ref

@@ -1,12 +1,13 @@
 // The reference ray caster: exact spheres and planes in double precision, the renderer's own
 // camera resolution and light placement, and the lighting equation of reference/Lighting
 // (the shaders' twin) at every sample. Ground truth for the accuracy benchmark.
+#include "frame/Frame.h"
 #include "reference/Lighting.h"
-#include "render/FramePlan.h"
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 #include <lantern/Reference.h>
@@ -74,7 +75,7 @@ bool sphereRoots(const glm::dvec3& o, const glm::dvec3& d, double r, double root
 
 class Caster {
 public:
-    Caster(std::vector<Surface> surfaces, const render::ResolvedCamera& camera,
+    Caster(std::vector<Surface> surfaces, const frame::ViewCamera& camera,
            std::vector<ref::EyeLight> lights, const ref::Settings& settings,
            const RenderOptions& options)
         : m_surfaces(std::move(surfaces)), m_lights(std::move(lights)), m_settings(settings),
@@ -238,30 +239,21 @@ Result<void> checkOptions(const Scene& scene, const RenderOptions& o, double tim
     return {};
 }
 
-} // namespace
-
-Result<ReferenceImage> raycastReference(const Scene& scene, const RenderOptions& options,
-                                        double time, const ReferenceOptions& reference) {
-    LANTERN_TRY(scene.validate());
-    LANTERN_TRY(checkOptions(scene, options, time, reference));
-    const int root = options.root < 0 ? scene.defaultRoot : options.root;
-    const Pose pose = evaluatePose(scene, root, time);
-    auto camera = render::resolveCamera(scene, pose, options.camera,
-                                        double(options.width) / double(options.height),
-                                        options.depth, "camera");
-    if (!camera) return std::move(camera).error();
-    const render::ResolvedLighting lit = render::resolveLighting(scene, root, options);
-
+// The analytic surface each visible node with a mesh draws, placed in eye space. Refuses a mesh
+// without an analytic description, what the reference does not model, and singular transforms.
+Result<std::vector<Surface>> placeSurfaces(const Scene& scene, const Pose& pose,
+                                           const glm::dmat4& viewFromWorld,
+                                           const std::vector<AnalyticShape>& shapes) {
     static const Material kDefaultMaterial;
     std::vector<Surface> surfaces;
     for (std::size_t ni = 0; ni < scene.nodes.size(); ++ni) {
         const Node& node = scene.nodes[ni];
         if (!pose.visible[ni] || node.mesh < 0) continue;
-        const auto shape =
-            std::find_if(reference.shapes.begin(), reference.shapes.end(),
-                         [&](const AnalyticShape& s) { return s.mesh == node.mesh; });
+        const auto shape = std::find_if(shapes.begin(), shapes.end(), [&](const AnalyticShape& s) {
+            return s.mesh == node.mesh;
+        });
         const std::string object = "nodes[" + std::to_string(ni) + "]";
-        if (shape == reference.shapes.end())
+        if (shape == shapes.end())
             return refuse(ErrorCode::InvalidInput,
                           "draws mesh " + std::to_string(node.mesh) +
                               ", which has no analytic description (the reference ray-casts only "
@@ -279,7 +271,7 @@ Result<ReferenceImage> raycastReference(const Scene& scene, const RenderOptions&
                           "alpha-blended materials are not modelled by the reference", matObject);
         Surface s;
         s.shape = *shape;
-        const glm::dmat4 viewFromModel = camera->viewFromWorld * pose.worldFromNode[ni];
+        const glm::dmat4 viewFromModel = viewFromWorld * pose.worldFromNode[ni];
         s.modelFromView = glm::inverse(viewFromModel);
         s.normalFromModel = normalMatrix(viewFromModel);
         if (!std::isfinite(s.modelFromView[0][0]) || s.normalFromModel == glm::dmat3(0.0))
@@ -288,14 +280,78 @@ Result<ReferenceImage> raycastReference(const Scene& scene, const RenderOptions&
         s.material = &mat;
         surfaces.push_back(s);
     }
+    return surfaces;
+}
+
+// One pixel: the centre sample, the average of N x N box samples, and whether K x K probes
+// across the pixel (its edges included) all hit the same surface.
+void renderPixel(const Caster& caster, int x, int y, int N, int K, ReferenceImage& out) {
+    const Ray c = caster.rayAt(x + 0.5, y + 0.5);
+    const glm::dvec4 centre = caster.shade(caster.trace(c));
+    glm::dvec4 sum(0.0);
+    for (int j = 0; j < N; ++j)
+        for (int i = 0; i < N; ++i) {
+            const Ray r = caster.rayAt(x + (i + 0.5) / N, y + (j + 0.5) / N);
+            sum += caster.shade(caster.trace(r));
+        }
+    int first = -2;
+    bool same = true;
+    for (int j = 0; j < K && same; ++j)
+        for (int i = 0; i < K && same; ++i) {
+            const int id =
+                caster.trace(caster.rayAt(x + double(i) / (K - 1), y + double(j) / (K - 1)))
+                    .surface;
+            if (first == -2) first = id;
+            same = id == first;
+        }
+    const glm::dvec4 box = sum / double(N * N);
+    float* pc = out.centre.pixel(x, y);
+    float* pb = out.box.pixel(x, y);
+    for (int k = 0; k < 4; ++k) {
+        pc[k] = float(centre[k]);
+        pb[k] = float(box[k]);
+    }
+    out.interior[std::size_t(y) * out.centre.width + x] = same && first >= 0 ? 1 : 0;
+}
+
+// Calls renderRow(y) for rows 0..rows-1 on `threads` threads (this one among them), each thread
+// taking the next row not yet taken.
+void forEachRow(int rows, int threads, const std::function<void(int)>& renderRow) {
+    std::atomic<int> nextRow{0};
+    auto worker = [&] {
+        for (int y = nextRow++; y < rows; y = nextRow++)
+            renderRow(y);
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t)
+        pool.emplace_back(worker);
+    worker();
+    for (std::thread& t : pool)
+        t.join();
+}
+
+} // namespace
+
+Result<ReferenceImage> raycastReference(const Scene& scene, const RenderOptions& options,
+                                        double time, const ReferenceOptions& reference) {
+    LANTERN_TRY(scene.validate());
+    LANTERN_TRY(checkOptions(scene, options, time, reference));
+    const int root = options.root < 0 ? scene.defaultRoot : options.root;
+    const Pose pose = evaluatePose(scene, root, time);
+    auto camera = frame::resolveCamera(scene, pose, options.camera,
+                                       double(options.width) / double(options.height),
+                                       options.depth, "camera");
+    if (!camera) return std::move(camera).error();
+    const frame::Lighting lit = frame::resolveLighting(scene, root, options);
+    auto surfaces = placeSurfaces(scene, pose, camera->viewFromWorld, reference.shapes);
+    if (!surfaces) return std::move(surfaces).error();
 
     ref::Settings settings;
     settings.globalAmbient = lit.model.globalAmbient;
     settings.localViewer = lit.model.localViewer;
     settings.specular = lit.model.specular;
-    settings.specularOn = true;
-    Caster caster(std::move(surfaces), *camera,
-                  ref::eyeLights(scene, pose, camera->viewFromWorld, false), settings, options);
+    Caster caster(std::move(*surfaces), *camera,
+                  frame::placeLights(scene, pose, camera->viewFromWorld, false), settings, options);
     caster.setTwoSided(lit.model.twoSided);
 
     const int W = options.width, H = options.height;
@@ -306,50 +362,13 @@ Result<ReferenceImage> raycastReference(const Scene& scene, const RenderOptions&
     out.interior.assign(std::size_t(W) * std::size_t(H), 0);
     out.rays = std::size_t(W) * std::size_t(H) * std::size_t(1 + N * N + K * K);
 
-    auto renderRow = [&](int y) {
-        for (int x = 0; x < W; ++x) {
-            const Ray c = caster.rayAt(x + 0.5, y + 0.5);
-            const glm::dvec4 centre = caster.shade(caster.trace(c));
-            glm::dvec4 sum(0.0);
-            for (int j = 0; j < N; ++j)
-                for (int i = 0; i < N; ++i) {
-                    const Ray r = caster.rayAt(x + (i + 0.5) / N, y + (j + 0.5) / N);
-                    sum += caster.shade(caster.trace(r));
-                }
-            int first = -2;
-            bool same = true;
-            for (int j = 0; j < K && same; ++j)
-                for (int i = 0; i < K && same; ++i) {
-                    const int id =
-                        caster.trace(caster.rayAt(x + double(i) / (K - 1), y + double(j) / (K - 1)))
-                            .surface;
-                    if (first == -2) first = id;
-                    same = id == first;
-                }
-            const glm::dvec4 box = sum / double(N * N);
-            float* pc = out.centre.pixel(x, y);
-            float* pb = out.box.pixel(x, y);
-            for (int k = 0; k < 4; ++k) {
-                pc[k] = float(centre[k]);
-                pb[k] = float(box[k]);
-            }
-            out.interior[std::size_t(y) * W + x] = same && first >= 0 ? 1 : 0;
-        }
-    };
     int threads = reference.threads > 0 ? reference.threads
                                         : int(std::max(1u, std::thread::hardware_concurrency()));
     threads = std::min(threads, H);
-    std::atomic<int> nextRow{0};
-    auto worker = [&] {
-        for (int y = nextRow++; y < H; y = nextRow++)
-            renderRow(y);
-    };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t)
-        pool.emplace_back(worker);
-    worker();
-    for (std::thread& t : pool)
-        t.join();
+    forEachRow(H, threads, [&](int y) {
+        for (int x = 0; x < W; ++x)
+            renderPixel(caster, x, y, N, K, out);
+    });
     return out;
 }
 

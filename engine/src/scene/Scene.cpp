@@ -41,6 +41,253 @@ Result<void> validateSide(const MaterialSide& s, const std::string& object) {
     return {};
 }
 
+Result<void> validatePrimitive(const Primitive& prim, const std::string& obj,
+                               std::size_t materialCount) {
+    const std::size_t n = prim.positions.size();
+    if (prim.normals.size() != n)
+        return invalid(obj, "has " + std::to_string(prim.normals.size()) + " normals for " +
+                                std::to_string(n) + " positions");
+    if (!prim.colors.empty() && prim.colors.size() != n)
+        return invalid(obj, "has " + std::to_string(prim.colors.size()) + " colours for " +
+                                std::to_string(n) + " positions");
+    if (!prim.texcoords.empty() && prim.texcoords.size() != n)
+        return invalid(obj, "has " + std::to_string(prim.texcoords.size()) +
+                                " texture coordinates for " + std::to_string(n) + " positions");
+    if (prim.indices.empty() && n % 3 != 0)
+        return invalid(obj, "non-indexed triangle list with " + std::to_string(n) +
+                                " vertices (not a multiple of 3)");
+    if (prim.indices.size() % 3 != 0)
+        return invalid(obj + ".indices", "index count " + std::to_string(prim.indices.size()) +
+                                             " is not a multiple of 3");
+    for (std::size_t i = 0; i < prim.indices.size(); ++i)
+        if (prim.indices[i] >= n)
+            return invalid(obj + "." + at("indices", i),
+                           "index " + std::to_string(prim.indices[i]) +
+                               " is out of range (vertex count " + std::to_string(n) + ")");
+    for (std::size_t i = 0; i < n; ++i)
+        if (!finite(prim.positions[i]))
+            return invalid(obj + "." + at("positions", i), "non-finite position");
+    for (std::size_t i = 0; i < n; ++i)
+        if (!finite(prim.normals[i]))
+            return invalid(obj + "." + at("normals", i), "non-finite normal");
+    for (std::size_t i = 0; i < prim.colors.size(); ++i)
+        if (!finite(glm::vec3(prim.colors[i])) || !std::isfinite(prim.colors[i].w))
+            return invalid(obj + "." + at("colors", i), "non-finite colour");
+    for (std::size_t i = 0; i < prim.texcoords.size(); ++i)
+        if (!std::isfinite(prim.texcoords[i].x) || !std::isfinite(prim.texcoords[i].y))
+            return invalid(obj + "." + at("texcoords", i), "non-finite texture coordinate");
+    if (prim.material < -1 || prim.material >= int(materialCount))
+        return invalid(obj + ".material",
+                       "material " + std::to_string(prim.material) + " does not exist");
+    return {};
+}
+
+Result<void> validateMeshes(const Scene& scene) {
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+        for (std::size_t p = 0; p < scene.meshes[m].primitives.size(); ++p)
+            LANTERN_TRY(validatePrimitive(scene.meshes[m].primitives[p],
+                                          at("meshes", m) + "." + at("primitives", p),
+                                          scene.materials.size()));
+    return {};
+}
+
+Result<void> validateMaterials(const Scene& scene) {
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        const Material& mat = scene.materials[i];
+        const std::string obj = at("materials", i);
+        LANTERN_TRY(validateSide(mat.front, obj));
+        if (mat.back) LANTERN_TRY(validateSide(*mat.back, obj + ".back"));
+        if (!finite(mat.alphaCutoff) || mat.alphaCutoff < 0.0)
+            return invalid(obj + ".alphaCutoff", "alpha cutoff must be a finite number >= 0");
+        if (mat.baseColorTexture < -1 || mat.baseColorTexture >= int(scene.textures.size()))
+            return invalid(obj + ".baseColorTexture",
+                           "texture " + std::to_string(mat.baseColorTexture) + " does not exist");
+    }
+    return {};
+}
+
+Result<void> validateTextures(const Scene& scene) {
+    for (std::size_t i = 0; i < scene.textures.size(); ++i) {
+        const Texture& t = scene.textures[i];
+        if (t.width <= 0 || t.height <= 0 ||
+            t.rgba8.size() != std::size_t(t.width) * std::size_t(t.height) * 4)
+            return invalid(at("textures", i), "texture size and pixel data do not match");
+    }
+    return {};
+}
+
+Result<void> validateLight(const Light& l, const std::string& obj) {
+    if (!finite(l.ambient) || !finite(l.diffuse) || !finite(l.specular))
+        return invalid(obj, "non-finite light colour");
+    if (!finite(l.attenuation))
+        return invalid(obj + ".attenuation", "non-finite attenuation coefficient");
+    if (l.attenuation.x < 0 || l.attenuation.y < 0 || l.attenuation.z < 0)
+        return invalid(obj + ".attenuation", "attenuation coefficients must be >= 0");
+    if (l.attenuation.x == 0 && l.attenuation.y == 0 && l.attenuation.z == 0)
+        return invalid(obj + ".attenuation",
+                       "attenuation coefficients are all zero (infinite light)");
+    if (!finite(l.spotExponent) || l.spotExponent < 0)
+        return invalid(obj + ".spotExponent", "spot exponent must be a finite number >= 0");
+    if (!finite(l.spotCutoffDeg) ||
+        !((l.spotCutoffDeg >= 0 && l.spotCutoffDeg <= 90) || l.spotCutoffDeg == 180))
+        return invalid(obj + ".spotCutoffDeg",
+                       "spot cutoff " + std::to_string(l.spotCutoffDeg) +
+                           " is outside [0, 90] and not 180 (GL's no-cone value): a cone "
+                           "wider than a half-space is not a spot light");
+    if (std::isnan(l.range) || !(l.range > 0)) return invalid(obj + ".range", "range must be > 0");
+    if (!finite(l.innerConeAngle) || !finite(l.outerConeAngle) || l.innerConeAngle < 0 ||
+        !(l.innerConeAngle < l.outerConeAngle) || l.outerConeAngle > 1.5707963267948966)
+        return invalid(obj, "spot cone angles must satisfy 0 <= inner < outer <= pi/2");
+    return {};
+}
+
+Result<void> validateLights(const Scene& scene) {
+    for (std::size_t i = 0; i < scene.lights.size(); ++i)
+        LANTERN_TRY(validateLight(scene.lights[i], at("lights", i)));
+    return {};
+}
+
+Result<void> validateCameras(const Scene& scene) {
+    for (std::size_t i = 0; i < scene.cameras.size(); ++i) {
+        const std::string obj = at("cameras", i);
+        LANTERN_TRY(checkProjection(scene.cameras[i].projection, obj));
+        if (scene.cameras[i].lookAt)
+            LANTERN_TRY(checkLookAt(*scene.cameras[i].lookAt, obj + ".lookAt"));
+    }
+    return {};
+}
+
+// One node's references and transform; its children are checked by validateNodes.
+Result<void> validateNode(const Scene& scene, const Node& nd, const std::string& obj) {
+    if (nd.mesh < -1 || nd.mesh >= int(scene.meshes.size()))
+        return invalid(obj + ".mesh", "mesh " + std::to_string(nd.mesh) + " does not exist");
+    if (nd.camera < -1 || nd.camera >= int(scene.cameras.size()))
+        return invalid(obj + ".camera", "camera " + std::to_string(nd.camera) + " does not exist");
+    if (nd.light < -1 || nd.light >= int(scene.lights.size()))
+        return invalid(obj + ".light", "light " + std::to_string(nd.light) + " does not exist");
+    if (!finite(nd.translation) || !finite(nd.scale) ||
+        !finite(glm::dvec4(nd.rotation.x, nd.rotation.y, nd.rotation.z, nd.rotation.w)))
+        return invalid(obj, "non-finite transform");
+    if (nd.matrix)
+        for (int c = 0; c < 4; ++c)
+            if (!finite((*nd.matrix)[c])) return invalid(obj + ".matrix", "non-finite matrix");
+    return {};
+}
+
+// With one parent per node, a cycle is a chain of parents that never reaches a root.
+Result<void> checkNoCycles(const std::vector<int>& parent) {
+    for (std::size_t i = 0; i < parent.size(); ++i) {
+        int p = parent[i];
+        std::size_t steps = 0;
+        while (p != -1 && steps <= parent.size()) {
+            p = parent[p];
+            ++steps;
+        }
+        if (p != -1) return invalid(at("nodes", i), "node hierarchy contains a cycle");
+    }
+    return {};
+}
+
+// Nodes: references in range, finite transforms, a forest (one parent, no cycles). Returns each
+// node's parent (-1 for none).
+Result<std::vector<int>> validateNodes(const Scene& scene) {
+    const std::vector<Node>& nodes = scene.nodes;
+    std::vector<int> parent(nodes.size(), -1);
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+        const Node& nd = nodes[i];
+        const std::string obj = at("nodes", i);
+        LANTERN_TRY(validateNode(scene, nd, obj));
+        for (std::size_t c = 0; c < nd.children.size(); ++c) {
+            const int ch = nd.children[c];
+            if (ch < 0 || ch >= int(nodes.size()))
+                return invalid(obj + "." + at("children", c),
+                               "node " + std::to_string(ch) + " does not exist");
+            if (ch == int(i))
+                return invalid(obj + "." + at("children", c), "node is its own child (a cycle)");
+            if (parent[ch] != -1)
+                return invalid(obj + "." + at("children", c), "node " + std::to_string(ch) +
+                                                                  " already has parent node " +
+                                                                  std::to_string(parent[ch]));
+            parent[ch] = int(i);
+        }
+    }
+    LANTERN_TRY(checkNoCycles(parent));
+    return parent;
+}
+
+Result<void> validateSampler(const AnimationSampler& smp, const std::string& sobj) {
+    if (smp.times.empty()) return invalid(sobj + ".input", "sampler has no keyframes");
+    for (std::size_t k = 0; k < smp.times.size(); ++k) {
+        if (!finite(smp.times[k]) || smp.times[k] < 0)
+            return invalid(sobj + ".input",
+                           "key time " + std::to_string(k) + " is negative or not finite");
+        if (k > 0 && !(smp.times[k] > smp.times[k - 1]))
+            return invalid(sobj + ".input",
+                           "key times are not strictly increasing at key " + std::to_string(k));
+    }
+    const std::size_t per = smp.interpolation == Interpolation::CubicSpline ? 3 : 1;
+    if (smp.values.size() != smp.times.size() * per)
+        return invalid(sobj + ".output", "has " + std::to_string(smp.values.size()) +
+                                             " values for " + std::to_string(smp.times.size()) +
+                                             " keys (expected " +
+                                             std::to_string(smp.times.size() * per) + ")");
+    if (smp.interpolation == Interpolation::CubicSpline && smp.times.size() < 2)
+        return invalid(sobj, "CUBICSPLINE needs at least two keys");
+    for (const auto& v : smp.values)
+        if (!finite(v)) return invalid(sobj + ".output", "non-finite keyframe value");
+    return {};
+}
+
+Result<void> validateChannel(const Scene& scene, const Animation& an, const AnimationChannel& ch,
+                             const std::string& cobj) {
+    if (ch.sampler < 0 || ch.sampler >= int(an.samplers.size()))
+        return invalid(cobj + ".sampler",
+                       "sampler " + std::to_string(ch.sampler) + " does not exist");
+    if (ch.node < 0 || ch.node >= int(scene.nodes.size()))
+        return invalid(cobj + ".target.node",
+                       "node " + std::to_string(ch.node) + " does not exist");
+    if (scene.nodes[ch.node].matrix)
+        return invalid(cobj + ".target.node",
+                       "node " + std::to_string(ch.node) + " has a matrix and cannot be animated");
+    return {};
+}
+
+Result<void> validateAnimations(const Scene& scene) {
+    for (std::size_t a = 0; a < scene.animations.size(); ++a) {
+        const Animation& an = scene.animations[a];
+        const std::string obj = at("animations", a);
+        for (std::size_t s = 0; s < an.samplers.size(); ++s)
+            LANTERN_TRY(validateSampler(an.samplers[s], obj + "." + at("samplers", s)));
+        for (std::size_t c = 0; c < an.channels.size(); ++c)
+            LANTERN_TRY(validateChannel(scene, an, an.channels[c], obj + "." + at("channels", c)));
+    }
+    return {};
+}
+
+// The scenes (roots): at least one, the default one existing, each listing root nodes only.
+Result<void> validateRoots(const Scene& scene, const std::vector<int>& parent) {
+    const std::vector<SceneRoot>& roots = scene.roots;
+    if (roots.empty()) return invalid("scenes", "the scene has no roots (nothing to draw)");
+    if (scene.defaultRoot < 0 || scene.defaultRoot >= int(roots.size()))
+        return invalid("scene",
+                       "default scene " + std::to_string(scene.defaultRoot) + " does not exist");
+    for (std::size_t r = 0; r < roots.size(); ++r) {
+        for (std::size_t k = 0; k < roots[r].nodes.size(); ++k) {
+            const int n = roots[r].nodes[k];
+            const std::string obj = at("scenes", r) + "." + at("nodes", k);
+            if (n < 0 || n >= int(scene.nodes.size()))
+                return invalid(obj, "node " + std::to_string(n) + " does not exist");
+            if (parent[n] != -1)
+                return invalid(obj, "node " + std::to_string(n) + " is a child of node " +
+                                        std::to_string(parent[n]) + ", not a root");
+        }
+        if (roots[r].lighting && !finite(roots[r].lighting->globalAmbient))
+            return invalid(at("scenes", r) + ".extensions.LANTERN_lighting.globalAmbient",
+                           "non-finite colour");
+    }
+    return {};
+}
+
 } // namespace
 
 const char* toString(ShadingMode mode) noexcept {
@@ -121,202 +368,15 @@ void Bounds::extend(const glm::dvec3& p) {
 double Bounds::radius() const { return empty() ? 0.0 : glm::length(max - min) * 0.5; }
 
 Result<void> Scene::validate() const {
-    for (std::size_t m = 0; m < meshes.size(); ++m) {
-        for (std::size_t p = 0; p < meshes[m].primitives.size(); ++p) {
-            const Primitive& prim = meshes[m].primitives[p];
-            const std::string obj = at("meshes", m) + "." + at("primitives", p);
-            const std::size_t n = prim.positions.size();
-            if (prim.normals.size() != n)
-                return invalid(obj, "has " + std::to_string(prim.normals.size()) +
-                                        " normals for " + std::to_string(n) + " positions");
-            if (!prim.colors.empty() && prim.colors.size() != n)
-                return invalid(obj, "has " + std::to_string(prim.colors.size()) +
-                                        " colours for " + std::to_string(n) + " positions");
-            if (!prim.texcoords.empty() && prim.texcoords.size() != n)
-                return invalid(obj, "has " + std::to_string(prim.texcoords.size()) +
-                                        " texture coordinates for " + std::to_string(n) +
-                                        " positions");
-            if (prim.indices.empty() && n % 3 != 0)
-                return invalid(obj, "non-indexed triangle list with " + std::to_string(n) +
-                                        " vertices (not a multiple of 3)");
-            if (prim.indices.size() % 3 != 0)
-                return invalid(obj + ".indices", "index count " +
-                                                     std::to_string(prim.indices.size()) +
-                                                     " is not a multiple of 3");
-            for (std::size_t i = 0; i < prim.indices.size(); ++i)
-                if (prim.indices[i] >= n)
-                    return invalid(obj + "." + at("indices", i),
-                                   "index " + std::to_string(prim.indices[i]) +
-                                       " is out of range (vertex count " + std::to_string(n) +
-                                       ")");
-            for (std::size_t i = 0; i < n; ++i)
-                if (!finite(prim.positions[i]))
-                    return invalid(obj + "." + at("positions", i), "non-finite position");
-            for (std::size_t i = 0; i < n; ++i)
-                if (!finite(prim.normals[i]))
-                    return invalid(obj + "." + at("normals", i), "non-finite normal");
-            for (std::size_t i = 0; i < prim.colors.size(); ++i)
-                if (!finite(glm::vec3(prim.colors[i])) || !std::isfinite(prim.colors[i].w))
-                    return invalid(obj + "." + at("colors", i), "non-finite colour");
-            for (std::size_t i = 0; i < prim.texcoords.size(); ++i)
-                if (!std::isfinite(prim.texcoords[i].x) || !std::isfinite(prim.texcoords[i].y))
-                    return invalid(obj + "." + at("texcoords", i),
-                                   "non-finite texture coordinate");
-            if (prim.material < -1 || prim.material >= int(materials.size()))
-                return invalid(obj + ".material",
-                               "material " + std::to_string(prim.material) + " does not exist");
-        }
-    }
-    for (std::size_t i = 0; i < materials.size(); ++i) {
-        const Material& mat = materials[i];
-        const std::string obj = at("materials", i);
-        LANTERN_TRY(validateSide(mat.front, obj));
-        if (mat.back) LANTERN_TRY(validateSide(*mat.back, obj + ".back"));
-        if (!finite(mat.alphaCutoff) || mat.alphaCutoff < 0.0)
-            return invalid(obj + ".alphaCutoff", "alpha cutoff must be a finite number >= 0");
-        if (mat.baseColorTexture < -1 || mat.baseColorTexture >= int(textures.size()))
-            return invalid(obj + ".baseColorTexture",
-                           "texture " + std::to_string(mat.baseColorTexture) +
-                               " does not exist");
-    }
-    for (std::size_t i = 0; i < textures.size(); ++i) {
-        const Texture& t = textures[i];
-        if (t.width <= 0 || t.height <= 0 ||
-            t.rgba8.size() != std::size_t(t.width) * std::size_t(t.height) * 4)
-            return invalid(at("textures", i), "texture size and pixel data do not match");
-    }
-    for (std::size_t i = 0; i < lights.size(); ++i) {
-        const Light& l = lights[i];
-        const std::string obj = at("lights", i);
-        if (!finite(l.ambient) || !finite(l.diffuse) || !finite(l.specular))
-            return invalid(obj, "non-finite light colour");
-        if (!finite(l.attenuation))
-            return invalid(obj + ".attenuation", "non-finite attenuation coefficient");
-        if (l.attenuation.x < 0 || l.attenuation.y < 0 || l.attenuation.z < 0)
-            return invalid(obj + ".attenuation", "attenuation coefficients must be >= 0");
-        if (l.attenuation.x == 0 && l.attenuation.y == 0 && l.attenuation.z == 0)
-            return invalid(obj + ".attenuation",
-                           "attenuation coefficients are all zero (infinite light)");
-        if (!finite(l.spotExponent) || l.spotExponent < 0)
-            return invalid(obj + ".spotExponent", "spot exponent must be a finite number >= 0");
-        if (!finite(l.spotCutoffDeg) ||
-            !((l.spotCutoffDeg >= 0 && l.spotCutoffDeg <= 90) || l.spotCutoffDeg == 180))
-            return invalid(obj + ".spotCutoffDeg",
-                           "spot cutoff " + std::to_string(l.spotCutoffDeg) +
-                               " is outside [0, 90] and not 180 (GL's no-cone value): a cone "
-                               "wider than a half-space is not a spot light");
-        if (std::isnan(l.range) || !(l.range > 0))
-            return invalid(obj + ".range", "range must be > 0");
-        if (!finite(l.innerConeAngle) || !finite(l.outerConeAngle) || l.innerConeAngle < 0 ||
-            !(l.innerConeAngle < l.outerConeAngle) || l.outerConeAngle > 1.5707963267948966)
-            return invalid(obj, "spot cone angles must satisfy 0 <= inner < outer <= pi/2");
-    }
-    for (std::size_t i = 0; i < cameras.size(); ++i) {
-        const std::string obj = at("cameras", i);
-        LANTERN_TRY(checkProjection(cameras[i].projection, obj));
-        if (cameras[i].lookAt) LANTERN_TRY(checkLookAt(*cameras[i].lookAt, obj + ".lookAt"));
-    }
-    // Nodes: references in range, finite transforms, a forest (one parent, no cycles).
-    std::vector<int> parent(nodes.size(), -1);
-    for (std::size_t i = 0; i < nodes.size(); ++i) {
-        const Node& nd = nodes[i];
-        const std::string obj = at("nodes", i);
-        if (nd.mesh < -1 || nd.mesh >= int(meshes.size()))
-            return invalid(obj + ".mesh", "mesh " + std::to_string(nd.mesh) + " does not exist");
-        if (nd.camera < -1 || nd.camera >= int(cameras.size()))
-            return invalid(obj + ".camera",
-                           "camera " + std::to_string(nd.camera) + " does not exist");
-        if (nd.light < -1 || nd.light >= int(lights.size()))
-            return invalid(obj + ".light", "light " + std::to_string(nd.light) + " does not exist");
-        if (!finite(nd.translation) || !finite(nd.scale) ||
-            !finite(glm::dvec4(nd.rotation.x, nd.rotation.y, nd.rotation.z, nd.rotation.w)))
-            return invalid(obj, "non-finite transform");
-        if (nd.matrix)
-            for (int c = 0; c < 4; ++c)
-                if (!finite((*nd.matrix)[c])) return invalid(obj + ".matrix", "non-finite matrix");
-        for (std::size_t c = 0; c < nd.children.size(); ++c) {
-            const int ch = nd.children[c];
-            if (ch < 0 || ch >= int(nodes.size()))
-                return invalid(obj + "." + at("children", c),
-                               "node " + std::to_string(ch) + " does not exist");
-            if (ch == int(i))
-                return invalid(obj + "." + at("children", c), "node is its own child (a cycle)");
-            if (parent[ch] != -1)
-                return invalid(obj + "." + at("children", c),
-                               "node " + std::to_string(ch) + " already has parent node " +
-                                   std::to_string(parent[ch]));
-            parent[ch] = int(i);
-        }
-    }
-    // With one parent per node, a cycle is a chain of parents that never reaches a root.
-    for (std::size_t i = 0; i < nodes.size(); ++i) {
-        int p = parent[i];
-        std::size_t steps = 0;
-        while (p != -1 && steps <= nodes.size()) {
-            p = parent[p];
-            ++steps;
-        }
-        if (p != -1) return invalid(at("nodes", i), "node hierarchy contains a cycle");
-    }
-    for (std::size_t a = 0; a < animations.size(); ++a) {
-        const Animation& an = animations[a];
-        const std::string obj = at("animations", a);
-        for (std::size_t s = 0; s < an.samplers.size(); ++s) {
-            const AnimationSampler& smp = an.samplers[s];
-            const std::string sobj = obj + "." + at("samplers", s);
-            if (smp.times.empty()) return invalid(sobj + ".input", "sampler has no keyframes");
-            for (std::size_t k = 0; k < smp.times.size(); ++k) {
-                if (!finite(smp.times[k]) || smp.times[k] < 0)
-                    return invalid(sobj + ".input", "key time " + std::to_string(k) +
-                                                        " is negative or not finite");
-                if (k > 0 && !(smp.times[k] > smp.times[k - 1]))
-                    return invalid(sobj + ".input", "key times are not strictly increasing "
-                                                    "at key " + std::to_string(k));
-            }
-            const std::size_t per = smp.interpolation == Interpolation::CubicSpline ? 3 : 1;
-            if (smp.values.size() != smp.times.size() * per)
-                return invalid(sobj + ".output",
-                               "has " + std::to_string(smp.values.size()) + " values for " +
-                                   std::to_string(smp.times.size()) + " keys (expected " +
-                                   std::to_string(smp.times.size() * per) + ")");
-            if (smp.interpolation == Interpolation::CubicSpline && smp.times.size() < 2)
-                return invalid(sobj, "CUBICSPLINE needs at least two keys");
-            for (const auto& v : smp.values)
-                if (!finite(v)) return invalid(sobj + ".output", "non-finite keyframe value");
-        }
-        for (std::size_t c = 0; c < an.channels.size(); ++c) {
-            const AnimationChannel& ch = an.channels[c];
-            const std::string cobj = obj + "." + at("channels", c);
-            if (ch.sampler < 0 || ch.sampler >= int(an.samplers.size()))
-                return invalid(cobj + ".sampler",
-                               "sampler " + std::to_string(ch.sampler) + " does not exist");
-            if (ch.node < 0 || ch.node >= int(nodes.size()))
-                return invalid(cobj + ".target.node",
-                               "node " + std::to_string(ch.node) + " does not exist");
-            if (nodes[ch.node].matrix)
-                return invalid(cobj + ".target.node",
-                               "node " + std::to_string(ch.node) +
-                                   " has a matrix and cannot be animated");
-        }
-    }
-    if (roots.empty()) return invalid("scenes", "the scene has no roots (nothing to draw)");
-    if (defaultRoot < 0 || defaultRoot >= int(roots.size()))
-        return invalid("scene", "default scene " + std::to_string(defaultRoot) + " does not exist");
-    for (std::size_t r = 0; r < roots.size(); ++r) {
-        for (std::size_t k = 0; k < roots[r].nodes.size(); ++k) {
-            const int n = roots[r].nodes[k];
-            const std::string obj = at("scenes", r) + "." + at("nodes", k);
-            if (n < 0 || n >= int(nodes.size()))
-                return invalid(obj, "node " + std::to_string(n) + " does not exist");
-            if (parent[n] != -1)
-                return invalid(obj, "node " + std::to_string(n) + " is a child of node " +
-                                        std::to_string(parent[n]) + ", not a root");
-        }
-        if (roots[r].lighting && !finite(roots[r].lighting->globalAmbient))
-            return invalid(at("scenes", r) + ".extensions.LANTERN_lighting.globalAmbient",
-                           "non-finite colour");
-    }
-    return {};
+    LANTERN_TRY(validateMeshes(*this));
+    LANTERN_TRY(validateMaterials(*this));
+    LANTERN_TRY(validateTextures(*this));
+    LANTERN_TRY(validateLights(*this));
+    LANTERN_TRY(validateCameras(*this));
+    Result<std::vector<int>> parent = validateNodes(*this);
+    if (!parent) return std::move(parent).error();
+    LANTERN_TRY(validateAnimations(*this));
+    return validateRoots(*this, *parent);
 }
 
 Pose evaluatePose(const Scene& scene, int root, double time) {

@@ -122,53 +122,63 @@ std::vector<BezierPatch> teapotPatches() {
     return patches;
 }
 
-Primitive makeTeapot(int level) {
-    const int n = std::clamp(level, 1, kMaxTeapotLevel);
-    const std::vector<BezierPatch> patches = teapotPatches();
+namespace {
 
+constexpr std::uint32_t kNone = ~0u;
+
+// The patches' vertices before welding, in double precision.
+struct PatchMesh {
     std::vector<glm::dvec3> positions, normals;
     std::vector<std::uint32_t> indices;
-    double extent = 0.0;
-    for (const BezierPatch& patch : patches) {
-        extent = std::max(extent, patchSize(patch));
-        bool collapsed[4];
-        for (int e = 0; e < 4; ++e) collapsed[e] = isCollapsedEdge(patch, e);
-        const std::uint32_t base = std::uint32_t(positions.size());
-        for (int j = 0; j <= n; ++j)
-            for (int i = 0; i <= n; ++i) {
-                const double u = double(i) / n, v = double(j) / n;
-                glm::dvec3 position = evaluatePatch(patch, u, v).position;
-                // A collapsed edge becomes one point (its first control point, a corner), so
-                // that the triangles there become a fan instead of slivers of random winding.
-                const int edgeAt[4] = {j == 0 ? 0 : -1, i == n ? 1 : -1, j == n ? 2 : -1,
-                                       i == 0 ? 3 : -1};
-                for (int e : edgeAt)
-                    if (e >= 0 && collapsed[e]) position = patch[std::size_t(edgeIndices(e)[0])];
-                positions.push_back(position);
-                normals.push_back(patchNormal(patch, u, v));
-            }
-        const auto at = [&](int i, int j) { return base + std::uint32_t(j * (n + 1) + i); };
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i) {
-                // Counter-clockwise in (u, v), hence around du x dv, which points outwards.
-                const std::uint32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1),
-                                    d = at(i, j + 1);
-                indices.insert(indices.end(), {a, b, c, a, c, d});
-            }
-    }
+    double extent = 0.0; ///< the largest patch's size
+};
 
-    // Weld. Neighbouring patches evaluate a shared edge to the same points up to rounding
-    // (exactly when they run it in the same direction): vertices closer than `samePoint` take
-    // one position, and become one vertex where their normals agree (everywhere the surface
-    // is smooth across the seam; a crease keeps one vertex per side).
-    const double samePoint = 1e-9 * extent;
+// Appends `patch` tessellated into n x n quads.
+void tessellatePatch(const BezierPatch& patch, int n, PatchMesh& mesh) {
+    std::vector<glm::dvec3>& positions = mesh.positions;
+    mesh.extent = std::max(mesh.extent, patchSize(patch));
+    bool collapsed[4];
+    for (int e = 0; e < 4; ++e)
+        collapsed[e] = isCollapsedEdge(patch, e);
+    const std::uint32_t base = std::uint32_t(positions.size());
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            const double u = double(i) / n, v = double(j) / n;
+            glm::dvec3 position = evaluatePatch(patch, u, v).position;
+            // A collapsed edge becomes one point (its first control point, a corner), so
+            // that the triangles there become a fan instead of slivers of random winding.
+            const int edgeAt[4] = {j == 0 ? 0 : -1, i == n ? 1 : -1, j == n ? 2 : -1,
+                                   i == 0 ? 3 : -1};
+            for (int e : edgeAt)
+                if (e >= 0 && collapsed[e]) position = patch[std::size_t(edgeIndices(e)[0])];
+            positions.push_back(position);
+            mesh.normals.push_back(patchNormal(patch, u, v));
+        }
+    const auto at = [&](int i, int j) { return base + std::uint32_t(j * (n + 1) + i); };
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            // Counter-clockwise in (u, v), hence around du x dv, which points outwards.
+            const std::uint32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1),
+                                d = at(i, j + 1);
+            mesh.indices.insert(mesh.indices.end(), {a, b, c, a, c, d});
+        }
+}
+
+// Weld. Neighbouring patches evaluate a shared edge to the same points up to rounding
+// (exactly when they run it in the same direction): vertices closer than `samePoint` take
+// one position, and become one vertex where their normals agree (everywhere the surface
+// is smooth across the seam; a crease keeps one vertex per side). Returns, per vertex, the
+// vertex it is welded to (itself for the one kept).
+std::vector<std::uint32_t> weldVertices(PatchMesh& mesh) {
+    std::vector<glm::dvec3>& positions = mesh.positions;
+    const std::vector<glm::dvec3>& normals = mesh.normals;
+    const double samePoint = 1e-9 * mesh.extent;
     const double sameNormal = 1e-6;
     const std::size_t count = positions.size();
     std::vector<std::uint32_t> order(count);
     std::iota(order.begin(), order.end(), 0u);
     std::sort(order.begin(), order.end(),
               [&](std::uint32_t a, std::uint32_t b) { return positions[a].x < positions[b].x; });
-    constexpr std::uint32_t kNone = ~0u;
     std::vector<std::uint32_t> weldedTo(count, kNone);
     std::vector<std::uint32_t> cluster;
     for (std::size_t k = 0; k < count; ++k) {
@@ -193,14 +203,20 @@ Primitive makeTeapot(int level) {
                     weldedTo[cluster[j]] = x;
         }
     }
+    return weldedTo;
+}
 
+// The kept vertices in float, and the triangles that still cover something.
+Primitive weldedPrimitive(const PatchMesh& mesh, const std::vector<std::uint32_t>& weldedTo) {
+    const std::vector<std::uint32_t>& indices = mesh.indices;
+    const std::size_t count = mesh.positions.size();
     Primitive prim;
     std::vector<std::uint32_t> newIndex(count, kNone);
     for (std::uint32_t v = 0; v < count; ++v) {
         if (weldedTo[v] != v) continue;
         newIndex[v] = std::uint32_t(prim.positions.size());
-        prim.positions.push_back(glm::vec3(positions[v]));
-        prim.normals.push_back(glm::vec3(normals[v]));
+        prim.positions.push_back(glm::vec3(mesh.positions[v]));
+        prim.normals.push_back(glm::vec3(mesh.normals[v]));
     }
     for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
         const std::uint32_t a = newIndex[weldedTo[indices[t]]],
@@ -212,6 +228,17 @@ Primitive makeTeapot(int level) {
         prim.indices.insert(prim.indices.end(), {a, b, c});
     }
     return prim;
+}
+
+} // namespace
+
+Primitive makeTeapot(int level) {
+    const int n = std::clamp(level, 1, kMaxTeapotLevel);
+    PatchMesh mesh;
+    for (const BezierPatch& patch : teapotPatches())
+        tessellatePatch(patch, n, mesh);
+    const std::vector<std::uint32_t> weldedTo = weldVertices(mesh);
+    return weldedPrimitive(mesh, weldedTo);
 }
 
 } // namespace lantern::scene

@@ -1,0 +1,88 @@
+// BenchAccuracy.h: the pieces of `lantern bench accuracy`: the analytic benchmark scenes
+// (numerics.md section 7.1, S1 and S2), one result row per configuration, the Pareto fronts, the
+// CSV and markdown report and the SVG plot.
+#pragma once
+
+#include "bench/BenchHarness.h"
+
+#include <cstdint>
+#include <lantern/Lantern.h>
+#include <lantern/Reference.h>
+#include <string>
+#include <vector>
+
+namespace lantern::cli {
+
+/// A benchmark scene and the analytic surfaces its meshes stand for.
+struct BenchScene {
+    Scene scene;
+    std::vector<AnalyticShape> shapes;
+    std::size_t triangles = 0;
+};
+
+/// The scene names makeBenchScene() knows: "sphere" (S1) and "spot" (S2).
+const std::vector<std::string>& benchSceneNames();
+
+/// S1 "sphere": a unit sphere 4 units in front of a 40-degree camera, one point light at
+/// eye-space (2, 2, 0), GL defaults (distant viewer, no attenuation, global ambient 0.2),
+/// material ambient 0.2, diffuse 0.8, specular 1 with the given shininess.
+/// S2 "spot": an 8 x 8 plane seen from above at an angle, lit by a GL spot 2 units above it
+/// (cutoff 30 degrees, exponent 16, attenuation (1, 0.1, 0.01)), the same material.
+/// `segments`: sphere segments around (segments / 2 rings), or plane subdivisions per side.
+BenchScene makeBenchScene(const std::string& name, double shininess, int segments);
+
+/// One configuration of the accuracy sweep and what it measured.
+struct AccuracyRow {
+    std::string scene;
+    double shininess = 0.0;
+    int width = 0, height = 0;
+    ShadingMode shading = ShadingMode::Phong;
+    int segments = 0;
+    std::size_t triangles = 0;
+    int msaa = 1;
+    double ms = 0.0;           ///< median of the rounds' median frame times
+    double msMin = 0.0;        ///< fastest timed frame
+    double msWall = 0.0;       ///< median render() wall time, readback included
+    double spread = 0.0;       ///< (slowest - fastest round median) / ms: the drift seen
+    double firstMs = 0.0;      ///< the first frame (pipeline JIT when it compiled variants)
+    std::size_t pipelines = 0; ///< variants the first frame compiled
+    double floorMs = -1.0; ///< the trivial shader on the same geometry and pixels; < 0: not timed
+    ErrorMetrics error;
+    std::uint64_t replacedNonFinite = 0; ///< NaN/Inf the renderer replaced while timing
+    bool paretoInterior = false;         ///< on the front of (ms, interior RMSE) within its group
+    bool paretoWhole = false; ///< on the front of (ms, whole-image RMSE) within its group
+
+    /// The comparable set: same scene, shininess and resolution.
+    std::string group() const;
+    /// "phong, 64 segments, 1x" for tables.
+    std::string setting() const;
+};
+
+/// Marks the Pareto fronts (no other row of the group is at least as fast and at least as
+/// accurate, and better in one) for the interior and whole-image RMSE.
+void markParetoFronts(std::vector<AccuracyRow>& rows);
+
+/// accuracy.csv: a header line, then one line per row.
+std::string accuracyCsv(const std::vector<AccuracyRow>& rows);
+
+/// How the sweep was measured, as the summary's first paragraph says it.
+struct AccuracyMethod {
+    std::string machine;   ///< machineDescription()
+    bool gpuClock = false; ///< frame times from the device's timestamps, else render() wall time
+    TimingPlan plan;
+    int referenceSamples = 0; ///< the references' box filter: N x N rays per pixel
+    double referenceSeconds = 0.0;
+    std::string spread; ///< spreadSentence() of the configurations' round spreads
+};
+
+/// accuracy.md: how it was measured; per group, the Pareto fronts and the fastest setting that
+/// meets each error budget; the first frames' pipeline compiles; the non-finite values seen.
+std::string accuracySummaryMarkdown(const std::vector<AccuracyRow>& rows,
+                                    const AccuracyMethod& how);
+
+/// An SVG document: per group, error against ms per frame on log axes (interior RMSE on the
+/// left, whole-image RMSE on the right), one curve per shading mode and sample count, the
+/// Pareto front drawn over them and the 1e-3 acceptance line.
+std::string accuracyPlotSvg(const std::vector<AccuracyRow>& rows);
+
+} // namespace lantern::cli

@@ -1,0 +1,131 @@
+// `lantern bench frame`: per-frame timing of one scene: the first frame (pipeline JIT) apart,
+// then the median and minimum of N frames for render only (GPU timestamps and the wall time of
+// Renderer::render, which includes readback) and for render + EXR write. Benchmarks, not tests.
+#include "bench/Bench.h"
+#include "common/CliSupport.h"
+#include "common/Commands.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+namespace lantern::cli {
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+double minimum(const std::vector<double>& v) {
+    return v.empty() ? 0.0 : *std::min_element(v.begin(), v.end());
+}
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+namespace {
+
+struct FrameArgs {
+    std::string scene = "builtin:spheres";
+    int width = 1280, height = 720;
+    int runs = 15;
+    int warmup = 2;
+    std::string compression = "zip";
+    bool half = false;
+    std::string outDir = "/tmp";
+    ShadingOptions shading;
+    DeviceOptions device;
+};
+
+int runFrame(const FrameArgs& a) {
+    RenderOptions options;
+    options.width = a.width;
+    options.height = a.height;
+    if (auto r = a.shading.apply(options); !r) return report(r.error());
+    auto compression = parseExrCompression(a.compression);
+    if (!compression)
+        return report(makeError(ErrorCode::InvalidInput, "unknown compression", "--compression"));
+    auto scene = loadScene(a.scene);
+    if (!scene) return report(scene.error());
+    auto renderer = Renderer::create(a.device.desc());
+    if (!renderer) return report(renderer.error());
+    auto prepared = renderer->prepare(std::make_shared<const Scene>(std::move(*scene)));
+    if (!prepared) return report(prepared.error());
+
+    std::vector<double> wall, gpu, write, total;
+    double firstMs = 0.0;
+    const auto path = std::filesystem::path(a.outDir) / "lantern-bench-frame.exr";
+    ExrOptions exr;
+    exr.compression = *compression;
+    exr.half = a.half;
+    for (int i = 0; i < a.warmup + a.runs; ++i) {
+        const auto t0 = std::chrono::steady_clock::now();
+        auto image = renderer->render(*prepared, options, 0.0);
+        if (!image) return report(image.error());
+        const double renderMs = msSince(t0);
+        const auto t1 = std::chrono::steady_clock::now();
+        if (auto w = writeExr(path, *image, exr); !w) return report(w.error());
+        const double writeMs = msSince(t1);
+        if (i == 0) firstMs = renderMs;
+        if (i < a.warmup) continue;
+        wall.push_back(renderMs);
+        gpu.push_back(renderer->lastFrameStats().gpuMs);
+        write.push_back(writeMs);
+        total.push_back(renderMs + writeMs);
+    }
+    std::error_code ec;
+    std::filesystem::remove(path, ec);
+    std::printf("scene %s, %dx%d, %s, device %s, %d runs after %d warm-up\n", a.scene.c_str(),
+                a.width, a.height,
+                a.shading.shading.empty() ? "scene shading" : a.shading.shading.c_str(),
+                renderer->device().name.c_str(), a.runs, a.warmup);
+    std::printf("%-34s %10s %10s\n", "", "median ms", "min ms");
+    std::printf("%-34s %10.2f\n", "first frame (pipeline JIT)", firstMs);
+    std::printf("%-34s %10.2f %10.2f\n", "render only: GPU render pass", median(gpu), minimum(gpu));
+    std::printf("%-34s %10.2f %10.2f\n", "render only: render() + readback", median(wall),
+                minimum(wall));
+    std::printf("%-34s %10.2f %10.2f\n",
+                ("EXR write (" + a.compression + (a.half ? ", half)" : ", float)")).c_str(),
+                median(write), minimum(write));
+    std::printf("%-34s %10.2f %10.2f\n", "render + EXR write", median(total), minimum(total));
+    return kOk;
+}
+
+} // namespace
+
+Runner addBenchCommand(CLI::App& app) {
+    CLI::App* bench = app.add_subcommand("bench", "Measure speed (and accuracy) on this machine");
+    bench->require_subcommand(1);
+    auto args = std::make_shared<FrameArgs>();
+    CLI::App* frame = bench->add_subcommand("frame", "Time the frames of one scene");
+    frame->add_option("scene", args->scene, "glTF/GLB file or builtin:NAME")->capture_default_str();
+    frame->add_option("--width", args->width)->capture_default_str();
+    frame->add_option("--height", args->height)->capture_default_str();
+    frame->add_option("--runs", args->runs, "Timed frames")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 100000));
+    frame
+        ->add_option("--warmup", args->warmup, "Frames before timing (the first is reported apart)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1000));
+    frame->add_option("--compression", args->compression, "EXR compression for the write timing")
+        ->capture_default_str();
+    frame->add_flag("--half", args->half, "Time half-float EXR writes");
+    frame->add_option("--tmp", args->outDir, "Folder for the temporary EXR")->capture_default_str();
+    args->shading.add(*frame);
+    args->device.add(*frame);
+    std::vector<Runner> more = addMoreBenchCommands(*bench);
+    return [args, frame, more]() {
+        if (frame->parsed()) return runFrame(*args);
+        for (const Runner& r : more)
+            if (int code = r(); code >= 0) return code;
+        return -1;
+    };
+}
+
+} // namespace lantern::cli

@@ -1,0 +1,246 @@
+// Shared command-line pieces: error reporting, number lists, camera/shading/device options.
+#include "common/CliSupport.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <mutex>
+#include <sstream>
+
+namespace lantern::cli {
+
+int report(const Error& error) {
+    std::cerr << "lantern: error: " << error.describe() << "\n";
+    return exitCodeFor(error.code);
+}
+
+LogSink stderrSink(bool verbose) {
+    auto mutex = std::make_shared<std::mutex>();
+    return [verbose, mutex](LogLevel level, std::string_view message) {
+        if (level == LogLevel::Debug || (level == LogLevel::Info && !verbose)) return;
+        std::lock_guard lock(*mutex);
+        std::cerr << "lantern: " << logLevelName(level) << ": " << message << "\n";
+    };
+}
+
+Result<std::vector<double>> parseNumbers(const std::string& text, std::size_t count,
+                                         const std::string& option,
+                                         const std::vector<bool>& allowInf) {
+    std::vector<double> values;
+    std::stringstream ss(text);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+        const std::size_t i = values.size();
+        const bool infOk = i < allowInf.size() && allowInf[i];
+        if (item == "inf" || item == "+inf" || item == "infinity") {
+            if (!infOk)
+                return makeError(ErrorCode::InvalidInput,
+                                 "value " + std::to_string(i + 1) + " must be finite", option);
+            values.push_back(kInfinity);
+            continue;
+        }
+        char* end = nullptr;
+        const double v = std::strtod(item.c_str(), &end);
+        if (item.empty() || end != item.c_str() + item.size())
+            return makeError(ErrorCode::InvalidInput, "\"" + item + "\" is not a number", option);
+        if (!std::isfinite(v))
+            return makeError(ErrorCode::InvalidInput,
+                             "value " + std::to_string(i + 1) + " (" + item + ") is not finite",
+                             option);
+        values.push_back(v);
+    }
+    if (values.size() != count)
+        return makeError(ErrorCode::InvalidInput,
+                         "expected " + std::to_string(count) + " comma-separated numbers, got " +
+                             std::to_string(values.size()),
+                         option);
+    return values;
+}
+
+Result<void> checkImagePaths(const std::vector<std::string>& paths, const std::string& option) {
+    for (const std::string& out : paths) {
+        const std::string ext = std::filesystem::path(out).extension().string();
+        if (ext != ".exr" && ext != ".png")
+            return makeError(ErrorCode::InvalidInput,
+                             "unknown image type \"" + ext + "\" (use .exr or .png)", option, out);
+    }
+    return {};
+}
+
+Result<glm::vec4> parseBackground(const std::string& text) {
+    const bool rgba = std::count(text.begin(), text.end(), ',') == 3;
+    auto v = parseNumbers(text, rgba ? 4 : 3, "--background");
+    if (!v) return std::move(v).error();
+    // Premultiplied: an opaque background is (r, g, b, 1); a translucent one scales rgb.
+    const double alpha = rgba ? (*v)[3] : 1.0;
+    if (alpha < 0.0 || alpha > 1.0)
+        return makeError(ErrorCode::InvalidInput, "alpha must be in [0, 1]", "--background");
+    return glm::vec4(float((*v)[0] * alpha), float((*v)[1] * alpha), float((*v)[2] * alpha),
+                     float(alpha));
+}
+
+void CameraOptions::add(CLI::App& app) {
+    app.add_option("--camera", cameras,
+                   "Use the scene's camera N (glTF index); repeat once per --viewport");
+    app.add_flag("--default-camera", defaultCamera,
+                 "The GL default camera: origin, looking down -Z, orthographic 2x2x2 cube");
+    app.add_option("--look-at", lookAt,
+                   "Place the camera as gluLookAt: EX,EY,EZ,TX,TY,TZ,UX,UY,UZ");
+    app.add_option("--perspective", perspective,
+                   "Projection as gluPerspective: FOVY_DEG,ASPECT,NEAR,FAR (FAR may be inf)");
+    app.add_option("--ortho", ortho, "Projection as glOrtho: L,R,B,T,N,F");
+    app.add_option("--frustum", frustum, "Projection as glFrustum: L,R,B,T,N,F (F may be inf)");
+    app.add_option("--viewport", viewports,
+                   "Draw into X,Y,W,H (pixels, origin bottom-left as glViewport); repeatable");
+    app.add_option("--layout", layout,
+                   "quad: top, front, side (orthographic) and the perspective camera")
+        ->check(CLI::IsMember({"quad"}));
+    app.add_option("--depth", depth,
+                   "Depth scheme with the float depth buffer: reversed (near at 1, the default: "
+                   "uniform relative precision) or standard (near at 0)")
+        ->check(CLI::IsMember({"reversed", "standard"}));
+}
+
+Result<void> CameraOptions::apply(RenderOptions& o) const {
+    const int projections = !perspective.empty() + !ortho.empty() + !frustum.empty();
+    if (projections > 1)
+        return makeError(ErrorCode::Usage,
+                         "give at most one of --perspective, --ortho and --frustum",
+                         "--perspective/--ortho/--frustum");
+    if (defaultCamera && !cameras.empty())
+        return makeError(ErrorCode::Usage, "give either --camera or --default-camera", "--camera");
+    if (!depth.empty()) o.depth = *parseDepthMode(depth); // CLI11 checked the spelling
+    CameraSpec spec;
+    if (defaultCamera) spec.source = CameraSpec::Source::GlDefault;
+    if (!lookAt.empty()) {
+        auto v = parseNumbers(lookAt, 9, "--look-at");
+        if (!v) return std::move(v).error();
+        const auto& n = *v;
+        LookAt la{{n[0], n[1], n[2]}, {n[3], n[4], n[5]}, {n[6], n[7], n[8]}};
+        LANTERN_TRY(checkLookAt(la, "--look-at"));
+        spec.lookAt = la;
+    }
+    if (!perspective.empty()) {
+        auto v = parseNumbers(perspective, 4, "--perspective", {false, false, false, true});
+        if (!v) return std::move(v).error();
+        const auto& n = *v;
+        if (!(n[1] > 0.0))
+            return makeError(ErrorCode::InvalidInput, "aspect must be > 0", "--perspective");
+        Projection p =
+            Projection::makePerspective(n[0] * 3.14159265358979323846 / 180.0, n[1], n[2], n[3]);
+        LANTERN_TRY(checkProjection(p, "--perspective"));
+        spec.projection = p;
+    }
+    if (!ortho.empty()) {
+        auto v = parseNumbers(ortho, 6, "--ortho");
+        if (!v) return std::move(v).error();
+        const auto& n = *v;
+        Projection p = Projection::makeOrtho(n[0], n[1], n[2], n[3], n[4], n[5]);
+        LANTERN_TRY(checkProjection(p, "--ortho"));
+        spec.projection = p;
+    }
+    if (!frustum.empty()) {
+        auto v = parseNumbers(frustum, 6, "--frustum", {false, false, false, false, false, true});
+        if (!v) return std::move(v).error();
+        const auto& n = *v;
+        Projection p = Projection::makeFrustum(n[0], n[1], n[2], n[3], n[4], n[5]);
+        LANTERN_TRY(checkProjection(p, "--frustum"));
+        spec.projection = p;
+    }
+    if (!layout.empty() && !viewports.empty())
+        return makeError(ErrorCode::Usage, "--layout and --viewport cannot be combined",
+                         "--layout");
+    if (cameras.size() > 1 && cameras.size() != viewports.size())
+        return makeError(ErrorCode::Usage,
+                         "give one --camera, or one per --viewport (" +
+                             std::to_string(viewports.size()) + " viewports, " +
+                             std::to_string(cameras.size()) + " cameras)",
+                         "--camera");
+    auto withCamera = [&](CameraSpec s, std::size_t i) {
+        if (!cameras.empty()) {
+            s.source = CameraSpec::Source::SceneCamera;
+            s.sceneCamera = cameras[cameras.size() == 1 ? 0 : i];
+        }
+        return s;
+    };
+    o.camera = withCamera(spec, 0);
+    o.views.clear();
+    for (std::size_t i = 0; i < viewports.size(); ++i) {
+        auto v = parseNumbers(viewports[i], 4, "--viewport");
+        if (!v) return std::move(v).error();
+        const auto& n = *v;
+        for (double x : n)
+            if (x != std::floor(x) || x < 0 || x > 1e6)
+                return makeError(ErrorCode::InvalidInput,
+                                 "viewport values must be whole pixels >= 0", "--viewport");
+        o.views.push_back(View{int(n[0]), int(n[1]), int(n[2]), int(n[3]), withCamera(spec, i)});
+    }
+    if (layout == "quad") o.views = quadLayout(o.width, o.height, o.camera);
+    return {};
+}
+
+std::vector<View> quadLayout(int width, int height, const CameraSpec& perspective) {
+    // A classic modeller's four views (GL origin bottom-left): top view top-left, front
+    // top-right, side bottom-left, the perspective camera bottom-right.
+    const int w = width / 2, h = height / 2;
+    auto orthoView = [](glm::dvec3 direction) {
+        CameraSpec s;
+        s.source = CameraSpec::Source::Framing;
+        s.framingDirection = direction;
+        s.framingOrthographic = true;
+        return s;
+    };
+    return {
+        View{0, height - h, w, h, orthoView({0, -1, 0})},
+        View{w, height - h, width - w, h, orthoView({0, 0, -1})},
+        View{0, 0, w, height - h, orthoView({-1, 0, 0})},
+        View{w, 0, width - w, height - h, perspective},
+    };
+}
+
+void ShadingOptions::add(CLI::App& app) {
+    app.add_option("--shading", shading, "Where lighting is evaluated: flat, gouraud or phong")
+        ->check(CLI::IsMember({"flat", "gouraud", "phong"}));
+    app.add_option("--specular", specular, "Specular term: blinn or phong")
+        ->check(CLI::IsMember({"blinn", "phong"}));
+    app.add_flag("--local-viewer", localViewer,
+                 "View vector towards the eye (GL_LIGHT_MODEL_LOCAL_VIEWER)");
+    app.add_flag("--two-sided", twoSided,
+                 "Light back faces with the back material (GL_LIGHT_MODEL_TWO_SIDE)");
+    app.add_flag("--clamp", clamp, "Clamp lit colours to [0,1]");
+    app.add_flag("--gl-compat", glCompat,
+                 "Reproduce OpenGL's fixed-function pipeline (provoking-vertex flat, per-vertex "
+                 "clamp, limits)");
+    app.add_option("--msaa", msaa, "Samples per pixel: 1, 2, 4 or 8")
+        ->check(CLI::IsMember({1, 2, 4, 8}));
+}
+
+Result<void> ShadingOptions::apply(RenderOptions& o) const {
+    if (!shading.empty()) o.shading = parseShadingMode(shading);
+    if (!specular.empty()) o.specular = parseSpecularModel(specular);
+    if (localViewer) o.localViewer = true;
+    if (twoSided) o.twoSided = true;
+    o.clamp = clamp;
+    o.glCompat = glCompat;
+    o.msaa = msaa;
+    return {};
+}
+
+void DeviceOptions::add(CLI::App& app) {
+    app.add_option("--device", device, "Use the first Vulkan device whose name contains NAME");
+    app.add_flag("--validation", validation, "Enable the Khronos validation layer");
+    app.add_flag("-v,--verbose", verbose, "Print the device chosen and other information");
+}
+
+RendererDesc DeviceOptions::desc() const {
+    RendererDesc d;
+    d.deviceName = device;
+    const char* env = std::getenv("LANTERN_VALIDATION");
+    d.validation = validation || (env && std::string(env) != "0" && std::string(env) != "");
+    d.log = stderrSink(verbose);
+    return d;
+}
+
+} // namespace lantern::cli

@@ -1,0 +1,297 @@
+// The farm's files: where a submission's record, scripts and logs go, the record itself (a
+// line-per-value text file beside the outputs), and which frames exist and can be read.
+#include "farm/Farm.h"
+
+#include <algorithm>
+#include <atomic>
+#include <charconv>
+#include <cstring>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+#include <thread>
+#include <unistd.h>
+
+namespace lantern::cli::farm {
+namespace fs = std::filesystem;
+
+namespace {
+
+// "out/frame_####.exr" -> "out/frame": the pattern's name without '#' runs or extension, and
+// without the separators that were next to the frame number.
+fs::path baseOf(const std::string& pattern) {
+    const fs::path p(pattern);
+    std::string stem = p.stem().string();
+    stem.erase(std::remove(stem.begin(), stem.end(), '#'), stem.end());
+    while (!stem.empty() && std::strchr("_-. ", stem.back()))
+        stem.pop_back();
+    while (!stem.empty() && std::strchr("_-. ", stem.front()))
+        stem.erase(stem.begin());
+    if (stem.empty()) stem = "frames";
+    return p.parent_path() / stem;
+}
+
+constexpr const char* kRecordHeader =
+    "# Submission record of `lantern farm submit`: what `lantern farm check` and\n"
+    "# `lantern farm submit --resume` read. One value per line: KEY VALUE.\n";
+
+// A PNG is complete when it starts with the signature and ends with the IEND chunk (the
+// writer renames a finished file into place, so anything else is damage).
+std::string pngProblem(const fs::path& path) {
+    std::ifstream f(path, std::ios::binary);
+    char head[8] = {}, tail[12] = {};
+    if (!f.read(head, 8)) return "shorter than a PNG signature";
+    if (std::memcmp(head, "\x89PNG\r\n\x1a\n", 8) != 0) return "not a PNG (bad signature)";
+    f.seekg(-12, std::ios::end);
+    if (!f.read(tail, 12) || std::memcmp(tail + 4, "IEND", 4) != 0)
+        return "truncated PNG (no IEND chunk)";
+    return {};
+}
+
+} // namespace
+
+fs::path recordPath(const std::string& pattern) {
+    return baseOf(pattern).string() + ".farm";
+}
+
+fs::path scriptPath(const std::string& pattern, const std::string& scheduler, int resume) {
+    std::string name = baseOf(pattern).string();
+    if (resume > 0) name += ".resume-" + std::to_string(resume);
+    return name + (scheduler == "k8s" ? ".k8s.yaml" : ".sbatch");
+}
+
+fs::path logFolder(const std::string& pattern) {
+    return baseOf(pattern).string() + "-logs";
+}
+
+std::string shellQuote(const std::string& word) {
+    const bool plain = !word.empty() && std::all_of(word.begin(), word.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || std::strchr("@%_+=:,./-", c);
+    });
+    if (plain) return word;
+    std::string out = "'";
+    for (char c : word)
+        out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+Result<void> writeTextFile(const fs::path& path, const std::string& text) {
+    const fs::path tmp = path.string() + ".tmp-" + std::to_string(::getpid());
+    {
+        std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+        f << text;
+        f.flush();
+        if (!f) {
+            std::error_code ec;
+            fs::remove(tmp, ec);
+            return makeError(ErrorCode::IoError, "cannot write " + tmp.string(), {}, path.string());
+        }
+    }
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        return makeError(ErrorCode::IoError, "cannot rename the temporary file into place", {},
+                         path.string());
+    }
+    return {};
+}
+
+namespace {
+
+// The record's plain fields, in the order they are written: text (written when not empty),
+// lists (one line per entry) and counts (written when positive).
+struct TextField {
+    const char* key;
+    std::string Submission::*member;
+};
+struct ListField {
+    const char* key;
+    std::vector<std::string> Submission::*member;
+};
+struct CountField {
+    const char* key;
+    int Submission::*member;
+};
+constexpr TextField kTextFields[] = {{"scheduler", &Submission::scheduler},
+                                     {"lantern", &Submission::lantern},
+                                     {"scene", &Submission::scene},
+                                     {"job-name", &Submission::jobName},
+                                     {"partition", &Submission::partition},
+                                     {"time", &Submission::time},
+                                     {"mem", &Submission::mem},
+                                     {"image", &Submission::image},
+                                     {"namespace", &Submission::k8sNamespace},
+                                     {"pvc", &Submission::pvc}};
+constexpr ListField kListFields[] = {{"output", &Submission::outputs},
+                                     {"render-arg", &Submission::renderArgs},
+                                     {"setup", &Submission::setup},
+                                     {"sbatch-arg", &Submission::sbatchArgs}};
+constexpr CountField kCountFields[] = {{"tasks", &Submission::tasks},
+                                       {"cpus-per-task", &Submission::cpusPerTask},
+                                       {"gpus", &Submission::gpus}};
+
+} // namespace
+
+Result<void> writeRecord(const Submission& s) {
+    std::ostringstream o;
+    o << kRecordHeader << "lantern-farm 1\n";
+    o << "frames " << s.range.first << "-" << s.range.last << "\n";
+    for (const auto& f : kTextFields)
+        if (!(s.*f.member).empty()) o << f.key << " " << s.*f.member << "\n";
+    for (const auto& f : kCountFields)
+        if (s.*f.member > 0) o << f.key << " " << s.*f.member << "\n";
+    for (const auto& f : kListFields)
+        for (const std::string& v : s.*f.member)
+            o << f.key << " " << v << "\n";
+    for (const auto& j : s.jobs)
+        o << "job " << (j.id.empty() ? "-" : j.id) << " " << j.frames << " " << j.script << "\n";
+    return writeTextFile(recordPath(s.outputs.front()), o.str());
+}
+
+Result<Submission> readRecord(const fs::path& path) {
+    std::ifstream f(path);
+    if (!f)
+        return makeError(ErrorCode::InvalidInput,
+                         "no submission record here (was the sequence submitted with `lantern farm "
+                         "submit` and this -o?)",
+                         {}, path.string());
+    Submission s;
+    std::string text;
+    int number = 0;
+    bool versioned = false;
+    auto bad = [&](const std::string& why) {
+        return makeError(ErrorCode::InvalidInput, why, "line " + std::to_string(number),
+                         path.string());
+    };
+    while (std::getline(f, text)) {
+        ++number;
+        if (text.empty() || text[0] == '#') continue;
+        const auto space = text.find(' ');
+        const std::string key = text.substr(0, space);
+        const std::string value = space == std::string::npos ? "" : text.substr(space + 1);
+        auto is = [&](const auto& field) { return key == field.key; };
+        if (const auto* t = std::find_if(std::begin(kTextFields), std::end(kTextFields), is);
+            t != std::end(kTextFields)) {
+            s.*t->member = value;
+        } else if (const auto* l = std::find_if(std::begin(kListFields), std::end(kListFields), is);
+                   l != std::end(kListFields)) {
+            (s.*l->member).push_back(value);
+        } else if (const auto* c =
+                       std::find_if(std::begin(kCountFields), std::end(kCountFields), is);
+                   c != std::end(kCountFields)) {
+            int& out = s.*c->member;
+            const auto r = std::from_chars(value.data(), value.data() + value.size(), out);
+            if (r.ec != std::errc() || r.ptr != value.data() + value.size() || out < 0)
+                return bad(key + " is not a number");
+        } else if (key == "lantern-farm") {
+            if (value != "1")
+                return bad("record version " + value + " is not one this lantern reads (1)");
+            versioned = true;
+        } else if (key == "frames") {
+            auto r = parseFrameRange(value);
+            if (!r) return bad(r.error().message);
+            s.range = *r;
+        } else if (key == "job") {
+            std::istringstream in(value);
+            Submission::Job j;
+            in >> j.id >> j.frames;
+            std::getline(in >> std::ws, j.script);
+            if (j.frames.empty()) return bad("a job line needs: ID FRAMES SCRIPT");
+            if (j.id == "-") j.id.clear();
+            s.jobs.push_back(j);
+        } else {
+            return bad("unknown key \"" + key + "\"");
+        }
+    }
+    if (s.tasks < 1) return bad("tasks must be at least 1");
+    if (!versioned) return bad("not a lantern farm record (no \"lantern-farm 1\" line)");
+    if (s.outputs.empty() || s.scene.empty() || s.lantern.empty())
+        return bad("incomplete record: it needs lantern, scene and output lines");
+    return s;
+}
+
+std::vector<MissingFrame> checkFrames(const std::vector<std::string>& outputs,
+                                      const std::vector<int>& frames) {
+    struct Item {
+        int frame;
+        std::string path;
+    };
+    std::vector<Item> items;
+    for (const std::string& out : outputs)
+        for (int frame : frames)
+            items.push_back({frame, expandFramePattern(out, frame)});
+    std::vector<std::string> problems(items.size());
+    std::vector<char> absent(items.size(), 0);
+    std::atomic<std::size_t> next{0};
+    auto work = [&] {
+        for (std::size_t i; (i = next.fetch_add(1)) < items.size();) {
+            const fs::path path = items[i].path;
+            std::error_code ec;
+            if (!fs::is_regular_file(path, ec)) {
+                absent[i] = 1;
+                continue;
+            }
+            const std::string ext = path.extension().string();
+            if (ext == ".exr") {
+                if (auto image = readExr(path); !image)
+                    problems[i] = "OpenEXR cannot read it: " + image.error().message;
+            } else if (ext == ".png") {
+                problems[i] = pngProblem(path);
+            }
+        }
+    };
+    const unsigned threads = std::clamp(std::thread::hardware_concurrency(), 1u, 16u);
+    std::vector<std::thread> pool;
+    for (unsigned t = 1; t < threads; ++t)
+        pool.emplace_back(work);
+    work();
+    for (auto& t : pool)
+        t.join();
+    std::vector<MissingFrame> missing;
+    for (std::size_t i = 0; i < items.size(); ++i)
+        if (absent[i] || !problems[i].empty())
+            missing.push_back({items[i].frame, items[i].path, problems[i]});
+    std::stable_sort(
+        missing.begin(), missing.end(),
+        [](const MissingFrame& a, const MissingFrame& b) { return a.frame < b.frame; });
+    return missing;
+}
+
+int countPresent(const std::vector<std::string>& outputs, const std::vector<int>& frames) {
+    int present = 0;
+    for (int frame : frames) {
+        bool all = true;
+        for (const std::string& out : outputs) {
+            std::error_code ec;
+            all = all && fs::is_regular_file(expandFramePattern(out, frame), ec);
+        }
+        present += all;
+    }
+    return present;
+}
+
+std::vector<std::string> renderCommand(const Submission& s, const JobWork& work) {
+    std::vector<std::string> words = {s.lantern, "render", s.scene};
+    if (work.wholeRange) {
+        words.push_back("--frames");
+        words.push_back(std::to_string(s.range.first) + "-" + std::to_string(s.range.last));
+    } else {
+        words.push_back("--frame-list");
+        words.push_back(formatFrameList(work.frames));
+    }
+    for (const std::string& out : s.outputs) {
+        words.push_back("-o");
+        words.push_back(out);
+    }
+    words.insert(words.end(), s.renderArgs.begin(), s.renderArgs.end());
+    return words;
+}
+
+bool hasRenderOption(const Submission& s, const std::string& option) {
+    return std::any_of(s.renderArgs.begin(), s.renderArgs.end(), [&](const std::string& a) {
+        return a == option || a.rfind(option + "=", 0) == 0;
+    });
+}
+
+} // namespace lantern::cli::farm

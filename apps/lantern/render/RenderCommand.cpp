@@ -1,0 +1,382 @@
+// `lantern render SCENE`: headless rendering to EXR/PNG (spec/cli.md).
+#include "common/CliSupport.h"
+#include "common/Commands.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <thread>
+#include <unistd.h>
+
+namespace lantern::cli {
+namespace {
+
+std::string triple(const glm::dvec3& v) {
+    std::ostringstream s;
+    s << std::setprecision(6) << v.x << " " << v.y << " " << v.z;
+    return s.str();
+}
+
+const char* lightTypeName(LightType t) {
+    return t == LightType::Directional ? "directional" : t == LightType::Point ? "point" : "spot";
+}
+
+// --probe: the lighting equation at one pixel, term by term (Renderer::probe).
+void printProbe(std::ostream& out, const ProbeReport& r) {
+    out << std::setprecision(6);
+    out << "probe pixel " << r.x << "," << r.y << " (x from the left, y from the top)\n";
+    if (!r.hit) {
+        out << "  no surface: background " << triple(glm::dvec3(r.pixel)) << " alpha " << r.pixel.a
+            << "\n";
+        return;
+    }
+    out << "  view " << r.view << ", node " << r.node << " \"" << r.nodeName << "\", mesh "
+        << r.mesh << " primitive " << r.primitive << ", triangle " << r.triangle << " (vertices "
+        << r.vertices[0] << " " << r.vertices[1] << " " << r.vertices[2] << ", barycentric "
+        << triple(r.barycentric) << ")\n";
+    out << "  surface point (eye space): " << triple(r.position) << "\n";
+    out << "  normal (eye space, as lit): " << triple(r.normal) << "  "
+        << (r.backFacing ? "back face" : "front face")
+        << (r.backMaterial ? ", back material and negated normal (two-sided)" : "") << "\n";
+    const MaterialSide& m = r.materialSide;
+    out << "  material " << r.material << " \"" << r.materialName << "\""
+        << (r.backMaterial ? " (back)" : "") << (r.unlit ? " unlit" : "") << ": ambient "
+        << triple(m.ambient) << ", diffuse " << triple(glm::dvec3(m.diffuse)) << " alpha "
+        << m.diffuse.a << ", specular " << triple(m.specular) << ", shininess " << m.shininess
+        << ", emission " << triple(m.emission) << "\n";
+    out << "  shading " << toString(r.shading) << (r.glCompat ? " (gl-compat)" : "")
+        << ", specular " << (r.specularPresent ? toString(r.specular) : "none (not compiled in)")
+        << ", " << (r.localViewer ? "local" : "distant") << " viewer, "
+        << (r.twoSided ? "two-sided" : "one-sided") << (r.clamped ? ", clamped to [0,1]" : "")
+        << "\n";
+    if (r.textured)
+        out << "  note: a base-colour texture modulates this pixel; the probe assumes a white "
+               "texel\n";
+    for (const ProbeEvaluation& e : r.evaluations) {
+        out << "  evaluated at the " << e.where << " (weight " << e.weight << "): point "
+            << triple(e.position) << ", normal " << triple(e.normal) << "\n";
+        out << "    a_m " << triple(e.ambientM) << ", d_m " << triple(e.diffuseM) << "\n";
+        out << "    emission e_m:          " << triple(e.emission) << "\n";
+        out << "    global ambient a_m*A:  " << triple(e.globalAmbient) << "\n";
+        for (std::size_t i = 0; i < e.lights.size(); ++i) {
+            const ProbeLight& l = e.lights[i];
+            out << "    light " << i << " \"" << l.name << "\" " << lightTypeName(l.type)
+                << ": attenuation " << l.attenuation << ", spot " << l.spot << ", n.l " << l.nDotL
+                << ", specular term " << l.specularTerm << "\n";
+            out << "      ambient " << triple(l.ambient) << ", diffuse " << triple(l.diffuse)
+                << ", specular " << triple(l.specular) << "\n";
+        }
+        out << "    colour:                " << triple(e.colour) << " alpha " << e.alpha << "\n";
+    }
+    out << "  colour (reference):  " << triple(glm::dvec3(r.colour)) << " alpha " << r.colour.a
+        << "\n";
+    out << "  pixel (renderer):    " << triple(glm::dvec3(r.pixel)) << " alpha " << r.pixel.a
+        << "\n";
+}
+
+struct RenderArgs {
+    std::string scene;
+    std::vector<std::string> outputs;
+    int width = 1280, height = 720;
+    int sceneIndex = -1;
+    double time = 0.0;
+    bool timeGiven = false;
+    std::string aov;
+    bool half = false;
+    bool explain = false;
+    std::string probe;
+    std::string compression = "zip";
+    std::uint64_t maxSize = std::uint64_t(1) << 30;
+    std::string background;
+    std::string frames;
+    std::string frameList; // --frame-list: explicit frames, e.g. those a farm job is missing
+    double fps = 24.0;
+    std::string shard;
+    int encoderThreads = 0;
+    CameraOptions camera;
+    ShadingOptions shading;
+    DeviceOptions device;
+};
+
+// The signal that asked a sequence to stop (0: none). The first SIGINT/SIGTERM stops cleanly;
+// the handler then resets itself, so a second one ends the process at once.
+std::atomic<int> g_stopSignal{0};
+
+extern "C" void onStopSignal(int signal) {
+    g_stopSignal.store(signal);
+}
+
+void installStopHandlers() {
+    struct sigaction sa {};
+    sa.sa_handler = onStopSignal;
+    sa.sa_flags = SA_RESETHAND;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, nullptr);
+    sigaction(SIGTERM, &sa, nullptr);
+}
+
+std::string clock(double seconds) {
+    const long s = long(seconds + 0.5);
+    char b[32];
+    std::snprintf(b, sizeof b, "%ld:%02ld", s / 60, s % 60);
+    return b;
+}
+
+// A progress bar on a terminal, one plain line per frame otherwise.
+void showProgress(const SequenceProgress& p, bool terminal) {
+    if (terminal) {
+        const int width = 30;
+        const int filled = p.total > 0 ? width * p.written / p.total : width;
+        std::string bar(std::size_t(filled), '=');
+        if (filled < width) bar += '>' + std::string(std::size_t(width - filled - 1), ' ');
+        std::fprintf(stderr, "\r%5d/%d [%s] %.2f fps, %s left   ", p.written, p.total, bar.c_str(),
+                     p.framesPerSecond, clock(p.secondsLeft).c_str());
+        if (p.written == p.total) std::fputc('\n', stderr);
+    } else {
+        std::fprintf(stderr, "lantern: frame %d written (%d/%d, %.2f fps, %s left)\n", p.lastFrame,
+                     p.written, p.total, p.framesPerSecond, clock(p.secondsLeft).c_str());
+    }
+    std::fflush(stderr);
+}
+
+double medianOf(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+int runSequence(const RenderArgs& a, Renderer& renderer, const PreparedScene& prepared,
+                const RenderOptions& options, const ExrOptions& exr,
+                const std::vector<std::string>& outputs) {
+    SequenceOptions seq;
+    if (!a.frameList.empty()) {
+        auto list = parseFrameList(a.frameList);
+        if (!list) return report(list.error());
+        seq.frameList = std::move(*list);
+    } else {
+        auto range = parseFrameRange(a.frames);
+        if (!range) return report(range.error());
+        seq.frames = *range;
+    }
+    if (!a.shard.empty()) {
+        auto shard = parseShard(a.shard);
+        if (!shard) return report(shard.error());
+        seq.shard = *shard;
+    }
+    seq.fps = a.fps;
+    seq.outputs = outputs;
+    seq.exr = exr;
+    seq.encoderThreads = a.encoderThreads;
+    const bool terminal = ::isatty(2);
+    seq.progress = [terminal](const SequenceProgress& p) { showProgress(p, terminal); };
+    installStopHandlers();
+    seq.shouldStop = [] { return g_stopSignal.load() != 0; };
+    auto result = renderer.renderSequence(prepared, options, seq);
+    if (!result) return report(result.error());
+    const SequenceReport& r = *result;
+    for (int frame : r.framesWritten)
+        for (const std::string& out : outputs)
+            std::cout << expandFramePattern(out, frame) << "\n";
+    const std::size_t total = sequenceFrames(seq).size();
+    std::fprintf(
+        stderr,
+        "lantern: %zu of %zu frames written in %.2f s (%.2f fps); per frame (median): render "
+        "%.1f ms (GPU %.1f ms), encode %.1f ms on %d threads; CPU %.1f s; at most %zu frames "
+        "waiting\n",
+        r.framesWritten.size(), total, r.wallSeconds,
+        r.wallSeconds > 0 ? double(r.framesWritten.size()) / r.wallSeconds : 0.0,
+        medianOf(r.renderMs), medianOf(r.gpuMs), medianOf(r.encodeMs),
+        a.encoderThreads > 0 ? a.encoderThreads : int(std::thread::hardware_concurrency()),
+        r.cpuSeconds, r.peakQueuedFrames);
+    if (r.clampedValues > 0)
+        std::fprintf(
+            stderr,
+            "lantern: warning: %llu values exceeded the half range and were clamped to 65504\n",
+            (unsigned long long)r.clampedValues);
+    if (r.stopped) {
+        const int sig = g_stopSignal.load();
+        std::fprintf(stderr, "lantern: stopped by %s; the frames written are complete\n",
+                     sig == SIGTERM ? "SIGTERM" : "SIGINT");
+        return 128 + (sig ? sig : SIGINT);
+    }
+    return kOk;
+}
+
+// The options of the picture: size, scene, shading, camera, background and AOVs.
+Result<RenderOptions> renderOptions(const RenderArgs& a) {
+    RenderOptions options;
+    options.width = a.width;
+    options.height = a.height;
+    options.root = a.sceneIndex;
+    LANTERN_TRY(a.shading.apply(options));
+    LANTERN_TRY(a.camera.apply(options));
+    if (!a.background.empty()) {
+        auto background = parseBackground(a.background);
+        if (!background) return std::move(background).error();
+        options.background = *background;
+    }
+    if (!a.aov.empty()) {
+        std::stringstream ss(a.aov);
+        std::string item;
+        while (std::getline(ss, item, ',')) {
+            if (item == "depth")
+                options.aovs.depth = true;
+            else if (item == "normal")
+                options.aovs.normal = true;
+            else
+                return makeError(ErrorCode::InvalidInput,
+                                 "unknown AOV \"" + item + "\" (depth, normal)", "--aov");
+        }
+    }
+    return options;
+}
+
+// --explain and --probe: what the renderer will do, and the lighting equation at one pixel.
+Result<void> explainAndProbe(const RenderArgs& a, Renderer& renderer, const Scene& scene,
+                             const RenderOptions& options) {
+    if (a.explain) {
+        auto explained = renderer.explain(scene, options, a.time);
+        if (!explained) return std::move(explained).error();
+        std::cout << "features:\n";
+        for (const auto& f : explained->features)
+            std::cout << "  " << f << "\n";
+        std::cout << "pipeline variants:\n";
+        for (const auto& v : explained->variants)
+            std::cout << "  " << v << "\n";
+    }
+    if (!a.probe.empty()) {
+        auto xy = parseNumbers(a.probe, 2, "--probe");
+        if (!xy) return std::move(xy).error();
+        const double x = (*xy)[0], y = (*xy)[1];
+        if (x != std::floor(x) || y != std::floor(y) || x < 0 || y < 0 || x >= a.width ||
+            y >= a.height)
+            return makeError(ErrorCode::InvalidInput,
+                             "pixel " + a.probe + " is not a whole pixel inside the " +
+                                 std::to_string(a.width) + "x" + std::to_string(a.height) +
+                                 " image",
+                             "--probe");
+        auto probed = renderer.probe(scene, options, a.time, int(x), int(y));
+        if (!probed) return std::move(probed).error();
+        printProbe(std::cout, *probed);
+    }
+    return {};
+}
+
+// One frame, written to every output (the paths on stdout).
+int renderFrame(const RenderArgs& a, Renderer& renderer, const PreparedScene& prepared,
+                const RenderOptions& options, ExrOptions exr,
+                const std::vector<std::string>& outputs) {
+    if (!a.shard.empty())
+        return report(makeError(ErrorCode::Usage, "--shard needs --frames", "--shard"));
+    auto image = renderer.render(prepared, options, a.time);
+    if (!image) return report(image.error());
+    for (const std::string& out : outputs) {
+        std::uint64_t clamped = 0;
+        exr.clampedCount = &clamped;
+        if (auto w = writeImage(out, *image, exr); !w) return report(w.error());
+        if (clamped > 0)
+            std::cerr << "lantern: warning: " << out << ": " << clamped
+                      << " values exceeded the half range and were clamped to 65504\n";
+        std::cout << out << "\n";
+    }
+    return kOk;
+}
+
+int run(const RenderArgs& a) {
+    auto options = renderOptions(a);
+    if (!options) return report(options.error());
+    ExrOptions exr;
+    exr.half = a.half;
+    const auto compression = parseExrCompression(a.compression);
+    if (!compression)
+        return report(makeError(ErrorCode::InvalidInput,
+                                "unknown compression \"" + a.compression + "\"", "--compression"));
+    exr.compression = *compression;
+    const bool sequence = !a.frames.empty() || !a.frameList.empty();
+    if (!a.frames.empty() && !a.frameList.empty())
+        return report(makeError(ErrorCode::Usage, "--frames and --frame-list cannot be combined",
+                                "--frame-list"));
+    std::vector<std::string> outputs = a.outputs;
+    if (outputs.empty()) outputs.push_back(sequence ? "out/frame_####.exr" : "out/render.exr");
+    if (sequence && a.timeGiven)
+        return report(
+            makeError(ErrorCode::Usage, "--time and --frames cannot be combined", "--time"));
+    if (auto r = checkImagePaths(outputs, "--output"); !r) return report(r.error());
+
+    LoadOptions load;
+    load.maxBytes = a.maxSize;
+    load.log = stderrSink(a.device.verbose);
+    auto scene = loadScene(a.scene, load);
+    if (!scene) return report(scene.error());
+    auto shared = std::make_shared<const Scene>(std::move(*scene));
+
+    auto renderer = Renderer::create(a.device.desc());
+    if (!renderer) return report(renderer.error());
+    if (a.device.verbose)
+        std::cerr << "lantern: device: " << renderer->device().name << " ("
+                  << renderer->device().driver << ")\n";
+    if (auto r = explainAndProbe(a, *renderer, *shared, *options); !r) return report(r.error());
+    auto prepared = renderer->prepare(shared);
+    if (!prepared) return report(prepared.error());
+    if (sequence) return runSequence(a, *renderer, *prepared, *options, exr, outputs);
+    return renderFrame(a, *renderer, *prepared, *options, exr, outputs);
+}
+
+} // namespace
+
+Runner addRenderCommand(CLI::App& app) {
+    auto args = std::make_shared<RenderArgs>();
+    CLI::App* cmd = app.add_subcommand("render", "Render a scene headless to EXR/PNG");
+    cmd->add_option("scene", args->scene, "glTF/GLB file, or builtin:NAME")->required();
+    cmd->add_option(
+        "-o,--output", args->outputs,
+        "Output file(s): .exr or .png; repeat to write several (default out/render.exr)");
+    cmd->add_option("--width", args->width, "Image width in pixels")->capture_default_str();
+    cmd->add_option("--height", args->height, "Image height in pixels")->capture_default_str();
+    cmd->add_option("--scene", args->sceneIndex, "glTF scene index (default: the file's default)");
+    cmd->add_option("--time", args->time, "Animation time in seconds (one frame)")
+        ->capture_default_str();
+    cmd->add_option("--background", args->background,
+                    "Background colour R,G,B (opaque) or R,G,B,A, linear (default: transparent)");
+    cmd->add_option("--frames", args->frames,
+                    "Render the sequence of frames A-B inclusive (frame k at time k/fps)");
+    cmd->add_option(
+        "--frame-list", args->frameList,
+        "Render these frames, not a range: N,A-B,... (--shard splits the list by position)");
+    cmd->add_option("--fps", args->fps, "Frames per second of the sequence")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--shard", args->shard, "Render only frames k with k mod N == I (I/N)");
+    cmd->add_option("--encoder-threads", args->encoderThreads,
+                    "Threads encoding frames (0: one per core)")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--aov", args->aov, "Extra EXR channels: depth,normal");
+    cmd->add_flag("--half", args->half, "Write 16-bit half channels instead of 32-bit float");
+    cmd->add_option("--compression", args->compression,
+                    "EXR compression: none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab")
+        ->capture_default_str();
+    cmd->add_flag("--explain", args->explain,
+                  "Print the features the scene uses and the pipeline variants");
+    cmd->add_option("--probe", args->probe,
+                    "X,Y: print the lighting equation term by term at pixel X,Y (x from the left, "
+                    "y from the top)");
+    cmd->add_option("--max-size", args->maxSize, "Largest file, buffer or image accepted, in bytes")
+        ->capture_default_str();
+    args->camera.add(*cmd);
+    args->shading.add(*cmd);
+    args->device.add(*cmd);
+    return [args, cmd]() {
+        if (!cmd->parsed()) return -1;
+        args->timeGiven = cmd->count("--time") > 0;
+        return run(*args);
+    };
+}
+
+} // namespace lantern::cli

@@ -1,0 +1,83 @@
+// Options.h: everything that shapes a render besides the scene and the time: image size,
+// shading overrides, cameras and views, multisampling, depth mode, AOVs, background, overlays.
+// Plain values, checked by the renderer (Renderer::render refuses bad ones with InvalidInput).
+#pragma once
+
+#include <lantern/Camera.h>
+#include <lantern/Image.h>
+#include <lantern/Scene.h>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <optional>
+#include <vector>
+
+namespace lantern {
+
+/// Which camera a view uses, and optional overrides of its parts.
+struct CameraSpec {
+    enum class Source {
+        Automatic,    ///< the scene's first camera, else automatic framing of the bounds
+        SceneCamera,  ///< Scene::cameras[sceneCamera] on the first node that carries it
+        Framing,      ///< automatic framing of the scene's bounds
+        GlDefault,    ///< GL's default: origin, looking down -Z, the 2x2x2 orthographic cube
+    };
+    Source source = Source::Automatic;
+    int sceneCamera = -1;
+    std::optional<LookAt> lookAt;          ///< replaces the view (gluLookAt), world space
+    std::optional<Projection> projection;  ///< replaces the projection
+
+    /// Which fixed direction automatic framing looks from (world space, towards the scene):
+    /// the default is the GL camera's -Z. The quad layout uses -Y (top) and -X (side) too.
+    glm::dvec3 framingDirection{0.0, 0.0, -1.0};
+    bool framingOrthographic = false;  ///< frame with an orthographic projection
+};
+
+/// A pixel rectangle in GL's convention (origin at the bottom-left of the image, as
+/// glViewport) drawn with its own camera.
+struct View {
+    int x = 0, y = 0, width = 0, height = 0;
+    CameraSpec camera;
+};
+
+/// Which pipeline features are compiled in: only those the scene needs (the default), or all
+/// of them (for measuring what specialisation saves). Floor draws the same geometry with a
+/// trivial shader (constant white, no lighting): the cost of rasterising alone, the floor that
+/// `lantern bench speed` divides frame times by.
+enum class FeatureMode { Specialised, AllFeatures, Floor };
+
+/// Everything that affects a render besides the scene and the time.
+struct RenderOptions {
+    int width = 1280;
+    int height = 720;
+    int root = -1;  ///< glTF scene index; -1: the scene's default
+    std::optional<ShadingMode> shading;     ///< default: the scene's, else Phong
+    std::optional<SpecularModel> specular;  ///< default: the scene's, else Blinn
+    std::optional<bool> localViewer;        ///< default: the scene's
+    std::optional<bool> twoSided;           ///< default: the scene's
+    bool clamp = false;     ///< clamp lit colours to [0,1] (GL's behaviour)
+    bool glCompat = false;  ///< reproduce GL fixed function: provoking-vertex flat, per-vertex
+                            ///< clamp, shininess and spot exponent limited to [0,128]
+    int msaa = 1;           ///< samples per pixel: 1, 2, 4 or 8 (as the device supports)
+    DepthMode depth = DepthMode::ReversedZ;
+    CameraSpec camera;       ///< the camera when `views` is empty
+    std::vector<View> views; ///< several views in one image; empty: one full-image view
+    AovSet aovs;
+    FeatureMode features = FeatureMode::Specialised;
+    glm::vec4 background{0.0f, 0.0f, 0.0f, 0.0f};  ///< linear, premultiplied
+    /// Lights that follow the camera (a headlight rig): when set, every scene light is placed
+    /// in eye space through this viewFromWorld instead of each view's own, so the lights keep
+    /// their place relative to the camera however it moves. The viewer sets it to the camera
+    /// of the moment the mode is switched on. GL's default light 0 is always eye-space.
+    std::optional<glm::dmat4> lightsViewFromWorld;
+    /// Display overlays (for viewers; not combinable with AOVs): every drawn triangle's edges,
+    /// and each vertex normal as a line from its vertex.
+    bool wireframe = false;
+    bool normals = false;
+    /// Length of the normal lines in world units; 0: 3% of the radius of the drawn bounds.
+    double normalLength = 0.0;
+};
+
+} // namespace lantern

@@ -1,0 +1,156 @@
+// lantern::Renderer: the public face of the engine: a gpu::Device and the renderer's core
+// (render/FrameRender.h), with the metadata every rendered image carries.
+#include <lantern/Renderer.h>
+#include <lantern/Version.h>
+
+#include "api/RendererImpl.h"
+#include "render/FrameRender.h"
+
+#include <cstdio>
+#include <sstream>
+
+namespace lantern {
+namespace {
+
+std::string matrixText(const glm::dmat4& m) {
+    // Row-major text, 17 significant digits: the exact double the frame was built from.
+    std::ostringstream s;
+    s.precision(17);
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) s << (r || c ? " " : "") << m[c][r];
+    return s.str();
+}
+
+std::string numberText(double v) {
+    char b[64];
+    std::snprintf(b, sizeof b, "%.17g", v);
+    return b;
+}
+
+// A shared_ptr that does not own: for rendering a caller's Scene synchronously.
+std::shared_ptr<const Scene> borrow(const Scene& scene) {
+    return std::shared_ptr<const Scene>(std::shared_ptr<const Scene>(), &scene);
+}
+
+} // namespace
+
+void attachMetadata(Image& image, const frame::Frame& p, const DeviceInfo& device, double time) {
+    auto& md = image.metadata;
+    md.emplace_back("lantern:version", versionString());
+    md.emplace_back("lantern:device", device.name);
+    md.emplace_back("lantern:time", numberText(time));
+    md.emplace_back("lantern:shading", toString(p.lighting.model.shading));
+    md.emplace_back("lantern:specular", toString(p.lighting.model.specular));
+    md.emplace_back("lantern:glCompat", p.lighting.glCompat ? "true" : "false");
+    if (!p.views.empty()) {
+        md.emplace_back("lantern:camera", p.views[0].camera.description);
+        md.emplace_back("lantern:viewFromWorld", matrixText(p.views[0].camera.viewFromWorld));
+        md.emplace_back("lantern:clipFromView", matrixText(p.views[0].camera.clipFromView));
+        image.camera = CameraMetadata{p.views[0].camera.viewFromWorld, p.views[0].camera.clipFromView};
+    }
+}
+
+const Scene& PreparedScene::scene() const { return gpu::Device::sceneOf(*m_gpu); }
+
+Renderer::Renderer(std::unique_ptr<Impl> impl) : m_impl(std::move(impl)) {}
+Renderer::Renderer(Renderer&&) noexcept = default;
+Renderer& Renderer::operator=(Renderer&&) noexcept = default;
+Renderer::~Renderer() = default;
+
+namespace {
+
+Result<void> checkDesc(const RendererDesc& desc) {
+    if (desc.framesInFlight < 1 || desc.framesInFlight > 8)
+        return makeError(ErrorCode::Usage, "framesInFlight must be between 1 and 8",
+                         "RendererDesc.framesInFlight");
+    return {};
+}
+
+gpu::DeviceDesc deviceDesc(const RendererDesc& desc) {
+    gpu::DeviceDesc d;
+    d.deviceName = desc.deviceName;
+    d.validation = desc.validation;
+    d.synchronizationValidation = desc.synchronizationValidation;
+    d.log = desc.log;
+    d.instanceExtensions = desc.instanceExtensions;
+    d.presentation = desc.presentation;
+    d.framesInFlight = std::uint32_t(desc.framesInFlight);
+    return d;
+}
+
+} // namespace
+
+Result<Renderer> Renderer::create(const RendererDesc& desc) {
+    LANTERN_TRY(checkDesc(desc));
+    auto device = gpu::Device::create(deviceDesc(desc));
+    if (!device) return std::move(device).error();
+    auto impl = std::make_unique<Impl>();
+    impl->device = std::move(*device);
+    return Renderer(std::move(impl));
+}
+
+Result<Renderer> Renderer::create(const ExternalDevice& device, const RendererDesc& desc) {
+    LANTERN_TRY(checkDesc(desc));
+    auto adopted = gpu::Device::adopt(device, deviceDesc(desc));
+    if (!adopted) return std::move(adopted).error();
+    auto impl = std::make_unique<Impl>();
+    impl->device = std::move(*adopted);
+    return Renderer(std::move(impl));
+}
+
+const DeviceInfo& Renderer::device() const { return m_impl->device->info(); }
+
+std::uint64_t Renderer::validationMessageCount() const {
+    return m_impl->device->validationMessageCount();
+}
+
+const FrameStats& Renderer::lastFrameStats() const { return m_impl->stats; }
+
+Result<PreparedScene> Renderer::prepare(std::shared_ptr<const Scene> scene) {
+    if (!scene) return makeError(ErrorCode::Usage, "prepare() needs a scene");
+    LANTERN_TRY(scene->validate());
+    auto buffers = m_impl->device->upload(std::move(scene));
+    if (!buffers) return std::move(buffers).error();
+    PreparedScene prepared;
+    prepared.m_gpu = std::move(*buffers);
+    return prepared;
+}
+
+Result<Image> Renderer::render(const PreparedScene& prepared, const RenderOptions& options,
+                               double time) {
+    if (!prepared) return makeError(ErrorCode::Usage, "render() needs a prepared scene");
+    gpu::Device& device = *m_impl->device;
+    LANTERN_TRY(render::checkOptions(device, options));
+    auto frame = render::renderFrame(device, prepared.m_gpu, prepared.scene(), options, time,
+                                     m_impl->stats);
+    if (!frame) return std::move(frame).error();
+    Image image = std::move(frame->readback.image);
+    attachMetadata(image, frame->frame, device.info(), time);
+    return image;
+}
+
+Result<Image> Renderer::render(const Scene& scene, const RenderOptions& options, double time) {
+    LANTERN_TRY(render::checkOptions(*m_impl->device, options));
+    auto prepared = prepare(borrow(scene));
+    if (!prepared) return std::move(prepared).error();
+    return render(*prepared, options, time);
+}
+
+Result<ProbeReport> Renderer::probe(const Scene& scene, const RenderOptions& options,
+                                    double time, int x, int y) {
+    auto prepared = prepare(borrow(scene));
+    if (!prepared) return std::move(prepared).error();
+    return render::probe(*m_impl->device, prepared->m_gpu, scene, options, time, x, y,
+                         m_impl->stats);
+}
+
+Result<FeatureReport> Renderer::explain(const Scene& scene, const RenderOptions& options,
+                                        double time) {
+    return explainScene(scene, options, time);
+}
+
+Result<FeatureReport> explainScene(const Scene& scene, const RenderOptions& options, double time) {
+    return render::explain(scene, options, time);
+}
+
+} // namespace lantern

@@ -1,0 +1,159 @@
+// Frame.h: the device-free frame model. One function, buildFrame(), turns (scene, render
+// options, time) into everything a frame is made of: the pose, the resolved lighting switches,
+// each view's camera in double precision, the lights placed in that camera's eye space, the
+// materials, and the draws in order with the features each needs. The GPU path (render/) packs
+// it into its buffers and pipeline variants; the CPU reference (reference/) reads it directly.
+// No Vulkan, no shader constant and no GPU layout appears here.
+#pragma once
+
+#include <lantern/Camera.h>
+#include <lantern/Options.h>
+#include <lantern/Result.h>
+#include <lantern/Scene.h>
+
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace lantern::frame {
+
+/// Where the lighting equation is evaluated: the shading rule, one shader program each.
+enum class Program : std::uint32_t {
+    Phong,    ///< per fragment
+    Gouraud,  ///< per vertex, colours interpolated
+    Flat,     ///< once per triangle, at its centroid with the face normal
+    GlFlat,   ///< per vertex, the provoking (last) vertex colours the triangle (GL_FLAT)
+    Floor,    ///< no lighting: constant white (FeatureMode::Floor, the cost of rasterising)
+};
+const char* toString(Program program) noexcept;
+
+/// Where lit colours are clamped to [0, 1].
+enum class Clamp : std::uint32_t {
+    None,
+    Fragment,  ///< the final colour (--clamp)
+    Gl,        ///< each colour where it is computed, as GL does (--gl-compat)
+};
+
+/// The lighting switches after combining the scene's LANTERN_lighting with the options.
+struct Lighting {
+    LightingModel model;
+    Program program = Program::Phong;
+    Clamp clamp = Clamp::None;
+    bool glCompat = false;
+};
+
+/// Combines the scene root's lighting model with the options' overrides.
+Lighting resolveLighting(const Scene& scene, int root, const RenderOptions& options);
+
+/// A camera resolved for one view, in double precision.
+struct ViewCamera {
+    glm::dmat4 viewFromWorld{1.0};
+    Projection projection;
+    glm::dmat4 clipFromView{1.0};  ///< Vulkan clip space for the view's aspect and depth mode
+    std::string description;       ///< e.g. "camera 0 \"Main\"", "automatic framing"
+};
+
+/// Resolves a CameraSpec for a view of aspect `aspect` (width / height). InvalidInput naming
+/// `object` when the spec names a camera that does not exist or that no node places.
+Result<ViewCamera> resolveCamera(const Scene& scene, const Pose& pose, const CameraSpec& spec,
+                                 double aspect, DepthMode depth, const std::string& object);
+
+/// World-space bounds that stay fixed over the scene's animations (sampled at the keys), so
+/// that automatic framing does not follow the motion.
+Bounds animationBounds(const Scene& scene, int root);
+
+/// A light placed in a view's eye space, in double precision: everything the lighting
+/// equation reads of it.
+struct EyeLight {
+    std::string name;  ///< the light's name, or "light N" (N: its index in Scene::lights)
+    LightType type = LightType::Point;  ///< as evaluated: a GL spot with cutoff 180 is Point
+    LightFalloff falloff = LightFalloff::Gl;
+    glm::dvec3 position{0.0};      ///< eye space (positional lights)
+    glm::dvec3 toLight{0, 0, 1};   ///< unit, towards the light (directional lights)
+    glm::dvec3 spotAxis{0, 0, -1}; ///< unit, the direction the light shines
+    glm::dvec3 ambient{0.0}, diffuse{1.0}, specular{1.0};
+    glm::dvec3 attenuation{1, 0, 0};  ///< GL's kc, kl, kq
+    double invRange = 0.0;            ///< glTF: 1 / range (0: unlimited)
+    double oneMinusCosCutoff = 1.0;   ///< GL spot: 1 - cos(cutoff), as 2 sin^2(cutoff / 2)
+    double exponent = 0.0;            ///< GL spot exponent (<= 128 with GL compatibility)
+    double cosOuter = 0.0;            ///< glTF spot: cos(outer cone angle)
+    double coneScale = 1.0;           ///< glTF spot: 1 / max(cos inner - cos outer, 1e-6)
+};
+
+/// The lights of a pose in the eye space of `viewFromWorld`, in node order: the one place
+/// where lights are placed. With no light in the scene, GL's light 0 (a directional headlight
+/// defined in eye space, so `viewFromWorld` does not move it). `glCompat` applies GL's limits.
+std::vector<EyeLight> placeLights(const Scene& scene, const Pose& pose,
+                                  const glm::dmat4& viewFromWorld, bool glCompat);
+
+/// What the lights of a frame need (the same for every view).
+struct LightFeatures {
+    bool glDefault = false;  ///< the scene has no light: GL's light 0 is used
+    std::size_t directional = 0, point = 0, spot = 0;  ///< counts, as evaluated
+    bool glAttenuation = false;  ///< a positional GL light has attenuation other than (1, 0, 0)
+    bool glSpot = false;         ///< a GL spot light with a cone
+    bool gltfFalloff = false;    ///< a positional light with glTF's falloff
+    bool specular = false;       ///< some light has a specular colour
+};
+
+/// What one draw needs beyond its frame's lights: the pipeline variant is chosen from this.
+struct DrawFeatures {
+    bool specular = false;  ///< a specular light meets a specular (lit) material
+    bool vertexColor = false;
+    bool texture = false;
+    bool alphaMask = false;
+    bool blend = false;
+    bool unlit = false;
+    bool ambientFollowsDiffuse = false;
+};
+
+/// One draw: a primitive of a node's mesh seen from a view.
+struct Draw {
+    std::uint32_t index = 0;  ///< numbered across the frame's views (what the id AOV records)
+    std::uint32_t node = 0, mesh = 0, primitive = 0;
+    std::uint32_t material = 0;  ///< Frame::materials index (the default material is last)
+    glm::dmat4 viewFromModel{1.0};
+    glm::dmat3 normalMatrix{1.0};  ///< normalMatrix(viewFromModel)
+    bool mirrored = false;  ///< det(viewFromModel) < 0: clockwise triangles face the viewer
+    bool cullBack = true;   ///< false for double-sided materials
+    bool hasColors = false, hasTexcoords = false;
+    int texture = -1;       ///< Scene::textures index of the base colour; -1: none (white)
+    DrawFeatures features;
+    double sortDepth = 0.0; ///< eye-space z of the primitive's bounds centre (blended draws)
+};
+
+struct View {
+    int x = 0, y = 0, width = 0, height = 0;  ///< GL convention: origin bottom-left
+    ViewCamera camera;
+    std::vector<EyeLight> lights;  ///< in this view's eye space
+    std::vector<Draw> draws;       ///< opaque in node order, then blended far to near
+};
+
+struct Frame {
+    int root = 0;
+    double time = 0.0;
+    Pose pose;
+    Lighting lighting;
+    /// The scene's materials, then GL's default material (for primitives without one), with
+    /// GL's limits applied under GL compatibility (shininess in [0, 128]).
+    std::vector<Material> materials;
+    LightFeatures lightFeatures;
+    std::vector<View> views;
+
+    std::size_t drawCount() const;
+    /// The draw numbered `index` and its view, or null.
+    const Draw* draw(std::uint32_t index, std::size_t* view = nullptr) const;
+};
+
+/// Builds the frame. InvalidInput for a root, time, view or camera the options name wrongly;
+/// the scene must have passed Scene::validate().
+Result<Frame> buildFrame(const Scene& scene, const RenderOptions& options, double time);
+
+/// The features a frame uses, one line each (e.g. "light:point x2", "shading:phong"), for
+/// --explain and `lantern info`.
+std::vector<std::string> describeFeatures(const Frame& frame, const RenderOptions& options);
+
+} // namespace lantern::frame

@@ -1,0 +1,109 @@
+// Device.h: the GPU as the rest of the engine sees it, with no Vulkan type in sight: a device
+// (Lantern's own or the host's), scenes uploaded to it, and a ring of frame slots that records
+// a DrawList, submits it and reads the picture back. Frame k+1 can be recorded and rendering
+// while frame k is read back (the headless double buffer): submit() returns the slot, and
+// collect() every submitted slot in order. Everything Vulkan lives behind this, in gpu/.
+#pragma once
+
+#include "gpu/DrawList.h"
+
+#include <lantern/Image.h>
+#include <lantern/Log.h>
+#include <lantern/Renderer.h>
+#include <lantern/Result.h>
+#include <lantern/Scene.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lantern {
+struct ExternalDevice;
+}
+
+namespace lantern::gpu {
+
+class Context;
+class FrameRing;
+class SceneBuffers;
+
+struct DeviceDesc {
+    std::string deviceName;  ///< substring match, case-insensitive; empty: the best device
+    bool validation = false;
+    bool synchronizationValidation = false;
+    std::vector<std::string> instanceExtensions;  ///< e.g. the surface extensions of a window
+    bool presentation = false;                    ///< enable VK_KHR_swapchain on the device
+    std::uint32_t framesInFlight = 2;
+    LogSink log;
+};
+
+/// What the device offers that options depend on.
+struct DeviceLimits {
+    std::uint32_t maxImageDimension = 0;  ///< pixels per side
+    std::uint32_t sampleCounts = 1;       ///< bit mask of supported counts (float colour + depth)
+    bool primitiveId = false;             ///< gl_PrimitiveID in fragments: the AOV ids need it
+    bool wireframe = false;               ///< fillModeNonSolid
+    std::uint64_t deviceMemory = 0;       ///< bytes of the largest device-local heap
+};
+
+/// A frame read back from its slot.
+struct FrameReadback {
+    lantern::Image image;           ///< empty when the frame was submitted without readback
+    double gpuMs = -1.0;            ///< render-pass time from GPU timestamps (-1: unavailable)
+    std::uint64_t nonFinite = 0;    ///< NaN/Inf values found (and zeroed) at readback
+    std::size_t draws = 0;
+    /// With AOVs: per pixel (draw index + 1, primitive id); 0: no draw.
+    std::vector<std::uint32_t> ids;
+};
+
+class Device {
+public:
+    /// Creates Lantern's own instance and device. NoDevice when none can render.
+    static Result<std::shared_ptr<Device>> create(const DeviceDesc& desc);
+    /// A device on the host's instance, device and queue (never destroyed by Lantern).
+    static Result<std::shared_ptr<Device>> adopt(const ExternalDevice& external,
+                                                 const DeviceDesc& desc);
+    ~Device();
+    Device(const Device&) = delete;
+    Device& operator=(const Device&) = delete;
+
+    const DeviceInfo& info() const;
+    const DeviceLimits& limits() const;
+    bool presentation() const;
+    std::uint64_t validationMessageCount() const;
+    void log(LogLevel level, const std::string& message) const;
+
+    /// Uploads `scene` (which must have passed Scene::validate()).
+    Result<std::shared_ptr<SceneBuffers>> upload(std::shared_ptr<const Scene> scene);
+    /// The scene an upload holds.
+    static const Scene& sceneOf(const SceneBuffers& buffers);
+
+    /// Refuses, before anything is allocated, a target or overlay this device cannot make:
+    /// InvalidInput, Unsupported or OutOfMemory naming the option.
+    Result<void> checkTarget(const TargetDesc& target, const Overlays& overlays) const;
+
+    /// Records and submits `list` into the next slot (which must have been collected).
+    Result<std::uint32_t> submit(const DrawList& list, const std::shared_ptr<SceneBuffers>& scene);
+    /// Waits for the frame in `slot` and reads it back.
+    Result<FrameReadback> collect(std::uint32_t slot);
+    /// Collects every slot still in flight (their pictures are dropped).
+    Result<void> drain();
+    bool busy(std::uint32_t slot) const;
+    std::uint32_t nextSlot() const;
+    std::uint32_t slotCount() const;
+    std::size_t pipelineCount() const;  ///< pipeline variants created so far
+
+    /// For gpu/ itself (the window presenter): the Vulkan objects behind the device.
+    Context& context();
+    FrameRing& ring();
+
+private:
+    struct Impl;
+    static Result<std::shared_ptr<Device>> assemble(std::shared_ptr<Context> ctx,
+                                                    const DeviceDesc& desc);
+    explicit Device(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> m_impl;
+};
+
+} // namespace lantern::gpu

@@ -1,0 +1,84 @@
+// DrawList.h: what a frame asks of the GPU, with no Vulkan in it: the render target, the
+// uniform data already packed in the shaders' layouts (gpu/GpuLayouts.h), and per view the
+// draws in order, each with its pipeline variant, primitive, texture and push constants.
+// render/ builds it from a frame::Frame; gpu/ records it (gpu/Recorder.cpp).
+#pragma once
+
+#include "frame/Frame.h"
+#include "gpu/GpuLayouts.h"
+
+#include <lantern/Image.h>
+
+#include <glm/vec4.hpp>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace lantern::gpu {
+
+/// Everything that selects a pipeline: the program, the specialisation constants (indexed by
+/// LANTERN_SC_* of lantern_shared.h) and the fixed-function state that cannot be dynamic.
+struct PipelineKey {
+    frame::Program program = frame::Program::Phong;
+    std::array<std::uint32_t, LANTERN_SC_COUNT> constants{};
+    bool blend = false;
+    bool aov = false;  ///< the fragment stage also writes the AOV attachments
+    std::uint32_t samples = 1;
+    bool reversedZ = true;
+
+    bool operator==(const PipelineKey&) const = default;
+};
+struct PipelineKeyHash {
+    std::size_t operator()(const PipelineKey& key) const noexcept;
+};
+
+/// One draw call.
+struct DrawCommand {
+    PipelineKey pipeline;
+    std::uint32_t mesh = 0, primitive = 0;  ///< Scene::meshes[mesh].primitives[primitive]
+    int texture = -1;           ///< Scene::textures index; -1: the white default
+    bool cullBack = true;
+    bool frontClockwise = false;  ///< a mirroring transform: clockwise triangles are front
+    DrawBlock block{};            ///< push constants
+};
+
+/// One viewport's share of the frame.
+struct ViewCommands {
+    int x = 0, y = 0, width = 0, height = 0;  ///< GL convention: origin bottom-left
+    FrameBlock frame{};
+    std::vector<LightData> lights;  ///< at least one
+    std::vector<DrawCommand> draws;
+};
+
+/// The images a frame renders into and what is read back of them.
+struct TargetDesc {
+    std::uint32_t width = 0, height = 0;
+    std::uint32_t samples = 1;
+    AovSet aovs;              ///< AOV planes to read back (any: the AOV attachments exist)
+    bool reversedZ = true;    ///< depth clears to 0 (far) instead of 1
+    glm::vec4 clear{0.0f};    ///< linear, premultiplied
+};
+
+/// The display overlays (viewers), drawn after each view's shaded draws.
+struct Overlays {
+    bool wireframe = false;
+    bool normals = false;
+    float normalLength = 0.0f;  ///< eye units
+    bool any() const { return wireframe || normals; }
+};
+
+struct DrawList {
+    TargetDesc target;
+    std::vector<MaterialData> materials;  ///< at least one
+    std::vector<ViewCommands> views;
+    Overlays overlays;
+
+    std::size_t drawCount() const {
+        std::size_t n = 0;
+        for (const ViewCommands& v : views) n += v.draws.size();
+        return n;
+    }
+};
+
+} // namespace lantern::gpu

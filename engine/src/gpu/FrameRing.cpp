@@ -1,0 +1,248 @@
+// The frame slots: creation, submission (pipelines, uniform arena, descriptors, recording,
+// queue submit) and collection (fence wait, timestamps, readback).
+#include "gpu/FrameRing.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace lantern::gpu {
+namespace {
+
+VkDeviceSize alignUp(VkDeviceSize v, VkDeviceSize a) { return (v + a - 1) / a * a; }
+
+} // namespace
+
+Result<std::unique_ptr<FrameRing>> FrameRing::create(Context& ctx, Pipelines& pipelines,
+                                                     std::uint32_t slots) {
+    std::unique_ptr<FrameRing> ring(new FrameRing(ctx, pipelines));
+    std::uint32_t nq = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice(), &nq, nullptr);
+    std::vector<VkQueueFamilyProperties> families(nq);
+    vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice(), &nq, families.data());
+    ring->m_timestamps = families[ctx.queueFamily()].timestampValidBits > 0 &&
+                         ctx.properties().limits.timestampPeriod > 0;
+    ring->m_slots.resize(std::max<std::uint32_t>(slots, 1));
+    for (std::size_t i = 0; i < ring->m_slots.size(); ++i)
+        LANTERN_TRY(ring->createSlot(ring->m_slots[i], i));
+    return ring;
+}
+
+Result<void> FrameRing::createSlot(Slot& s, std::size_t index) {
+    const VkDevice dev = m_ctx.device();
+    VkCommandPoolCreateInfo cpci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    cpci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    cpci.queueFamilyIndex = m_ctx.queueFamily();
+    VkCommandPool pool = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkCreateCommandPool(dev, &cpci, nullptr, &pool));
+    s.pool = UniqueCommandPool(dev, pool);
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = pool;
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = 1;
+    LANTERN_VK_TRY(vkAllocateCommandBuffers(dev, &ai, &s.cmd));
+    m_ctx.setName(VK_OBJECT_TYPE_COMMAND_BUFFER, s.cmd, "frame slot " + std::to_string(index));
+
+    VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VkFence fence = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkCreateFence(dev, &fci, nullptr, &fence));
+    s.fence = UniqueFence(dev, fence);
+
+    VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1},
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, 1},
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};
+    VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    dpci.maxSets = 1;
+    dpci.poolSizeCount = 3;
+    dpci.pPoolSizes = sizes;
+    VkDescriptorPool dp = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkCreateDescriptorPool(dev, &dpci, nullptr, &dp));
+    s.descriptorPool = UniqueDescriptorPool(dev, dp);
+    VkDescriptorSetAllocateInfo dsai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    dsai.descriptorPool = dp;
+    dsai.descriptorSetCount = 1;
+    VkDescriptorSetLayout fl = m_pipelines.frameSetLayout();
+    dsai.pSetLayouts = &fl;
+    LANTERN_VK_TRY(vkAllocateDescriptorSets(dev, &dsai, &s.frameSet));
+
+    if (m_timestamps) {
+        VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+        qci.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        qci.queryCount = 2;
+        LANTERN_VK_TRY(vkCreateQueryPool(dev, &qci, nullptr, &s.queries));
+    }
+    return {};
+}
+
+FrameRing::~FrameRing() {
+    m_ctx.waitIdle();
+    for (Slot& s : m_slots)
+        if (s.queries) vkDestroyQueryPool(m_ctx.device(), s.queries, nullptr);
+}
+
+// Pipelines (created on first use) and the flat-shading streams before recording.
+Result<void> FrameRing::preparePipelines(const DrawList& list, SceneBuffers& scene,
+                                         std::vector<VkPipeline>& main,
+                                         std::vector<VkPipeline>& aov) {
+    const bool aovPass = list.target.aovs.any() && list.target.samples > 1;
+    bool needFlat = false;
+    for (const ViewCommands& v : list.views)
+        for (const DrawCommand& d : v.draws) {
+            PipelineKey key = d.pipeline;
+            if (aovPass) key.aov = false;
+            auto p = m_pipelines.pipeline(key);
+            if (!p) return std::move(p).error();
+            main.push_back(*p);
+            if (aovPass) {
+                PipelineKey single = d.pipeline;
+                single.samples = 1;
+                single.aov = true;
+                auto a = m_pipelines.pipeline(single);
+                if (!a) return std::move(a).error();
+                aov.push_back(*a);
+            }
+            needFlat |= d.pipeline.program == frame::Program::Flat;
+        }
+    if (needFlat) LANTERN_TRY(scene.ensureFlatStreams());
+    return {};
+}
+
+// The uniform arena: materials, then per view its FrameBlock and its lights, at the device's
+// offset alignments; the frame set points into it with dynamic offsets.
+Result<FrameRing::ArenaLayout> FrameRing::fillArena(Slot& slot, const DrawList& list) {
+    const auto& lim = m_ctx.properties().limits;
+    const VkDeviceSize uboAlign = std::max<VkDeviceSize>(lim.minUniformBufferOffsetAlignment, 16);
+    const VkDeviceSize ssboAlign = std::max<VkDeviceSize>(lim.minStorageBufferOffsetAlignment, 16);
+    ArenaLayout a;
+    a.materialBytes = list.materials.size() * sizeof(MaterialData);
+    VkDeviceSize size = alignUp(a.materialBytes, std::max(uboAlign, ssboAlign));
+    std::size_t maxLights = 1;
+    for (const ViewCommands& v : list.views) {
+        size = alignUp(size, uboAlign);
+        a.frameOffsets.push_back(size);
+        size += sizeof(FrameBlock);
+        size = alignUp(size, ssboAlign);
+        a.lightOffsets.push_back(size);
+        size += std::max<std::size_t>(v.lights.size(), 1) * sizeof(LightData);
+        maxLights = std::max(maxLights, v.lights.size());
+    }
+    a.lightRange = maxLights * sizeof(LightData);
+    a.size = std::max(size, a.lightOffsets.back() + a.lightRange);
+    if (slot.arena.size < a.size) {
+        auto arena = createBuffer(m_ctx, a.size * 2,
+                                  VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT |
+                                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                  MemoryUsage::Upload, "frame arena");
+        if (!arena) return std::move(arena).error();
+        slot.arena = std::move(*arena);
+    }
+    char* base = static_cast<char*>(slot.arena.mapped);
+    std::memcpy(base, list.materials.data(), a.materialBytes);
+    for (std::size_t i = 0; i < list.views.size(); ++i) {
+        std::memcpy(base + a.frameOffsets[i], &list.views[i].frame, sizeof(FrameBlock));
+        std::memcpy(base + a.lightOffsets[i], list.views[i].lights.data(),
+                    list.views[i].lights.size() * sizeof(LightData));
+    }
+    LANTERN_TRY(flush(m_ctx, slot.arena));
+
+    const VkDescriptorBufferInfo infos[3] = {
+        {slot.arena.get(), 0, sizeof(FrameBlock)},
+        {slot.arena.get(), 0, a.lightRange},
+        {slot.arena.get(), 0, std::max<VkDeviceSize>(a.materialBytes, sizeof(MaterialData))},
+    };
+    const std::uint32_t bindings[3] = {LANTERN_BINDING_FRAME, LANTERN_BINDING_LIGHTS,
+                                       LANTERN_BINDING_MATERIALS};
+    const VkDescriptorType types[3] = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC,
+                                       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC,
+                                       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+    VkWriteDescriptorSet writes[3]{};
+    for (std::uint32_t i = 0; i < 3; ++i) {
+        writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+        writes[i].dstSet = slot.frameSet;
+        writes[i].dstBinding = bindings[i];
+        writes[i].descriptorCount = 1;
+        writes[i].descriptorType = types[i];
+        writes[i].pBufferInfo = &infos[i];
+    }
+    vkUpdateDescriptorSets(m_ctx.device(), 3, writes, 0, nullptr);
+    return a;
+}
+
+Result<void> FrameRing::queueSubmit(Slot& slot, const SubmitHooks& hooks) {
+    VkFence fence = slot.fence.get();
+    LANTERN_VK_TRY(vkResetFences(m_ctx.device(), 1, &fence));
+    VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+    cbi.commandBuffer = slot.cmd;
+    VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+    si.commandBufferInfoCount = 1;
+    si.pCommandBufferInfos = &cbi;
+    VkSemaphoreSubmitInfo waitInfo{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+    waitInfo.semaphore = hooks.wait;
+    waitInfo.stageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+    VkSemaphoreSubmitInfo signalInfo{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+    signalInfo.semaphore = hooks.signal;
+    signalInfo.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    si.waitSemaphoreInfoCount = hooks.wait ? 1 : 0;
+    si.pWaitSemaphoreInfos = &waitInfo;
+    si.signalSemaphoreInfoCount = hooks.signal ? 1 : 0;
+    si.pSignalSemaphoreInfos = &signalInfo;
+    std::lock_guard lock(m_ctx.queueMutex());
+    LANTERN_VK_TRY(vkQueueSubmit2(m_ctx.queue(), 1, &si, fence));
+    return {};
+}
+
+Result<std::uint32_t> FrameRing::submit(const DrawList& list,
+                                        const std::shared_ptr<SceneBuffers>& scene,
+                                        const SubmitHooks& hooks) {
+    if (scene->context() != &m_ctx)
+        return makeError(ErrorCode::Usage, "the scene was prepared by another Renderer (a "
+                                           "PreparedScene lives on its renderer's device)");
+    const std::uint32_t index = m_next;
+    Slot& slot = m_slots[index];
+    if (slot.busy)
+        return makeError(ErrorCode::Usage, "frame slot " + std::to_string(index) +
+                                               " is still in flight; collect it first");
+    LANTERN_TRY(ensureTarget(m_ctx, slot.target, list.target));
+    slot.desc = list.target;
+    std::vector<VkPipeline> pipelines, aovPipelines;
+    LANTERN_TRY(preparePipelines(list, *scene, pipelines, aovPipelines));
+    slot.overlays = {};
+    if (list.overlays.any()) {
+        if (!m_overlays) m_overlays = std::make_unique<OverlayPipelines>(m_ctx, m_pipelines);
+        auto overlays = m_overlays->prepare(list.overlays, list.target);
+        if (!overlays) return std::move(overlays).error();
+        slot.overlays = *overlays;
+    }
+    auto arena = fillArena(slot, list);
+    if (!arena) return std::move(arena).error();
+
+    LANTERN_VK_TRY(vkResetCommandPool(m_ctx.device(), slot.pool.get(), 0));
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    LANTERN_VK_TRY(vkBeginCommandBuffer(slot.cmd, &bi));
+    recordFrame(m_pipelines.layout(), m_overlays.get(), slot, *scene, list, *arena,
+                pipelines, aovPipelines, hooks);
+    LANTERN_VK_TRY(vkEndCommandBuffer(slot.cmd));
+    LANTERN_TRY(queueSubmit(slot, hooks));
+    slot.scene = scene;
+    slot.busy = true;
+    slot.readback = hooks.readback;
+    slot.draws = pipelines.size();
+    m_next = (m_next + 1) % std::uint32_t(m_slots.size());
+    return index;
+}
+
+Result<FrameReadback> FrameRing::collect(std::uint32_t index) {
+    Slot& slot = m_slots[index];
+    if (!slot.busy)
+        return makeError(ErrorCode::Usage, "frame slot " + std::to_string(index) + " holds no frame");
+    VkFence fence = slot.fence.get();
+    slot.busy = false;
+    const VkResult wait = vkWaitForFences(m_ctx.device(), 1, &fence, VK_TRUE, UINT64_MAX);
+    const VkResult injected = injectedVkFault("vkWaitForFences");
+    slot.scene.reset();
+    if (wait != VK_SUCCESS) return vkError(wait, "vkWaitForFences");
+    if (injected != VK_SUCCESS) return vkError(injected, "vkWaitForFences");
+    return readBack(m_ctx, slot);
+}
+
+} // namespace lantern::gpu

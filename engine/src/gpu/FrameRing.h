@@ -1,0 +1,101 @@
+// FrameRing.h: the ring of frame slots. Each slot owns its command buffer, fence, uniform
+// arena (materials, then per view a FrameBlock and its lights), descriptor set, timestamp
+// queries, render targets and readback buffers, so frame i+1 records and renders while frame
+// i is still being read back. submit() records a DrawList into the next slot
+// (gpu/Recorder.cpp) and submits it; collect() waits for a slot and reads it back
+// (gpu/Readback.cpp).
+#pragma once
+
+#include "gpu/Context.h"
+#include "gpu/Device.h"
+#include "gpu/DrawList.h"
+#include "gpu/Overlays.h"
+#include "gpu/Pipelines.h"
+#include "gpu/SceneBuffers.h"
+#include "gpu/Targets.h"
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace lantern::gpu {
+
+/// What a window frame adds to a submission (gpu/Presenter.cpp): recording after the scene,
+/// semaphores, and whether the picture is read back.
+struct SubmitHooks {
+    bool readback = true;  ///< copy the colour (and AOV) images into the readback buffers
+    /// Records after the scene, with the colour image in TRANSFER_SRC_OPTIMAL, made available
+    /// to the transfer stage (blits included).
+    std::function<void(VkCommandBuffer, VkImage color, std::uint32_t width, std::uint32_t height)>
+        afterRender;
+    VkSemaphore wait = VK_NULL_HANDLE;  ///< waited for at the transfer stage
+    VkSemaphore signal = VK_NULL_HANDLE;
+};
+
+class FrameRing {
+public:
+    static Result<std::unique_ptr<FrameRing>> create(Context& ctx, Pipelines& pipelines,
+                                                     std::uint32_t slots);
+    ~FrameRing();
+    FrameRing(const FrameRing&) = delete;
+    FrameRing& operator=(const FrameRing&) = delete;
+
+    Result<std::uint32_t> submit(const DrawList& list, const std::shared_ptr<SceneBuffers>& scene,
+                                 const SubmitHooks& hooks = {});
+    Result<FrameReadback> collect(std::uint32_t slot);
+    bool busy(std::uint32_t slot) const { return m_slots[slot].busy; }
+    std::uint32_t nextSlot() const { return m_next; }
+    std::uint32_t slotCount() const { return std::uint32_t(m_slots.size()); }
+
+    /// One slot of the ring (public for the recorder and readback, which are free functions).
+    struct Slot {
+        UniqueCommandPool pool;
+        VkCommandBuffer cmd = VK_NULL_HANDLE;
+        UniqueFence fence;
+        Buffer arena;
+        UniqueDescriptorPool descriptorPool;
+        VkDescriptorSet frameSet = VK_NULL_HANDLE;
+        VkQueryPool queries = VK_NULL_HANDLE;
+        Target target;
+        TargetDesc desc;                      ///< what the slot's frame asked for
+        std::shared_ptr<SceneBuffers> scene;  ///< keeps geometry alive while the GPU uses it
+        bool busy = false;
+        bool readback = true;
+        std::size_t draws = 0;
+        OverlayFrame overlays;  ///< this frame's display overlays
+    };
+
+    /// Where each view's FrameBlock and lights sit in a slot's arena.
+    struct ArenaLayout {
+        std::vector<VkDeviceSize> frameOffsets, lightOffsets;
+        VkDeviceSize materialBytes = 0, lightRange = 0, size = 0;
+    };
+
+private:
+    FrameRing(Context& ctx, Pipelines& pipelines) : m_ctx(ctx), m_pipelines(pipelines) {}
+    Result<void> createSlot(Slot& slot, std::size_t index);
+    Result<void> preparePipelines(const DrawList& list, SceneBuffers& scene,
+                                  std::vector<VkPipeline>& main, std::vector<VkPipeline>& aov);
+    Result<ArenaLayout> fillArena(Slot& slot, const DrawList& list);
+    Result<void> queueSubmit(Slot& slot, const SubmitHooks& hooks);
+
+    Context& m_ctx;
+    Pipelines& m_pipelines;
+    std::unique_ptr<OverlayPipelines> m_overlays;  ///< made on first use
+    std::vector<Slot> m_slots;
+    std::uint32_t m_next = 0;
+    bool m_timestamps = false;
+};
+
+/// Records a frame into `slot.cmd` (begun): barriers, the render pass(es) with every view's
+/// draws and overlays, the copies into the readback buffers, then `hooks.afterRender`.
+void recordFrame(VkPipelineLayout layout, const OverlayPipelines* overlays,
+                 FrameRing::Slot& slot, const SceneBuffers& scene, const DrawList& list,
+                 const FrameRing::ArenaLayout& arena, const std::vector<VkPipeline>& pipelines,
+                 const std::vector<VkPipeline>& aovPipelines, const SubmitHooks& hooks);
+
+/// Converts a finished slot's readback buffers into a FrameReadback (every NaN or Inf counted
+/// and replaced, so none leaves the renderer).
+Result<FrameReadback> readBack(Context& ctx, const FrameRing::Slot& slot);
+
+} // namespace lantern::gpu

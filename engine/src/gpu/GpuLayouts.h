@@ -1,0 +1,91 @@
+// GpuLayouts.h: C++ mirrors of the blocks in shaders/include/uniforms.glsl (std140 FrameBlock,
+// std430 LightBlock and MaterialBlock, the push-constant DrawBlock). Every member is a 16-byte
+// vector or a scalar run, so the layouts are the same in both languages; the static_asserts
+// pin sizes and offsets, and tests/unit/GpuLayoutsTest.cpp checks them against the SPIR-V.
+#pragma once
+
+#include "lantern_shared.h"
+
+#include <cstddef>
+#include <cstdint>
+
+namespace lantern::gpu {
+
+struct alignas(16) Vec4 {
+    float x = 0, y = 0, z = 0, w = 0;
+};
+struct alignas(16) UVec4 {
+    std::uint32_t x = 0, y = 0, z = 0, w = 0;
+};
+struct alignas(16) Mat4 {
+    float m[16] = {};  // column-major, as GLSL's mat4
+};
+
+// std140, set 0 binding 0; one per view (dynamic offset).
+struct FrameBlock {
+    Mat4 clipFromView;
+    Vec4 globalAmbient;
+    std::uint32_t lightCount = 0;
+    std::uint32_t viewIndex = 0;
+    std::uint32_t pad0 = 0;
+    std::uint32_t pad1 = 0;
+};
+static_assert(sizeof(FrameBlock) == 96);
+static_assert(offsetof(FrameBlock, clipFromView) == 0);
+static_assert(offsetof(FrameBlock, globalAmbient) == 64);
+static_assert(offsetof(FrameBlock, lightCount) == 80);
+static_assert(offsetof(FrameBlock, viewIndex) == 84);
+
+// std430 array element, set 0 binding 1.
+struct LightData {
+    Vec4 position;
+    Vec4 ambient;
+    Vec4 diffuse;
+    Vec4 specular;
+    Vec4 spotDirection;
+    Vec4 attenuation;
+    Vec4 spot;
+    UVec4 info;
+};
+static_assert(sizeof(LightData) == 128);
+static_assert(offsetof(LightData, position) == 0);
+static_assert(offsetof(LightData, spotDirection) == 64);
+static_assert(offsetof(LightData, attenuation) == 80);
+static_assert(offsetof(LightData, spot) == 96);
+static_assert(offsetof(LightData, info) == 112);
+
+struct MaterialSideData {
+    Vec4 ambient;
+    Vec4 diffuse;
+    Vec4 specular;  // w = shininess
+    Vec4 emission;
+};
+static_assert(sizeof(MaterialSideData) == 64);
+
+// std430 array element, set 0 binding 2.
+struct MaterialData {
+    MaterialSideData front;
+    MaterialSideData back;
+    Vec4 params;  // x = alpha cutoff
+};
+static_assert(sizeof(MaterialData) == 144);
+static_assert(offsetof(MaterialData, back) == 64);
+static_assert(offsetof(MaterialData, params) == 128);
+
+// Push constants (std430): 124 bytes of the 128 every device guarantees.
+struct DrawBlock {
+    float viewFromModel[16];
+    float normalMatrix[12];  // three vec4 columns (w unused)
+    std::uint32_t materialIndex = 0;
+    std::uint32_t drawIndex = 0;
+    std::uint32_t flags = 0;  // bit 0: the primitive has vertex colours
+};
+static_assert(sizeof(DrawBlock) == 124);
+static_assert(offsetof(DrawBlock, normalMatrix) == 64);
+static_assert(offsetof(DrawBlock, materialIndex) == 112);
+static_assert(offsetof(DrawBlock, drawIndex) == 116);
+static_assert(offsetof(DrawBlock, flags) == 120);
+
+inline constexpr std::uint32_t kDrawFlagVertexColor = 1u;
+
+} // namespace lantern::gpu

@@ -1,0 +1,155 @@
+// The pipeline layout, the shader modules and the variant cache. Set, binding, attribute and
+// output numbers come from shaders/include/lantern_shared.h, as the shaders read them.
+#include "gpu/Pipelines.h"
+
+#include "gpu/Pipeline.h"
+#include "gpu/Targets.h"
+
+#include "ShaderBlobs.h"
+
+namespace lantern::gpu {
+namespace {
+
+using shaders::ShaderId;
+using frame::Program;
+
+struct ProgramShaders {
+    ShaderId vertex, fragment, fragmentAov;
+};
+
+ProgramShaders programShaders(Program p) {
+    switch (p) {
+    case Program::Phong: return {ShaderId::mesh_vert, ShaderId::phong_frag, ShaderId::phong_aov_frag};
+    case Program::Gouraud:
+        return {ShaderId::gouraud_vert, ShaderId::gouraud_frag, ShaderId::gouraud_aov_frag};
+    case Program::Flat: return {ShaderId::flat_vert, ShaderId::flat_frag, ShaderId::flat_aov_frag};
+    case Program::GlFlat: return {ShaderId::glflat_vert, ShaderId::flat_frag, ShaderId::flat_aov_frag};
+    case Program::Floor: return {ShaderId::mesh_vert, ShaderId::floor_frag, ShaderId::floor_aov_frag};
+    }
+    return {ShaderId::mesh_vert, ShaderId::phong_frag, ShaderId::phong_aov_frag};
+}
+
+// One vertex-buffer binding per attribute, numbered as its location (non-interleaved streams).
+struct Attribute {
+    std::uint32_t location;
+    VkFormat format;
+    std::uint32_t stride;
+};
+constexpr Attribute kAttributes[LANTERN_VERTEX_BINDINGS] = {
+    {LANTERN_LOC_POSITION, VK_FORMAT_R32G32B32_SFLOAT, 12},
+    {LANTERN_LOC_NORMAL, VK_FORMAT_R32G32B32_SFLOAT, 12},
+    {LANTERN_LOC_COLOR, VK_FORMAT_R32G32B32A32_SFLOAT, 16},
+    {LANTERN_LOC_TEXCOORD, VK_FORMAT_R32G32_SFLOAT, 8},
+    {LANTERN_LOC_CENTROID, VK_FORMAT_R32G32B32_SFLOAT, 12},
+};
+
+Result<UniqueDescriptorSetLayout> makeSetLayout(Context& ctx,
+                                                const std::vector<VkDescriptorSetLayoutBinding>& b) {
+    VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    lci.bindingCount = std::uint32_t(b.size());
+    lci.pBindings = b.data();
+    VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkCreateDescriptorSetLayout(ctx.device(), &lci, nullptr, &layout));
+    return UniqueDescriptorSetLayout(ctx.device(), layout);
+}
+
+} // namespace
+
+std::size_t PipelineKeyHash::operator()(const PipelineKey& k) const noexcept {
+    std::size_t h = std::size_t(k.program) * 1000003u;
+    for (std::uint32_t c : k.constants) h = h * 31u + c;
+    h = h * 31u + (k.blend ? 1u : 0u);
+    h = h * 31u + (k.aov ? 1u : 0u);
+    h = h * 31u + k.samples;
+    h = h * 31u + (k.reversedZ ? 1u : 0u);
+    return h;
+}
+
+Result<Pipelines> Pipelines::create(Context& ctx) {
+    Pipelines p;
+    p.m_ctx = &ctx;
+    const VkShaderStageFlags both = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    auto frameLayout = makeSetLayout(
+        ctx, {{LANTERN_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1, both, nullptr},
+              {LANTERN_BINDING_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, 1, both, nullptr},
+              {LANTERN_BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, both, nullptr}});
+    if (!frameLayout) return std::move(frameLayout).error();
+    p.m_frameLayout = std::move(*frameLayout);
+    auto textureLayout =
+        makeSetLayout(ctx, {{LANTERN_BINDING_BASE_COLOR, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                             1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}});
+    if (!textureLayout) return std::move(textureLayout).error();
+    p.m_textureLayout = std::move(*textureLayout);
+
+    VkDescriptorSetLayout setLayouts[2] = {};
+    setLayouts[LANTERN_SET_FRAME] = p.m_frameLayout.get();
+    setLayouts[LANTERN_SET_TEXTURE] = p.m_textureLayout.get();
+    VkPushConstantRange push{both, 0, sizeof(DrawBlock)};
+    VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    plci.setLayoutCount = 2;
+    plci.pSetLayouts = setLayouts;
+    plci.pushConstantRangeCount = 1;
+    plci.pPushConstantRanges = &push;
+    VkPipelineLayout pl = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkCreatePipelineLayout(ctx.device(), &plci, nullptr, &pl));
+    p.m_layout = UniquePipelineLayout(ctx.device(), pl);
+    return p;
+}
+
+Result<VkShaderModule> Pipelines::shader(std::uint32_t id) {
+    if (auto it = m_shaders.find(id); it != m_shaders.end()) return it->second.get();
+    const shaders::ShaderBlob blob = shaders::shaderBlob(ShaderId(id));
+    auto module = createShaderModule(*m_ctx, {blob.words, blob.wordCount}, std::string(blob.name));
+    if (!module) return std::move(module).error();
+    const VkShaderModule handle = module->get();
+    m_shaders.emplace(id, std::move(*module));
+    return handle;
+}
+
+Result<VkPipeline> Pipelines::pipeline(const PipelineKey& key) {
+    if (auto it = m_pipelines.find(key); it != m_pipelines.end()) return it->second.get();
+    const ProgramShaders ps = programShaders(key.program);
+    auto vs = shader(std::uint32_t(ps.vertex));
+    if (!vs) return std::move(vs).error();
+    auto fs = shader(std::uint32_t(key.aov ? ps.fragmentAov : ps.fragment));
+    if (!fs) return std::move(fs).error();
+
+    GraphicsPipelineDesc d;
+    d.layout = m_layout.get();
+    d.vertex = *vs;
+    d.fragment = *fs;
+    for (std::uint32_t i = 0; i < LANTERN_SC_COUNT; ++i) {
+        d.specEntries.push_back({i, i * 4u, 4u});
+        d.specData.push_back(key.constants[i]);
+    }
+    // Only flat shading reads the centroid stream.
+    const std::uint32_t attributes =
+        key.program == Program::Flat ? LANTERN_VERTEX_BINDINGS : LANTERN_LOC_CENTROID;
+    for (std::uint32_t a = 0; a < attributes; ++a) {
+        const Attribute& at = kAttributes[a];
+        d.bindings.push_back({at.location, at.stride, VK_VERTEX_INPUT_RATE_VERTEX});
+        d.attributes.push_back({at.location, at.location, at.format, 0});
+    }
+    d.colorFormats.assign(key.aov ? LANTERN_OUT_COUNT_AOV : 1, VK_FORMAT_UNDEFINED);
+    d.colorFormats[LANTERN_OUT_COLOR] = kColorFormat;
+    if (key.aov) {
+        d.colorFormats[LANTERN_OUT_NORMAL_DEPTH] = kNormalDepthFormat;
+        d.colorFormats[LANTERN_OUT_ID] = kIdFormat;
+    }
+    d.depthFormat = kDepthFormat;
+    d.samples = VkSampleCountFlagBits(key.samples);
+    d.blend = key.blend;
+    d.depthWrite = !key.blend;
+    // GL's default depth test is strict: the first of two equal depths wins.
+    d.depthCompare = key.reversedZ ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_LESS;
+    d.provokingLast = key.program == Program::GlFlat;
+    d.name = std::string(frame::toString(key.program)) + " variant";
+    auto p = createGraphicsPipeline(*m_ctx, d);
+    if (!p) return std::move(p).error();
+    const VkPipeline handle = p->get();
+    m_pipelines.emplace(key, std::move(*p));
+    m_ctx->log(LogLevel::Debug, "pipeline variant created: " + d.name);
+    return handle;
+}
+
+} // namespace lantern::gpu

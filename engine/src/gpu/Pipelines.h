@@ -1,0 +1,43 @@
+// Pipelines.h: the shader programs and their pipeline variants. One pipeline layout (the frame
+// set, the texture set, the push-constant DrawBlock) serves every program; shader modules are
+// made from the embedded SPIR-V on first use, and a pipeline per PipelineKey on first use,
+// then cached (and compiled through the context's VkPipelineCache).
+#pragma once
+
+#include "gpu/Context.h"
+#include "gpu/DrawList.h"
+#include "gpu/Handles.h"
+
+#include <map>
+#include <unordered_map>
+#include <vector>
+
+namespace lantern::gpu {
+
+class Pipelines {
+public:
+    static Result<Pipelines> create(Context& ctx);
+    Pipelines(Pipelines&&) noexcept = default;
+
+    VkPipelineLayout layout() const { return m_layout.get(); }
+    VkDescriptorSetLayout frameSetLayout() const { return m_frameLayout.get(); }
+    VkDescriptorSetLayout textureSetLayout() const { return m_textureLayout.get(); }
+
+    /// The pipeline for a variant (created on first use).
+    Result<VkPipeline> pipeline(const PipelineKey& key);
+    std::size_t count() const { return m_pipelines.size(); }
+
+    /// A shader module of the embedded registry (shaders::ShaderId), made on first use.
+    Result<VkShaderModule> shader(std::uint32_t id);
+
+private:
+    Pipelines() = default;
+
+    Context* m_ctx = nullptr;
+    UniqueDescriptorSetLayout m_frameLayout, m_textureLayout;
+    UniquePipelineLayout m_layout;
+    std::map<std::uint32_t, UniqueShaderModule> m_shaders;
+    std::unordered_map<PipelineKey, UniquePipeline, PipelineKeyHash> m_pipelines;
+};
+
+} // namespace lantern::gpu

@@ -1,0 +1,253 @@
+// Recording one frame with Vulkan 1.3 dynamic rendering and synchronization2: attachment
+// barriers, the scene pass (and, with MSAA and AOVs, a single-sampled AOV pass), one viewport
+// per view, one draw per DrawCommand, the overlays, then the copies into the readback buffers.
+#include "gpu/FrameRing.h"
+
+#include <cfloat>
+#include <cstring>
+
+namespace lantern::gpu {
+namespace {
+
+std::uint32_t floatBits(float f) {
+    std::uint32_t u;
+    std::memcpy(&u, &f, 4);
+    return u;
+}
+
+struct FrameRecorder {
+    VkCommandBuffer cmd;
+    VkPipelineLayout layout;
+    const OverlayPipelines* overlays;
+    FrameRing::Slot& slot;
+    const SceneBuffers& scene;
+    const DrawList& list;
+    const FrameRing::ArenaLayout& arena;
+
+    void beginAttachments() const;
+    void bindStreams(const DrawCommand& d) const;
+    void drawViews(const std::vector<VkPipeline>& pipelines) const;
+    void pass(const std::vector<VkRenderingAttachmentInfo>& colors, const Image& depthImage,
+              const std::vector<VkPipeline>& pipelines) const;
+    void copyOut(const Image& img, const Buffer& buf, bool readback) const;
+};
+
+// Every attachment from UNDEFINED to its attachment layout (contents are cleared anyway).
+void FrameRecorder::beginAttachments() const {
+    const Target& t = slot.target;
+    std::vector<VkImage> colorImages{t.color.get()};
+    std::vector<VkImage> depthImages{t.depth.get()};
+    if (t.multisampled()) colorImages.push_back(t.colorMsaa.get());
+    if (t.aov) {
+        colorImages.push_back(t.normalDepth.get());
+        colorImages.push_back(t.ids.get());
+    }
+    if (t.separateAovPass()) {
+        colorImages.push_back(t.aovColor.get());
+        depthImages.push_back(t.aovDepth.get());
+    }
+    for (VkImage img : colorImages)
+        imageBarrier(cmd, img, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                     VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                     VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                     VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT);
+    for (VkImage img : depthImages)
+        imageBarrier(cmd, img, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                     VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                     VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                     VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                     VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
+                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+}
+
+// The primitive's streams, one binding per attribute location; absent colours and texture
+// coordinates read a stride-0 default (white, zero).
+void FrameRecorder::bindStreams(const DrawCommand& d) const {
+    const PrimitiveBuffers& gp = scene.primitive(d.mesh, d.primitive);
+    const VkBuffer geometry = scene.geometry();
+    if (d.pipeline.program == frame::Program::Flat) {
+        const VkBuffer flat = scene.flatGeometry();
+        const bool color = gp.flatColor != kNoStream, texcoord = gp.flatTexcoord != kNoStream;
+        VkBuffer buffers[LANTERN_VERTEX_BINDINGS];
+        VkDeviceSize offsets[LANTERN_VERTEX_BINDINGS], strides[LANTERN_VERTEX_BINDINGS];
+        auto set = [&](int loc, VkBuffer b, VkDeviceSize o, VkDeviceSize s) {
+            buffers[loc] = b, offsets[loc] = o, strides[loc] = s;
+        };
+        set(LANTERN_LOC_POSITION, flat, gp.flatPosition, 12);
+        set(LANTERN_LOC_NORMAL, flat, gp.flatNormal, 12);
+        set(LANTERN_LOC_COLOR, color ? flat : geometry,
+            color ? gp.flatColor : scene.defaultColorOffset(), color ? 16 : 0);
+        set(LANTERN_LOC_TEXCOORD, texcoord ? flat : geometry,
+            texcoord ? gp.flatTexcoord : scene.defaultTexcoordOffset(), texcoord ? 8 : 0);
+        set(LANTERN_LOC_CENTROID, flat, gp.flatCentroid, 12);
+        vkCmdBindVertexBuffers2(cmd, 0, LANTERN_VERTEX_BINDINGS, buffers, offsets, nullptr, strides);
+        vkCmdDraw(cmd, gp.flatVertexCount, 1, 0, 0);
+        return;
+    }
+    const bool color = gp.color != kNoStream, texcoord = gp.texcoord != kNoStream;
+    VkBuffer buffers[LANTERN_LOC_CENTROID];
+    VkDeviceSize offsets[LANTERN_LOC_CENTROID], strides[LANTERN_LOC_CENTROID];
+    for (VkBuffer& b : buffers) b = geometry;
+    offsets[LANTERN_LOC_POSITION] = gp.position, strides[LANTERN_LOC_POSITION] = 12;
+    offsets[LANTERN_LOC_NORMAL] = gp.normal, strides[LANTERN_LOC_NORMAL] = 12;
+    offsets[LANTERN_LOC_COLOR] = color ? gp.color : scene.defaultColorOffset();
+    strides[LANTERN_LOC_COLOR] = color ? 16 : 0;
+    offsets[LANTERN_LOC_TEXCOORD] = texcoord ? gp.texcoord : scene.defaultTexcoordOffset();
+    strides[LANTERN_LOC_TEXCOORD] = texcoord ? 8 : 0;
+    vkCmdBindVertexBuffers2(cmd, 0, LANTERN_LOC_CENTROID, buffers, offsets, nullptr, strides);
+    if (gp.indexCount > 0) {
+        vkCmdBindIndexBuffer(cmd, geometry, gp.index, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(cmd, gp.indexCount, 1, 0, 0, 0);
+    } else {
+        vkCmdDraw(cmd, gp.vertexCount, 1, 0, 0);
+    }
+}
+
+// Draws every view's list with the given pipelines (one per draw, in list order).
+void FrameRecorder::drawViews(const std::vector<VkPipeline>& pipelines) const {
+    const std::uint32_t height = slot.target.height;
+    std::size_t counter = 0;
+    for (std::size_t vi = 0; vi < list.views.size(); ++vi) {
+        const ViewCommands& v = list.views[vi];
+        // GL's viewport origin is the bottom-left corner; Vulkan's framebuffer starts at the top.
+        const float vy = float(int(height) - v.y - v.height);
+        const VkViewport viewport{float(v.x), vy, float(v.width), float(v.height), 0.0f, 1.0f};
+        const VkRect2D scissor{{v.x, int(vy)}, {std::uint32_t(v.width), std::uint32_t(v.height)}};
+        vkCmdSetViewport(cmd, 0, 1, &viewport);
+        vkCmdSetScissor(cmd, 0, 1, &scissor);
+        const std::uint32_t dynamicOffsets[2] = {std::uint32_t(arena.frameOffsets[vi]),
+                                                 std::uint32_t(arena.lightOffsets[vi])};
+        VkPipeline bound = VK_NULL_HANDLE;
+        VkDescriptorSet boundTexture = VK_NULL_HANDLE;
+        for (const DrawCommand& d : v.draws) {
+            const VkPipeline p = pipelines[counter++];
+            if (p != bound) {
+                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
+                if (bound == VK_NULL_HANDLE)
+                    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout,
+                                            LANTERN_SET_FRAME, 1, &slot.frameSet, 2, dynamicOffsets);
+                bound = p;
+            }
+            const VkDescriptorSet tex = scene.textureSet(d.texture);
+            if (tex != boundTexture) {
+                vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout,
+                                        LANTERN_SET_TEXTURE, 1, &tex, 0, nullptr);
+                boundTexture = tex;
+            }
+            vkCmdSetCullMode(cmd, d.cullBack ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE);
+            // The y flip in clipFromView keeps GL's counter-clockwise front faces
+            // counter-clockwise on screen; a mirroring transform reverses them (glTF's rule).
+            vkCmdSetFrontFace(cmd, d.frontClockwise ? VK_FRONT_FACE_CLOCKWISE
+                                                    : VK_FRONT_FACE_COUNTER_CLOCKWISE);
+            vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                               0, sizeof(DrawBlock), &d.block);
+            bindStreams(d);
+        }
+        // The display overlays never meet the AOV pass (they refuse AOVs).
+        if (slot.overlays.any())
+            overlays->recordView(cmd, scene, v, slot.frameSet, dynamicOffsets, slot.overlays);
+    }
+}
+
+void FrameRecorder::pass(const std::vector<VkRenderingAttachmentInfo>& colors,
+                         const Image& depthImage, const std::vector<VkPipeline>& pipelines) const {
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = depthImage.view.get();
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    // Reversed-Z clears to 0 (infinitely far), standard depth to 1.
+    depth.clearValue.depthStencil.depth = list.target.reversedZ ? 0.0f : 1.0f;
+    VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    ri.renderArea = {{0, 0}, {slot.target.width, slot.target.height}};
+    ri.layerCount = 1;
+    ri.colorAttachmentCount = std::uint32_t(colors.size());
+    ri.pColorAttachments = colors.data();
+    ri.pDepthAttachment = &depth;
+    vkCmdBeginRendering(cmd, &ri);
+    drawViews(pipelines);
+    vkCmdEndRendering(cmd);
+}
+
+void FrameRecorder::copyOut(const Image& img, const Buffer& buf, bool readback) const {
+    // To the whole transfer stage: a window frame blits the colour image afterwards.
+    imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                 VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                 VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                 VK_ACCESS_2_TRANSFER_READ_BIT);
+    if (!readback) return;
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {slot.target.width, slot.target.height, 1};
+    vkCmdCopyImageToBuffer(cmd, img.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buf.get(), 1,
+                           &region);
+}
+
+VkRenderingAttachmentInfo attachment(const Image& target, const Image* multisampled,
+                                     VkClearValue clear) {
+    VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    a.clearValue = clear;
+    if (multisampled) {
+        a.imageView = multisampled->view.get();
+        a.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
+        a.resolveImageView = target.view.get();
+        a.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        a.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    } else {
+        a.imageView = target.view.get();
+        a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    }
+    return a;
+}
+
+} // namespace
+
+void recordFrame(VkPipelineLayout layout, const OverlayPipelines* overlays,
+                 FrameRing::Slot& slot, const SceneBuffers& scene, const DrawList& list,
+                 const FrameRing::ArenaLayout& arena, const std::vector<VkPipeline>& pipelines,
+                 const std::vector<VkPipeline>& aovPipelines, const SubmitHooks& hooks) {
+    const FrameRecorder r{slot.cmd, layout, overlays, slot, scene, list, arena};
+    const VkCommandBuffer cmd = slot.cmd;
+    Target& t = slot.target;
+    if (slot.queries) vkCmdResetQueryPool(cmd, slot.queries, 0, 2);
+    r.beginAttachments();
+    if (slot.queries) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, slot.queries, 0);
+
+    VkClearValue colorClear{};
+    std::memcpy(colorClear.color.float32, &list.target.clear[0], 4 * sizeof(float));
+    VkClearValue normalDepthClear{};
+    normalDepthClear.color.uint32[3] = floatBits(FLT_MAX);  // background depth: the largest float
+    std::vector<VkRenderingAttachmentInfo> colors(
+        t.aov && !t.multisampled() ? LANTERN_OUT_COUNT_AOV : 1);
+    colors[LANTERN_OUT_COLOR] = attachment(t.color, t.multisampled() ? &t.colorMsaa : nullptr, colorClear);
+    if (t.aov && !t.multisampled()) {
+        colors[LANTERN_OUT_NORMAL_DEPTH] = attachment(t.normalDepth, nullptr, normalDepthClear);
+        colors[LANTERN_OUT_ID] = attachment(t.ids, nullptr, VkClearValue{});
+    }
+    r.pass(colors, t.depth, pipelines);
+    if (t.separateAovPass()) {
+        std::vector<VkRenderingAttachmentInfo> aov(LANTERN_OUT_COUNT_AOV);
+        aov[LANTERN_OUT_COLOR] = attachment(t.aovColor, nullptr, colorClear);
+        aov[LANTERN_OUT_NORMAL_DEPTH] = attachment(t.normalDepth, nullptr, normalDepthClear);
+        aov[LANTERN_OUT_ID] = attachment(t.ids, nullptr, VkClearValue{});
+        r.pass(aov, t.aovDepth, aovPipelines);
+    }
+    if (slot.queries)
+        vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, slot.queries, 1);
+
+    r.copyOut(t.color, t.readColor, hooks.readback);
+    if (t.aov) {
+        r.copyOut(t.normalDepth, t.readNormalDepth, hooks.readback);
+        r.copyOut(t.ids, t.readIds, hooks.readback);
+    }
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    if (hooks.afterRender) hooks.afterRender(cmd, t.color.get(), t.width, t.height);
+}
+
+} // namespace lantern::gpu

@@ -1,0 +1,82 @@
+// SceneBuffers.h: a Scene's geometry and textures on the device. All primitives share one
+// geometry buffer (non-interleaved streams at 16-byte-aligned offsets); the de-indexed streams
+// flat shading needs (face normal and centroid per triangle corner) are built on first use.
+#pragma once
+
+#include "gpu/Context.h"
+#include "gpu/Resources.h"
+
+#include <lantern/Scene.h>
+
+#include <memory>
+#include <mutex>
+#include <vector>
+
+namespace lantern::gpu {
+
+inline constexpr VkDeviceSize kNoStream = ~VkDeviceSize(0);
+
+struct PrimitiveBuffers {
+    // Offsets into the geometry buffer; kNoStream for absent colours/texcoords.
+    VkDeviceSize position = 0, normal = 0, color = kNoStream, texcoord = kNoStream,
+                 index = kNoStream;
+    std::uint32_t vertexCount = 0;
+    std::uint32_t indexCount = 0;  ///< 0: non-indexed
+    // Offsets into the flat-geometry buffer (valid once flat streams exist).
+    VkDeviceSize flatPosition = 0, flatNormal = 0, flatColor = kNoStream,
+                 flatTexcoord = kNoStream, flatCentroid = 0;
+    std::uint32_t flatVertexCount = 0;
+};
+
+class SceneBuffers {
+public:
+    /// Uploads `scene` (which must have passed Scene::validate()).
+    static Result<std::shared_ptr<SceneBuffers>> create(std::shared_ptr<Context> ctx,
+                                                    std::shared_ptr<const Scene> scene,
+                                                    VkDescriptorSetLayout textureLayout);
+    ~SceneBuffers();
+
+    const Scene& scene() const { return *m_scene; }
+    /// The context (device) the scene lives on: only its own Renderer may draw it.
+    const Context* context() const { return m_ctx.get(); }
+    const std::shared_ptr<const Scene>& sharedScene() const { return m_scene; }
+    const PrimitiveBuffers& primitive(std::uint32_t mesh, std::uint32_t prim) const {
+        return m_primitives[m_meshFirst[mesh] + prim];
+    }
+    VkBuffer geometry() const { return m_geometry.get(); }
+    VkBuffer flatGeometry() const { return m_flatGeometry.get(); }
+    VkDeviceSize defaultColorOffset() const { return m_defaultColor; }
+    VkDeviceSize defaultTexcoordOffset() const { return m_defaultTexcoord; }
+    /// The descriptor set of texture `index` (-1: a white 1x1 texture).
+    VkDescriptorSet textureSet(int index) const {
+        return m_textureSets[std::size_t(index + 1)];
+    }
+    /// Builds the flat-shading streams if they do not exist yet (thread-safe).
+    Result<void> ensureFlatStreams();
+    std::size_t geometryBytes() const { return std::size_t(m_geometry.size); }
+
+private:
+    SceneBuffers() = default;
+    // uploadTextures: the images (a white one first), the four samplers, one descriptor set
+    // per image.
+    Result<void> uploadTextures(VkDescriptorSetLayout layout);
+    Result<void> uploadTextureImages();
+    Result<void> createSamplers();
+    Result<void> createTextureSets(VkDescriptorSetLayout layout);
+
+    std::shared_ptr<Context> m_ctx;
+    std::shared_ptr<const Scene> m_scene;
+    std::vector<PrimitiveBuffers> m_primitives;
+    std::vector<std::size_t> m_meshFirst;
+    Buffer m_geometry;
+    Buffer m_flatGeometry;
+    std::mutex m_flatMutex;
+    bool m_flatReady = false;
+    VkDeviceSize m_defaultColor = 0, m_defaultTexcoord = 0;
+    std::vector<Image> m_textures;  ///< [0] is the white default
+    std::vector<UniqueSampler> m_samplers;  ///< by (nearest, clamp)
+    UniqueDescriptorPool m_pool;
+    std::vector<VkDescriptorSet> m_textureSets;
+};
+
+} // namespace lantern::gpu

@@ -1,0 +1,134 @@
+// Render targets of a frame slot, and the checks that refuse a target before allocating it.
+#include "gpu/Targets.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace lantern::gpu {
+namespace {
+
+std::string sizeText(const TargetDesc& d) {
+    return std::to_string(d.width) + "x" + std::to_string(d.height);
+}
+
+// Bytes one frame slot needs for `d`: colour, readback and depth, the multisampled colour, and
+// the AOV attachments with their readback and the separate AOV pass.
+double slotBytes(const TargetDesc& d) {
+    const double pixels = double(d.width) * double(d.height);
+    const double samples = double(d.samples);
+    double perPixel = 16 + 16 + 4 * samples;
+    if (d.samples > 1) perPixel += 16.0 * samples;
+    if (d.aovs.any()) perPixel += (16 + 8) * 2.0 + (d.samples > 1 ? 16 + 4 : 0);
+    return pixels * perPixel;
+}
+
+struct TargetMaker {
+    Context& ctx;
+    std::uint32_t width, height;
+
+    Result<void> image(Image& img, VkFormat format, std::uint32_t samples, VkImageUsageFlags usage,
+                       VkImageAspectFlags aspect, const char* name) const {
+        ImageDesc d;
+        d.format = format;
+        d.width = width;
+        d.height = height;
+        d.samples = VkSampleCountFlagBits(samples);
+        d.usage = usage;
+        d.aspect = aspect;
+        d.name = name;
+        auto r = createImage(ctx, d);
+        if (!r) return std::move(r).error();
+        img = std::move(*r);
+        return {};
+    }
+    Result<void> readback(Buffer& b, VkDeviceSize bytesPerPixel, const char* name) const {
+        auto r = createBuffer(ctx, VkDeviceSize(width) * height * bytesPerPixel,
+                              VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, name);
+        if (!r) return std::move(r).error();
+        b = std::move(*r);
+        return {};
+    }
+};
+
+} // namespace
+
+Result<void> checkTarget(const Context& ctx, const TargetDesc& d, std::uint32_t slots) {
+    const auto& lim = ctx.properties().limits;
+    if (d.width < 1 || d.height < 1)
+        return makeError(ErrorCode::InvalidInput, "image size " + sizeText(d) + " is empty",
+                         "--width/--height");
+    if (d.width > lim.maxImageDimension2D || d.height > lim.maxImageDimension2D)
+        return makeError(ErrorCode::InvalidInput,
+                         "image size " + sizeText(d) + " exceeds the device's maximum of " +
+                             std::to_string(lim.maxImageDimension2D) + " pixels per side",
+                         "--width/--height");
+    if (d.samples != 1 && d.samples != 2 && d.samples != 4 && d.samples != 8)
+        return makeError(ErrorCode::InvalidInput,
+                         "sample count " + std::to_string(d.samples) + " is not 1, 2, 4 or 8",
+                         "--msaa");
+    if (!(ctx.capabilities().colorDepthSampleCounts & d.samples))
+        return makeError(ErrorCode::Unsupported,
+                         "the device does not support " + std::to_string(d.samples) +
+                             " samples per pixel for float colour and depth",
+                         "--msaa");
+    if (d.aovs.any() && !ctx.capabilities().primitiveIdInFragment)
+        return makeError(ErrorCode::Unsupported,
+                         "the device lacks the geometryShader feature that the AOV shaders "
+                         "need (gl_PrimitiveID in the fragment stage)",
+                         "--aov");
+    const double bytes = slotBytes(d) * double(slots);
+    VkDeviceSize heap = 0;
+    const auto& mem = ctx.memoryProperties();
+    for (std::uint32_t i = 0; i < mem.memoryHeapCount; ++i)
+        if (mem.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+            heap = std::max(heap, mem.memoryHeaps[i].size);
+    if (heap > 0 && bytes > double(heap) * 0.9)
+        return makeError(ErrorCode::OutOfMemory,
+                         "a " + sizeText(d) + " image needs about " +
+                             std::to_string(std::llround(bytes / 1048576.0)) +
+                             " MiB of device memory; the device has " +
+                             std::to_string(heap / 1048576) + " MiB",
+                         "--width/--height");
+    return {};
+}
+
+Result<void> ensureTarget(Context& ctx, Target& t, const TargetDesc& d) {
+    const bool aov = d.aovs.any();
+    if (t.width == d.width && t.height == d.height && t.samples == d.samples && t.aov == aov)
+        return {};
+    t = Target{};
+    const TargetMaker make{ctx, d.width, d.height};
+    const VkImageUsageFlags single =
+        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    const VkImageAspectFlags color = VK_IMAGE_ASPECT_COLOR_BIT;
+    LANTERN_TRY(make.image(t.color, kColorFormat, 1, single, color, "colour"));
+    if (d.samples > 1)
+        LANTERN_TRY(make.image(t.colorMsaa, kColorFormat, d.samples,
+                               VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, color, "colour msaa"));
+    LANTERN_TRY(make.image(t.depth, kDepthFormat, d.samples,
+                           VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT,
+                           "depth"));
+    LANTERN_TRY(make.readback(t.readColor, 16, "colour readback"));
+    if (aov) {
+        LANTERN_TRY(make.image(t.normalDepth, kNormalDepthFormat, 1, single, color,
+                               "aov normal+depth"));
+        LANTERN_TRY(make.image(t.ids, kIdFormat, 1, single, color, "aov ids"));
+        if (d.samples > 1) {
+            // The single-sampled AOV pass draws into these (its colour output is discarded).
+            LANTERN_TRY(make.image(t.aovColor, kColorFormat, 1,
+                                   VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, color, "aov pass colour"));
+            LANTERN_TRY(make.image(t.aovDepth, kDepthFormat, 1,
+                                   VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                                   VK_IMAGE_ASPECT_DEPTH_BIT, "aov pass depth"));
+        }
+        LANTERN_TRY(make.readback(t.readNormalDepth, 16, "aov normal+depth readback"));
+        LANTERN_TRY(make.readback(t.readIds, 8, "aov ids readback"));
+    }
+    t.width = d.width;
+    t.height = d.height;
+    t.samples = d.samples;
+    t.aov = aov;
+    return {};
+}
+
+} // namespace lantern::gpu

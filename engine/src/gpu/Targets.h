@@ -1,0 +1,39 @@
+// Targets.h: a frame slot's render targets: the float colour image (and its multisampled
+// twin), depth, the AOV attachments (eye normal + depth bits, draw + primitive ids), the
+// single-sampled AOV pass that multisampling needs, and the host-visible readback buffers.
+// Made for a TargetDesc, kept while the next frame asks for the same size and kind.
+#pragma once
+
+#include "gpu/Context.h"
+#include "gpu/DrawList.h"
+#include "gpu/Resources.h"
+
+namespace lantern::gpu {
+
+inline constexpr VkFormat kColorFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+inline constexpr VkFormat kNormalDepthFormat = VK_FORMAT_R32G32B32A32_UINT;
+inline constexpr VkFormat kIdFormat = VK_FORMAT_R32G32_UINT;
+inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+
+struct Target {
+    std::uint32_t width = 0, height = 0, samples = 0;
+    bool aov = false;
+    Image color, colorMsaa, depth, normalDepth, ids;
+    Image aovColor, aovDepth;  ///< the single-sampled AOV pass, with MSAA
+    Buffer readColor, readNormalDepth, readIds;
+
+    bool multisampled() const { return samples > 1; }
+    /// With MSAA the AOVs are drawn in a second, single-sampled pass: integer attachments
+    /// cannot be multisampled on every device (lavapipe), and an AOV is one value per pixel.
+    bool separateAovPass() const { return aov && samples > 1; }
+};
+
+/// (Re)makes `target` for `desc` unless it already matches.
+Result<void> ensureTarget(Context& ctx, Target& target, const TargetDesc& desc);
+
+/// Refuses what a device cannot make, before anything is allocated: an empty or too large
+/// image, an unsupported sample count, AOVs without primitive ids, more memory than the
+/// device has for `slots` frame slots.
+Result<void> checkTarget(const Context& ctx, const TargetDesc& desc, std::uint32_t slots);
+
+} // namespace lantern::gpu

@@ -1,0 +1,258 @@
+// glTF materials -> Lantern's: LANTERN_materials_phong, the PBR fallback mapping,
+// KHR_materials_unlit, alpha modes, and the base-colour textures they use, decoded to RGBA8.
+#include "io/GltfInternal.h"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <stb_image.h>
+
+namespace lantern::gltf {
+namespace {
+
+/// One side of LANTERN_materials_phong; defaults are GL's (MaterialSide's).
+MaterialSide readPhongSide(const ExtensionReader& r) {
+    r.warnUnknown({"ambient", "diffuse", "specular", "emission", "shininess", "back"});
+    MaterialSide s;
+    s.ambient = r.vec3("ambient", s.ambient);
+    s.diffuse = r.rgba("diffuse", s.diffuse);
+    s.specular = r.vec3("specular", s.specular);
+    s.emission = r.vec3("emission", s.emission);
+    s.shininess = r.number("shininess", s.shininess);
+    if (s.shininess < 0.0) r.fail("shininess", "must be >= 0, got " + std::to_string(s.shininess));
+    return s;
+}
+
+/// Decodes base-colour textures on first use and maps (glTF texture) -> Scene::textures.
+class TextureTable {
+public:
+    TextureTable(const tinygltf::Model& model, const ImageStore& images, const RawFacts& raw,
+                 const LoadOptions& options, const Diagnostics& diag, std::vector<Texture>& out)
+        : m_model(model), m_images(images), m_raw(raw), m_options(options), m_diag(diag),
+          m_out(out) {}
+
+    /// The Scene::textures index for glTF texture `index`, -1 when it has no image we read.
+    Result<int> get(int index, const std::string& usedBy) {
+        if (auto it = m_done.find(index); it != m_done.end()) return it->second;
+        const tinygltf::Texture& t = m_model.textures[std::size_t(index)];
+        if (t.source < 0) {
+            m_diag.warn(at("textures", std::size_t(index)),
+                        "no source image (an extension's image format?); " + usedBy +
+                            " is drawn without it");
+            return m_done[index] = -1;
+        }
+        auto decoded = decode(t.source);
+        if (!decoded) return std::move(decoded).error();
+        Texture tex = std::move(*decoded);
+        if (t.sampler >= 0) {
+            const tinygltf::Sampler& s = m_model.samplers[std::size_t(t.sampler)];
+            tex.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+            tex.clampToEdge = s.wrapS == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE ||
+                              s.wrapT == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+            if (s.wrapS == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT ||
+                s.wrapT == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT)
+                m_diag.warn(at("samplers", std::size_t(t.sampler)),
+                            "MIRRORED_REPEAT is drawn as REPEAT");
+        }
+        m_out.push_back(std::move(tex));
+        return m_done[index] = int(m_out.size()) - 1;
+    }
+
+    /// The mean metallic (blue) and roughness (green) of a metallicRoughnessTexture, or
+    /// nothing when the texture has no image Lantern reads.
+    Result<std::optional<glm::dvec2>> meanMetallicRoughness(int index) {
+        const tinygltf::Texture& t = m_model.textures[std::size_t(index)];
+        if (t.source < 0) return std::optional<glm::dvec2>{};
+        auto decoded = decode(t.source);
+        if (!decoded) return std::move(decoded).error();
+        double metallic = 0.0, roughness = 0.0;
+        const std::size_t pixels = decoded->rgba8.size() / 4;
+        for (std::size_t i = 0; i < pixels; ++i) {
+            roughness += decoded->rgba8[i * 4 + 1];
+            metallic += decoded->rgba8[i * 4 + 2];
+        }
+        const double scale = 1.0 / (255.0 * double(std::max<std::size_t>(pixels, 1)));
+        return std::optional<glm::dvec2>(glm::dvec2(metallic * scale, roughness * scale));
+    }
+
+private:
+    Result<Texture> decode(int source) {
+        const tinygltf::Image& image = m_model.images[std::size_t(source)];
+        const std::string obj = at("images", std::size_t(source));
+        const unsigned char* bytes = nullptr;
+        std::size_t size = 0;
+        if (auto it = m_images.encoded.find(source); it != m_images.encoded.end()) {
+            bytes = it->second.data();
+            size = it->second.size();
+        } else if (image.bufferView >= 0) {
+            LANTERN_TRY(checkBufferView(m_model, image.bufferView, m_diag));
+            const tinygltf::BufferView& bv = m_model.bufferViews[std::size_t(image.bufferView)];
+            bytes = m_model.buffers[std::size_t(bv.buffer)].data.data() + bv.byteOffset;
+            size = bv.byteLength;
+        } else {
+            auto problem = m_raw.imageProblems.find(source);
+            return m_diag.error(obj + ".uri", problem != m_raw.imageProblems.end()
+                                                  ? problem->second
+                                                  : "\"" + image.uri + "\" could not be read");
+        }
+        if (size > std::size_t(INT_MAX)) return m_diag.error(obj, "encoded image is too large");
+        int w = 0, h = 0, channels = 0;
+        if (!stbi_info_from_memory(bytes, int(size), &w, &h, &channels))
+            return m_diag.error(obj, std::string("cannot be decoded: ") + stbi_failure_reason());
+        if (w <= 0 || h <= 0 || w > kMaxTextureSide || h > kMaxTextureSide)
+            return m_diag.error(obj, std::to_string(w) + "x" + std::to_string(h) +
+                                         " is outside the supported texture size (1 to " +
+                                         std::to_string(kMaxTextureSide) + " per side)");
+        const std::uint64_t rgbaBytes = std::uint64_t(w) * std::uint64_t(h) * 4;
+        if (rgbaBytes > m_options.maxBytes)
+            return m_diag.error(obj, "decoded image (" + std::to_string(rgbaBytes) +
+                                         " bytes) exceeds --max-size (" +
+                                         std::to_string(m_options.maxBytes) + " bytes)");
+        stbi_uc* pixels = stbi_load_from_memory(bytes, int(size), &w, &h, &channels, 4);
+        if (!pixels)
+            return m_diag.error(obj, std::string("cannot be decoded: ") + stbi_failure_reason());
+        Texture t;
+        t.name = !image.name.empty() ? image.name : image.uri.size() < 200 ? image.uri : obj;
+        t.width = w;
+        t.height = h;
+        t.rgba8.assign(pixels, pixels + rgbaBytes);
+        stbi_image_free(pixels);
+        return t;
+    }
+
+    const tinygltf::Model& m_model;
+    const ImageStore& m_images;
+    const RawFacts& m_raw;
+    const LoadOptions& m_options;
+    const Diagnostics& m_diag;
+    std::vector<Texture>& m_out;
+    std::map<int, int> m_done;
+};
+
+// The factors and the alpha cutoff are numbers in range.
+Result<void> checkMaterialFactors(const tinygltf::Material& src, const std::string& obj,
+                                  const Diagnostics& diag) {
+    const tinygltf::PbrMetallicRoughness& pbr = src.pbrMetallicRoughness;
+    if (pbr.baseColorFactor.size() != 4 || !allFinite(pbr.baseColorFactor))
+        return diag.error(obj + ".pbrMetallicRoughness.baseColorFactor",
+                          "must be 4 finite numbers");
+    for (auto [name, value] : {std::pair{"metallicFactor", pbr.metallicFactor},
+                               std::pair{"roughnessFactor", pbr.roughnessFactor}})
+        if (!(value >= 0.0 && value <= 1.0))
+            return diag.error(obj + ".pbrMetallicRoughness." + name,
+                              "must be a number in [0, 1], got " + std::to_string(value));
+    if (src.emissiveFactor.size() != 3 || !allFinite(src.emissiveFactor))
+        return diag.error(obj + ".emissiveFactor", "must be 3 finite numbers");
+    if (!std::isfinite(src.alphaCutoff) || src.alphaCutoff < 0.0)
+        return diag.error(obj + ".alphaCutoff", "must be a finite number >= 0");
+    return {};
+}
+
+// KHR_materials_emissive_strength's factor (1 without the extension).
+Result<double> emissiveStrengthOf(const tinygltf::Material& src, const std::string& obj,
+                                  const Diagnostics& diag) {
+    double emissiveStrength = 1.0;
+    if (const tinygltf::Value* e = extension(src.extensions, "KHR_materials_emissive_strength")) {
+        ExtensionReader r(*e, obj + ".extensions.KHR_materials_emissive_strength", diag);
+        emissiveStrength = r.number("emissiveStrength", 1.0);
+        if (emissiveStrength < 0.0) r.fail("emissiveStrength", "must be >= 0");
+        LANTERN_TRY(r.status());
+    }
+    return emissiveStrength;
+}
+
+// LANTERN_materials_phong: the front side and, when given, the back side.
+Result<void> readPhongMaterial(const tinygltf::Value& e, const std::string& obj,
+                               const Diagnostics& diag, Material& m) {
+    ExtensionReader r(e, obj + ".extensions.LANTERN_materials_phong", diag);
+    m.front = readPhongSide(r);
+    if (auto back = r.child("back"))
+        m.back = readPhongSide(*back);
+    else if (r.has("back"))
+        r.fail("back", "must be an object");
+    return r.status();
+}
+
+// KHR_materials_unlit: the colour is the base colour; lighting terms are unused.
+void makeUnlit(const glm::dvec4& baseColor, Material& m) {
+    m.front.diffuse = baseColor;
+    m.front.ambient = glm::dvec3(baseColor);
+    m.front.specular = glm::dvec3(0.0);
+    m.front.emission = glm::dvec3(0.0);
+    m.ambientFollowsDiffuse = true;
+}
+
+// The PBR fallback (scene-format.md section 2). A metallicRoughnessTexture scales the
+// factors per texel; the Phong material is uniform, so it takes the texture's mean
+// (without it, the default factors 1 and 1 turn every textured PBR material into a
+// uniform white specular).
+Result<void> mapPbr(const tinygltf::Material& src, const glm::dvec4& baseColor,
+                    double emissiveStrength, TextureTable& textures, Material& m) {
+    const tinygltf::PbrMetallicRoughness& pbr = src.pbrMetallicRoughness;
+    double metallic = pbr.metallicFactor, roughness = pbr.roughnessFactor;
+    if (pbr.metallicRoughnessTexture.index >= 0) {
+        auto mean = textures.meanMetallicRoughness(pbr.metallicRoughnessTexture.index);
+        if (!mean) return std::move(mean).error();
+        if (*mean) {
+            metallic *= (*mean)->x;
+            roughness *= (*mean)->y;
+        }
+    }
+    const glm::dvec3 base(baseColor);
+    m.front.diffuse = glm::dvec4(base * (1.0 - metallic), baseColor.a);
+    m.front.specular = glm::mix(glm::dvec3(0.04), base, metallic);
+    const double r4 = roughness * roughness * roughness * roughness;
+    m.front.shininess = r4 > 0.0 ? std::min(2.0 / r4 - 2.0, kMaxPbrShininess) : kMaxPbrShininess;
+    m.front.ambient = glm::dvec3(m.front.diffuse);
+    m.front.emission = vec3(src.emissiveFactor) * emissiveStrength;
+    m.ambientFollowsDiffuse = true;
+    return {};
+}
+
+Result<Material> convertMaterial(const tinygltf::Model& model, std::size_t index,
+                                 TextureTable& textures, const Diagnostics& diag) {
+    const tinygltf::Material& src = model.materials[index];
+    const std::string obj = at("materials", index);
+    const tinygltf::PbrMetallicRoughness& pbr = src.pbrMetallicRoughness;
+    Material m;
+    m.name = src.name;
+    LANTERN_TRY(checkMaterialFactors(src, obj, diag));
+    m.alphaMode = src.alphaMode == "BLEND"  ? AlphaMode::Blend
+                  : src.alphaMode == "MASK" ? AlphaMode::Mask
+                                            : AlphaMode::Opaque;
+    m.alphaCutoff = src.alphaCutoff;
+    m.doubleSided = src.doubleSided;
+    m.unlit = extension(src.extensions, "KHR_materials_unlit") != nullptr;
+    auto emissiveStrength = emissiveStrengthOf(src, obj, diag);
+    if (!emissiveStrength) return std::move(emissiveStrength).error();
+
+    const glm::dvec4 baseColor = vec4(pbr.baseColorFactor);
+    if (const tinygltf::Value* e = extension(src.extensions, "LANTERN_materials_phong"))
+        LANTERN_TRY(readPhongMaterial(*e, obj, diag, m));
+    else if (m.unlit)
+        makeUnlit(baseColor, m);
+    else
+        LANTERN_TRY(mapPbr(src, baseColor, *emissiveStrength, textures, m));
+    if (pbr.baseColorTexture.index >= 0) {
+        auto t = textures.get(pbr.baseColorTexture.index, obj);
+        if (!t) return std::move(t).error();
+        m.baseColorTexture = *t;
+    }
+    return m;
+}
+
+} // namespace
+
+Result<void> convertMaterials(const tinygltf::Model& model, const RawFacts& raw,
+                              const ImageStore& images, const LoadOptions& options,
+                              const Diagnostics& diag, Scene& scene) {
+    TextureTable textures(model, images, raw, options, diag, scene.textures);
+    for (std::size_t i = 0; i < model.materials.size(); ++i) {
+        auto m = convertMaterial(model, i, textures, diag);
+        if (!m) return inFile(std::move(m).error(), diag);
+        scene.materials.push_back(std::move(*m));
+    }
+    return {};
+}
+
+} // namespace lantern::gltf

@@ -1,0 +1,316 @@
+// Pixels explained: the ray through a pixel centre meets the triangle the renderer drew there,
+// and the lighting equation is evaluated in double precision where the shading mode evaluates
+// it (shaders/mesh.vert + phong.frag, pervertex.vert + pervertex.frag are the rules mirrored).
+#include "reference/PixelReference.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+namespace lantern::ref {
+namespace {
+
+struct Triangle {
+    std::uint32_t vertices[3] = {};
+    glm::dvec3 eye[3];    ///< eye-space positions
+    glm::dvec3 normal[3]; ///< normal matrix times the vertex normal (not normalised)
+};
+
+// Where the ray through the pixel centre meets the triangle's plane, with the perspective-
+// correct barycentrics the rasteriser interpolates with (the eye-space barycentrics of that
+// point), and whether the triangle faces the ray (counter-clockwise as seen).
+struct RayHit {
+    glm::dvec3 point{0.0};
+    glm::dvec3 barycentric{1.0 / 3.0};
+    bool counterClockwise = true;
+};
+
+RayHit intersect(const Triangle& t, const glm::dvec3& origin, const glm::dvec3& dir) {
+    RayHit h;
+    const glm::dvec3 e1 = t.eye[1] - t.eye[0], e2 = t.eye[2] - t.eye[0];
+    h.counterClockwise = glm::dot(glm::cross(e1, e2), dir) < 0.0;
+    const glm::dvec3 p = glm::cross(dir, e2);
+    const double det = glm::dot(e1, p);
+    if (det == 0.0 || !std::isfinite(det)) { // seen edge-on: it covers no pixel centre
+        h.point = (t.eye[0] + t.eye[1] + t.eye[2]) / 3.0;
+        return h;
+    }
+    const glm::dvec3 s = origin - t.eye[0];
+    const glm::dvec3 q = glm::cross(s, e1);
+    const double u = glm::dot(s, p) / det, w = glm::dot(dir, q) / det;
+    h.barycentric = {1.0 - u - w, u, w};
+    h.point = t.eye[0] * h.barycentric.x + t.eye[1] * h.barycentric.y + t.eye[2] * h.barycentric.z;
+    return h;
+}
+
+template <class T> T interpolate(const glm::dvec3& b, const T& a0, const T& a1, const T& a2) {
+    return a0 * b.x + a1 * b.y + a2 * b.z;
+}
+
+bool nonZero(const glm::dvec3& v) { return v.x != 0.0 || v.y != 0.0 || v.z != 0.0; }
+
+// Which terms of the equation apply to a primitive, decided from the scene's data (its
+// material, its vertex streams) and the frame's lighting switches, never from a pipeline.
+struct DrawRules {
+    Settings settings;
+    bool vertexColor = false;
+    bool colorScales = false; ///< COLOR_0 scales (unlit, PBR-mapped) instead of replacing
+    bool ambientFollowsDiffuse = false;
+    bool glClamp = false, fragmentClamp = false;
+    bool opaque = true;
+    bool twoSided = false;
+    bool textured = false;
+};
+
+DrawRules rulesOf(const Material& mat, const Primitive& prim, const frame::Lighting& lit) {
+    DrawRules r;
+    r.settings.globalAmbient = lit.model.globalAmbient;
+    r.settings.localViewer = lit.model.localViewer;
+    r.settings.specular = lit.model.specular;
+    r.settings.unlit = mat.unlit;
+    r.vertexColor = !prim.colors.empty();
+    r.colorScales = mat.unlit || mat.ambientFollowsDiffuse;
+    r.ambientFollowsDiffuse = mat.ambientFollowsDiffuse;
+    r.glClamp = lit.clamp == frame::Clamp::Gl;
+    r.fragmentClamp = lit.clamp != frame::Clamp::None;
+    r.opaque = mat.alphaMode != AlphaMode::Blend;
+    r.twoSided = lit.model.twoSided;
+    r.textured = mat.baseColorTexture >= 0 && !prim.texcoords.empty();
+    return r;
+}
+
+// One evaluation of the equation (evaluateLighting + materialColours + splitColour).
+ProbeEvaluation evaluate(const std::string& where, double weight, const glm::dvec3& V,
+                         const glm::dvec3& n, const MaterialSide& side,
+                         const glm::dvec4* vertexColor, const std::vector<EyeLight>& lights,
+                         const DrawRules& rules, bool perLight) {
+    ProbeEvaluation e;
+    e.where = where;
+    e.weight = weight;
+    e.position = V;
+    e.normal = n;
+    std::vector<LightContribution> terms;
+    const LightSums sums =
+        evaluateLighting(V, n, side, lights, rules.settings, perLight ? &terms : nullptr);
+    const MaterialColours mc = materialColours(side, vertexColor, rules.colorScales);
+    e.ambientM = mc.ambient;
+    e.diffuseM = mc.diffuse;
+    e.alpha = mc.alpha;
+    if (!rules.settings.unlit) {
+        e.emission = side.emission;
+        e.globalAmbient = mc.ambient * rules.settings.globalAmbient;
+    }
+    for (std::size_t i = 0; i < terms.size(); ++i) {
+        const LightContribution& c = terms[i];
+        ProbeLight p;
+        p.name = lights[i].name;
+        p.type = lights[i].type;
+        p.attenuation = c.attenuation;
+        p.spot = c.spot;
+        p.nDotL = c.nDotL;
+        p.specularTerm = c.specularTerm;
+        p.ambient = c.ambient * mc.ambient;
+        p.diffuse = c.diffuse * mc.diffuse;
+        p.specular = c.specular;
+        e.lights.push_back(std::move(p));
+    }
+    const SplitColour split =
+        splitColour(sums, mc.ambient, mc.diffuse, rules.ambientFollowsDiffuse, rules.glClamp);
+    e.colour = split.base + split.textured; // a white texel
+    return e;
+}
+
+} // namespace
+
+PixelReference::PixelReference(const Scene& scene, const frame::Frame& frame, int imageHeight)
+    : m_scene(scene), m_frame(frame), m_imageHeight(imageHeight) {}
+
+namespace {
+
+// The triangle a draw drew, in the draw's eye space.
+Triangle eyeTriangle(const Primitive& prim, const frame::Draw& d, std::uint32_t triangle) {
+    Triangle t;
+    for (std::size_t c = 0; c < 3; ++c) {
+        const std::uint32_t v = prim.indices.empty() ? std::uint32_t(triangle * 3 + c)
+                                                     : prim.indices[triangle * 3 + c];
+        t.vertices[c] = v;
+        t.eye[c] = glm::dvec3(d.viewFromModel * glm::dvec4(glm::dvec3(prim.positions[v]), 1.0));
+        t.normal[c] = d.normalMatrix * glm::dvec3(prim.normals[v]);
+    }
+    return t;
+}
+
+// The ray through pixel (x, y)'s centre in eye space: two depths of the centre unprojected
+// through the view's viewport (Vulkan framebuffer: origin top-left; the view's rectangle is
+// GL's, origin bottom-left).
+void pixelRay(const frame::View& view, int imageHeight, int x, int y, glm::dvec3& origin,
+              glm::dvec3& dir) {
+    const double fx = x + 0.5, fy = y + 0.5;
+    const double top = double(imageHeight - view.y - view.height);
+    const double nx = (fx - view.x) / view.width * 2.0 - 1.0;
+    const double ny = (fy - top) / view.height * 2.0 - 1.0;
+    const glm::dmat4 viewFromClip = glm::inverse(view.camera.clipFromView);
+    auto unproject = [&](double depth) {
+        const glm::dvec4 p = viewFromClip * glm::dvec4(nx, ny, depth, 1.0);
+        return glm::dvec3(p) / p.w;
+    };
+    origin = unproject(0.25);
+    dir = glm::normalize(unproject(0.75) - origin);
+    if (dir.z > 0.0) dir = -dir;  // every GL camera looks down -Z
+}
+
+// Evaluates the equation where the frame's shading rule evaluates it, appending to r.
+struct RuleEvaluator {
+    const Primitive& prim;
+    const frame::Draw& draw;
+    const Triangle& t;
+    const RayHit& hit;
+    const DrawRules& rules;
+    const std::vector<EyeLight>& lights;
+    bool perLight;
+    double sign;  ///< -1 when the back material (and the negated normal) is used
+
+    glm::dvec4 colorAt(std::uint32_t v) const { return glm::dvec4(prim.colors[v]); }
+    void add(ProbeReport& r, const std::string& where, double weight, const glm::dvec3& point,
+             const glm::dvec3& normal, const glm::dvec4& color) const {
+        r.evaluations.push_back(evaluate(where, weight, point, normal, r.materialSide,
+                                         rules.vertexColor ? &color : nullptr, lights, rules,
+                                         perLight));
+    }
+    void perFragment(ProbeReport& r) const {
+        const glm::dvec3& bc = hit.barycentric;
+        const glm::dvec4 color = rules.vertexColor ? interpolate(bc, colorAt(t.vertices[0]),
+                                                                 colorAt(t.vertices[1]),
+                                                                 colorAt(t.vertices[2]))
+                                                   : glm::dvec4(1.0);
+        add(r, "surface point", 1.0, hit.point, r.normal, color);
+    }
+    void perVertex(ProbeReport& r) const {
+        for (std::size_t c = 0; c < 3; ++c)
+            add(r, "vertex " + std::to_string(t.vertices[c]), hit.barycentric[int(c)], t.eye[c],
+                sign * safeNormalize(t.normal[c]), rules.vertexColor ? colorAt(t.vertices[c]) : glm::dvec4(1.0));
+    }
+    // GL_FLAT: the whole triangle takes the colour lit at its provoking (last) vertex.
+    void provokingVertex(ProbeReport& r) const {
+        const std::uint32_t v = t.vertices[2];
+        add(r, "provoking vertex " + std::to_string(v), 1.0, t.eye[2],
+            sign * safeNormalize(t.normal[2]), rules.vertexColor ? colorAt(v) : glm::dvec4(1.0));
+    }
+    // At the centroid with the face normal, both from the object-space positions as the flat
+    // streams are built (gpu/SceneBuffers.cpp); COLOR_0 averaged.
+    void faceCentroid(ProbeReport& r) const {
+        glm::dvec3 p[3];
+        for (std::size_t c = 0; c < 3; ++c) p[c] = glm::dvec3(prim.positions[t.vertices[c]]);
+        const glm::dvec3 cross = glm::cross(p[1] - p[0], p[2] - p[0]);
+        const double len = glm::length(cross);
+        const glm::dvec3 face = (len > 0.0 && std::isfinite(len)) ? cross / len : glm::dvec3(0.0);
+        const glm::dvec3 centroid =
+            glm::dvec3(draw.viewFromModel * glm::dvec4((p[0] + p[1] + p[2]) / 3.0, 1.0));
+        r.normal = sign * safeNormalize(draw.normalMatrix * face);
+        const glm::dvec4 color =
+            rules.vertexColor
+                ? (colorAt(t.vertices[0]) + colorAt(t.vertices[1]) + colorAt(t.vertices[2])) / 3.0
+                : glm::dvec4(1.0);
+        add(r, "triangle centroid", 1.0, centroid, r.normal, color);
+    }
+    void evaluateAll(ProbeReport& r, frame::Program program) const {
+        switch (program) {
+        case frame::Program::Phong: perFragment(r); break;
+        case frame::Program::Gouraud: perVertex(r); break;
+        case frame::Program::GlFlat: provokingVertex(r); break;
+        case frame::Program::Flat: faceCentroid(r); break;
+        case frame::Program::Floor:
+            // The floor's constant white is not the equation: there is nothing to evaluate.
+            r.evaluations.push_back(ProbeEvaluation{"floor (constant white, unlit)", 1.0});
+            r.evaluations.back().colour = glm::dvec3(1.0);
+            break;
+        }
+    }
+};
+
+void describeSwitches(ProbeReport& r, const frame::Lighting& lit) {
+    r.shading = lit.model.shading;
+    r.specular = lit.model.specular;
+    r.localViewer = lit.model.localViewer;
+    r.twoSided = lit.model.twoSided;
+    r.glCompat = lit.glCompat;
+    r.clamped = lit.clamp != frame::Clamp::None;
+}
+
+} // namespace
+
+ProbeReport PixelReference::explain(int x, int y, std::uint32_t drawId, std::uint32_t triangle,
+                                    bool perLight) const {
+    const frame::Lighting& lit = m_frame.lighting;
+    ProbeReport r;
+    r.x = x;
+    r.y = y;
+    describeSwitches(r, lit);
+    std::size_t vi = 0;
+    const frame::Draw* d = drawId == 0 ? nullptr : m_frame.draw(drawId - 1, &vi);
+    if (!d) return r;
+    const Primitive& prim = m_scene.meshes[d->mesh].primitives[d->primitive];
+    if (triangle >= prim.triangleCount()) return r;
+    const frame::View& view = m_frame.views[vi];
+    // The material as the scene gives it to the primitive (GL's limits applied by the frame).
+    const std::size_t materialIndex =
+        prim.material >= 0 ? std::size_t(prim.material) : m_scene.materials.size();
+    const Material& mat = m_frame.materials[materialIndex];
+    const DrawRules rules = rulesOf(mat, prim, lit);
+
+    const Triangle t = eyeTriangle(prim, *d, triangle);
+    glm::dvec3 origin, dir;
+    pixelRay(view, m_imageHeight, x, y, origin, dir);
+    const RayHit hit = intersect(t, origin, dir);
+
+    r.hit = true;
+    r.view = int(vi);
+    r.node = int(d->node);
+    r.nodeName = m_scene.nodes[d->node].name;
+    r.mesh = int(d->mesh);
+    r.primitive = int(d->primitive);
+    r.triangle = triangle;
+    for (std::size_t c = 0; c < 3; ++c) r.vertices[c] = t.vertices[c];
+    r.barycentric = hit.barycentric;
+    r.position = hit.point;
+    // A mirroring transform makes clockwise triangles the front ones (glTF's rule).
+    r.backFacing = d->mirrored ? hit.counterClockwise : !hit.counterClockwise;
+    r.backMaterial = r.backFacing && rules.twoSided;
+    const double sign = r.backMaterial ? -1.0 : 1.0;
+    r.material = prim.material;
+    r.materialName = mat.name;
+    r.materialSide = r.backMaterial && mat.back ? *mat.back : mat.front;
+    r.unlit = mat.unlit;
+    r.textured = rules.textured;
+    bool lightSpecular = false;
+    for (const EyeLight& l : view.lights) lightSpecular |= nonZero(l.specular);
+    r.specularPresent = !mat.unlit && lightSpecular && nonZero(r.materialSide.specular);
+    r.normal = sign * safeNormalize(interpolate(hit.barycentric, t.normal[0], t.normal[1], t.normal[2]));
+
+    const RuleEvaluator evaluator{prim, *d, t, hit, rules, view.lights, perLight, sign};
+    evaluator.evaluateAll(r, lit.program);
+
+    glm::dvec3 colour(0.0);
+    double alpha = 0.0;
+    for (const ProbeEvaluation& e : r.evaluations) {
+        colour += e.weight * e.colour;
+        alpha += e.weight * e.alpha;
+    }
+    if (rules.fragmentClamp) colour = glm::clamp(colour, 0.0, 1.0);
+    r.materialAlpha = alpha;
+    r.colour = glm::dvec4(colour, rules.opaque ? 1.0 : alpha);
+    return r;
+}
+
+ProbeReport probePixel(const Scene& scene, const frame::Frame& frame, const Image& image,
+                       const std::vector<std::uint32_t>& ids, int x, int y) {
+    const PixelReference reference(scene, frame, image.height);
+    const std::size_t i = std::size_t(y) * std::size_t(image.width) + std::size_t(x);
+    ProbeReport r = reference.explain(x, y, ids[i * 2], ids[i * 2 + 1]);
+    const float* px = image.pixel(x, y);
+    r.pixel = glm::dvec4(px[0], px[1], px[2], px[3]);
+    return r;
+}
+
+} // namespace lantern::ref

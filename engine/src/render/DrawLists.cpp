@@ -1,0 +1,148 @@
+// frame::Frame -> gpu::DrawList: packing in the shaders' layouts and the draws' variants.
+#include "render/DrawLists.h"
+
+#include "render/Variants.h"
+
+#include <algorithm>
+
+namespace lantern::render {
+namespace {
+
+gpu::Vec4 vec4(const glm::dvec3& v, double w = 0.0) {
+    return {float(v.x), float(v.y), float(v.z), float(w)};
+}
+gpu::Vec4 vec4(const glm::dvec4& v) { return {float(v.x), float(v.y), float(v.z), float(v.w)}; }
+
+gpu::Mat4 toMat4(const glm::dmat4& m) {
+    gpu::Mat4 r;
+    for (int c = 0; c < 4; ++c)
+        for (int k = 0; k < 4; ++k) r.m[c * 4 + k] = float(m[c][k]);
+    return r;
+}
+
+std::uint32_t lightType(LightType t) {
+    switch (t) {
+    case LightType::Directional: return LANTERN_LIGHT_DIRECTIONAL;
+    case LightType::Point: return LANTERN_LIGHT_POINT;
+    case LightType::Spot: return LANTERN_LIGHT_SPOT;
+    }
+    return LANTERN_LIGHT_POINT;
+}
+
+gpu::MaterialSideData packSide(const MaterialSide& s) {
+    gpu::MaterialSideData d;
+    d.ambient = vec4(s.ambient);
+    d.diffuse = vec4(s.diffuse);
+    d.specular = vec4(s.specular, s.shininess);
+    d.emission = vec4(s.emission);
+    return d;
+}
+
+gpu::DrawBlock packDraw(const frame::Draw& d) {
+    gpu::DrawBlock b;
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) b.viewFromModel[c * 4 + r] = float(d.viewFromModel[c][r]);
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) b.normalMatrix[c * 4 + r] = float(d.normalMatrix[c][r]);
+    b.materialIndex = d.material;
+    b.drawIndex = d.index;
+    b.flags = d.hasColors ? gpu::kDrawFlagVertexColor : 0u;
+    return b;
+}
+
+gpu::ViewCommands packView(const frame::Frame& frame, std::size_t vi, const RenderOptions& o) {
+    const frame::View& v = frame.views[vi];
+    gpu::ViewCommands out;
+    out.x = v.x, out.y = v.y, out.width = v.width, out.height = v.height;
+    out.frame.clipFromView = toMat4(v.camera.clipFromView);
+    out.frame.globalAmbient = vec4(frame.lighting.model.globalAmbient);
+    out.frame.viewIndex = std::uint32_t(vi);
+    for (const frame::EyeLight& l : v.lights) out.lights.push_back(packLight(l));
+    out.frame.lightCount = std::uint32_t(out.lights.size());
+    for (const frame::Draw& d : v.draws) {
+        gpu::DrawCommand c;
+        c.pipeline = pipelineKey(frame, d, o);
+        c.mesh = d.mesh;
+        c.primitive = d.primitive;
+        c.texture = d.texture;
+        c.cullBack = d.cullBack;
+        c.frontClockwise = d.mirrored;
+        c.block = packDraw(d);
+        out.draws.push_back(c);
+    }
+    // Opaque draws grouped by variant (fewer pipeline binds), order otherwise kept (stable, so
+    // frames are deterministic); the frame keeps blended draws last, far to near.
+    const auto firstBlended = std::stable_partition(
+        out.draws.begin(), out.draws.end(), [](const gpu::DrawCommand& c) { return !c.pipeline.blend; });
+    std::stable_sort(out.draws.begin(), firstBlended,
+                     [](const gpu::DrawCommand& a, const gpu::DrawCommand& b) {
+                         if (a.pipeline.program != b.pipeline.program)
+                             return a.pipeline.program < b.pipeline.program;
+                         return a.pipeline.constants < b.pipeline.constants;
+                     });
+    return out;
+}
+
+} // namespace
+
+gpu::LightData packLight(const frame::EyeLight& l) {
+    gpu::LightData d;
+    d.position = l.type == LightType::Directional ? vec4(l.toLight, 0.0) : vec4(l.position, 1.0);
+    d.ambient = vec4(l.ambient);
+    d.diffuse = vec4(l.diffuse);
+    d.specular = vec4(l.specular);
+    d.spotDirection = vec4(l.spotAxis, l.oneMinusCosCutoff);
+    d.attenuation = vec4(glm::dvec4(l.attenuation, l.invRange));
+    d.spot = vec4(glm::dvec4(l.exponent, l.cosOuter, l.coneScale, 0.0));
+    d.info.x = lightType(l.type);
+    d.info.y = l.falloff == LightFalloff::Gl ? LANTERN_FALLOFF_GL : LANTERN_FALLOFF_GLTF;
+    return d;
+}
+
+gpu::MaterialData packMaterial(const Material& m) {
+    gpu::MaterialData d;
+    d.front = packSide(m.front);
+    d.back = m.back ? packSide(*m.back) : d.front;
+    // A cutoff of -1 never discards: the all-features pipeline runs the mask test everywhere.
+    d.params.x = m.alphaMode == AlphaMode::Mask ? float(m.alphaCutoff) : -1.0f;
+    return d;
+}
+
+gpu::TargetDesc targetFor(const RenderOptions& o) {
+    gpu::TargetDesc t;
+    t.width = std::uint32_t(std::max(o.width, 0));
+    t.height = std::uint32_t(std::max(o.height, 0));
+    t.samples = std::uint32_t(std::max(o.msaa, 0));
+    t.aovs = o.aovs;
+    t.reversedZ = o.depth == DepthMode::ReversedZ;
+    t.clear = o.background;
+    return t;
+}
+
+gpu::Overlays overlaysFor(const Scene& scene, const frame::Frame& frame, const RenderOptions& o) {
+    gpu::Overlays ov;
+    ov.wireframe = o.wireframe;
+    ov.normals = o.normals;
+    if (o.normals) {
+        double length = o.normalLength;
+        if (!(length > 0.0)) {
+            const Bounds b = computeBounds(scene, frame.pose);
+            length = b.empty() ? 0.0 : 0.03 * b.radius();
+        }
+        ov.normalLength = float(length);
+    }
+    return ov;
+}
+
+gpu::DrawList buildDrawList(const Scene& scene, const frame::Frame& frame,
+                            const RenderOptions& o) {
+    gpu::DrawList list;
+    list.target = targetFor(o);
+    for (const Material& m : frame.materials) list.materials.push_back(packMaterial(m));
+    for (std::size_t vi = 0; vi < frame.views.size(); ++vi)
+        list.views.push_back(packView(frame, vi, o));
+    list.overlays = overlaysFor(scene, frame, o);
+    return list;
+}
+
+} // namespace lantern::render

@@ -1,0 +1,115 @@
+// Rendering a frame synchronously on a gpu::Device, and the explain and probe services built
+// on it.
+#include "render/FrameRender.h"
+
+#include "reference/PixelReference.h"
+#include "render/DrawLists.h"
+#include "render/Variants.h"
+
+#include <chrono>
+#include <set>
+
+namespace lantern::render {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+} // namespace
+
+Result<void> checkOptions(const gpu::Device& device, const RenderOptions& o) {
+    if (o.normals && !(o.normalLength >= 0.0 && o.normalLength < 1e300))
+        return makeError(ErrorCode::InvalidInput, "the normal length must be finite and >= 0",
+                         "options.normalLength");
+    // Signed values first: the device's check reads sizes and sample counts as unsigned.
+    if (o.width < 1 || o.height < 1)
+        return makeError(ErrorCode::InvalidInput,
+                         "image size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
+                             " is empty",
+                         "--width/--height");
+    if (o.msaa != 1 && o.msaa != 2 && o.msaa != 4 && o.msaa != 8)
+        return makeError(ErrorCode::InvalidInput,
+                         "sample count " + std::to_string(o.msaa) + " is not 1, 2, 4 or 8", "--msaa");
+    gpu::Overlays overlays;
+    overlays.wireframe = o.wireframe;
+    overlays.normals = o.normals;
+    return device.checkTarget(targetFor(o), overlays);
+}
+
+Result<PlannedFrame> planFrame(const Scene& scene, const RenderOptions& options, double time) {
+    auto f = frame::buildFrame(scene, options, time);
+    if (!f) return std::move(f).error();
+    PlannedFrame p;
+    p.list = buildDrawList(scene, *f, options);
+    p.frame = std::move(*f);
+    return p;
+}
+
+Result<RenderedFrame> renderFrame(gpu::Device& device, const std::shared_ptr<gpu::SceneBuffers>& scene,
+                                  const Scene& sceneData, const RenderOptions& options, double time,
+                                  FrameStats& stats, const FrameEdits& edits) {
+    const auto t0 = Clock::now();
+    auto f = frame::buildFrame(sceneData, options, time);
+    if (!f) return std::move(f).error();
+    if (edits.frame) edits.frame(*f);
+    gpu::DrawList list = buildDrawList(sceneData, *f, options);
+    if (edits.list) edits.list(list);
+    const std::size_t pipelinesBefore = device.pipelineCount();
+    // Drain any slot still in flight from a sequence before reusing it.
+    if (device.busy(device.nextSlot())) {
+        auto drained = device.collect(device.nextSlot());
+        if (!drained) return std::move(drained).error();
+    }
+    auto slot = device.submit(list, scene);
+    if (!slot) return std::move(slot).error();
+    stats = FrameStats{};
+    stats.cpuMs = msSince(t0);
+    const auto t1 = Clock::now();
+    auto readback = device.collect(*slot);
+    if (!readback) return std::move(readback).error();
+    stats.waitMs = msSince(t1);
+    stats.gpuMs = readback->gpuMs;
+    stats.draws = readback->draws;
+    stats.nonFinite = readback->nonFinite;
+    stats.pipelinesCreated = device.pipelineCount() - pipelinesBefore;
+    return RenderedFrame{std::move(*f), std::move(*readback)};
+}
+
+Result<FeatureReport> explain(const Scene& scene, const RenderOptions& options, double time) {
+    LANTERN_TRY(scene.validate());
+    auto f = frame::buildFrame(scene, options, time);
+    if (!f) return std::move(f).error();
+    FeatureReport report;
+    report.features = frame::describeFeatures(*f, options);
+    std::set<std::string> seen;
+    for (const frame::View& v : f->views)
+        for (const frame::Draw& d : v.draws) {
+            const std::string line = describe(pipelineKey(*f, d, options));
+            if (seen.insert(line).second) report.variants.push_back(line);
+        }
+    return report;
+}
+
+Result<ProbeReport> probe(gpu::Device& device, const std::shared_ptr<gpu::SceneBuffers>& scene,
+                          const Scene& sceneData, const RenderOptions& options, double time, int x,
+                          int y, FrameStats& stats) {
+    if (x < 0 || y < 0 || x >= options.width || y >= options.height)
+        return makeError(ErrorCode::InvalidInput,
+                         "pixel " + std::to_string(x) + "," + std::to_string(y) +
+                             " is outside the " + std::to_string(options.width) + "x" +
+                             std::to_string(options.height) + " image",
+                         "--probe");
+    // One sample per pixel: the probe explains the surface at the pixel centre.
+    RenderOptions single = options;
+    single.msaa = 1;
+    single.aovs.depth = single.aovs.normal = true;
+    LANTERN_TRY(checkOptions(device, single));
+    auto f = renderFrame(device, scene, sceneData, single, time, stats);
+    if (!f) return std::move(f).error();
+    return ref::probePixel(sceneData, f->frame, f->readback.image, f->readback.ids, x, y);
+}
+
+} // namespace lantern::render

@@ -1,0 +1,57 @@
+// FrameRender.h: the renderer's core on a gpu::Device: options checked against the device,
+// a frame built (frame/) and packed into a draw list (render/DrawLists.h), submitted and read
+// back; and on top of that, --explain and --probe. The public lantern::Renderer
+// (api/Renderer.cpp) and the engine's own tests use it.
+#pragma once
+
+#include "frame/Frame.h"
+#include "gpu/Device.h"
+#include "gpu/DrawList.h"
+
+#include <lantern/Options.h>
+#include <lantern/Probe.h>
+#include <lantern/Renderer.h>
+
+#include <functional>
+#include <memory>
+
+namespace lantern::render {
+
+/// Refuses options the device cannot honour, before anything is allocated.
+Result<void> checkOptions(const gpu::Device& device, const RenderOptions& options);
+
+/// A frame and its draw list.
+struct PlannedFrame {
+    frame::Frame frame;
+    gpu::DrawList list;
+};
+Result<PlannedFrame> planFrame(const Scene& scene, const RenderOptions& options, double time);
+
+/// A frame rendered and read back, with what it was made of.
+struct RenderedFrame {
+    frame::Frame frame;
+    gpu::FrameReadback readback;
+};
+
+/// Hooks for the engine's own tests: change the frame or the draw list before submission
+/// (to inject what validation refuses, or a wrong pipeline variant).
+struct FrameEdits {
+    std::function<void(frame::Frame&)> frame;
+    std::function<void(gpu::DrawList&)> list;
+};
+
+/// Renders synchronously: waits for any slot still in flight, submits, collects. `stats`
+/// receives the frame's measurements.
+Result<RenderedFrame> renderFrame(gpu::Device& device, const std::shared_ptr<gpu::SceneBuffers>& scene,
+                                  const Scene& sceneData, const RenderOptions& options, double time,
+                                  FrameStats& stats, const FrameEdits& edits = {});
+
+/// The features `scene` needs under `options` and the pipeline variants chosen for them.
+Result<FeatureReport> explain(const Scene& scene, const RenderOptions& options, double time);
+
+/// Renders once (one sample per pixel, AOVs on) and explains pixel (x, y) with the reference.
+Result<ProbeReport> probe(gpu::Device& device, const std::shared_ptr<gpu::SceneBuffers>& scene,
+                          const Scene& sceneData, const RenderOptions& options, double time, int x,
+                          int y, FrameStats& stats);
+
+} // namespace lantern::render

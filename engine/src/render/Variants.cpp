@@ -1,0 +1,100 @@
+// Features -> specialisation constants, and their description for --explain.
+#include "render/Variants.h"
+
+#include <algorithm>
+#include <sstream>
+#include <utility>
+
+namespace lantern::render {
+namespace {
+
+std::uint32_t lightTypeBits(const frame::LightFeatures& l) {
+    std::uint32_t bits = 0;
+    if (l.directional) bits |= LANTERN_LIGHT_BIT_DIRECTIONAL;
+    if (l.point) bits |= LANTERN_LIGHT_BIT_POINT;
+    if (l.spot) bits |= LANTERN_LIGHT_BIT_SPOT;
+    return bits;
+}
+
+std::uint32_t clampMode(frame::Clamp c) {
+    switch (c) {
+    case frame::Clamp::None: return LANTERN_CLAMP_NONE;
+    case frame::Clamp::Fragment: return LANTERN_CLAMP_FRAGMENT;
+    case frame::Clamp::Gl: return LANTERN_CLAMP_GL;
+    }
+    return LANTERN_CLAMP_NONE;
+}
+
+} // namespace
+
+gpu::PipelineKey pipelineKey(const frame::Frame& frame, const frame::Draw& d,
+                             const RenderOptions& o) {
+    const frame::Lighting& lit = frame.lighting;
+    const frame::LightFeatures& lights = frame.lightFeatures;
+    const frame::DrawFeatures& f = d.features;
+    const bool all = o.features == FeatureMode::AllFeatures;
+    gpu::PipelineKey k;
+    k.program = lit.program;
+    k.blend = f.blend;
+    k.aov = o.aovs.any();
+    k.samples = std::uint32_t(o.msaa);
+    k.reversedZ = o.depth == DepthMode::ReversedZ;
+    auto& sc = k.constants;
+    const std::uint32_t model = lit.model.specular == SpecularModel::Blinn ? LANTERN_SPECULAR_BLINN
+                                                                           : LANTERN_SPECULAR_PHONG;
+    sc[LANTERN_SC_LIGHT_TYPES] = all ? 7u : lightTypeBits(lights);
+    sc[LANTERN_SC_GL_ATTENUATION] = all || lights.glAttenuation;
+    sc[LANTERN_SC_GL_SPOT] = all || lights.glSpot;
+    sc[LANTERN_SC_GLTF_FALLOFF] = all || lights.gltfFalloff;
+    sc[LANTERN_SC_SPECULAR] = (all || f.specular) ? model : LANTERN_SPECULAR_NONE;
+    sc[LANTERN_SC_LOCAL_VIEWER] = lit.model.localViewer;
+    sc[LANTERN_SC_TWO_SIDED] = lit.model.twoSided;
+    sc[LANTERN_SC_VERTEX_COLOR] = all || f.vertexColor;
+    sc[LANTERN_SC_TEXTURE] = all || f.texture;
+    sc[LANTERN_SC_ALPHA_MASK] = all || f.alphaMask;
+    sc[LANTERN_SC_CLAMP] = clampMode(lit.clamp);
+    sc[LANTERN_SC_UNLIT] = f.unlit;
+    sc[LANTERN_SC_AMBIENT_FOLLOWS_DIFFUSE] = f.ambientFollowsDiffuse;
+    sc[LANTERN_SC_OPAQUE] = !f.blend;
+    return k;
+}
+
+std::string describe(const gpu::PipelineKey& k) {
+    std::ostringstream s;
+    s << frame::toString(k.program) << ": lights=";
+    const std::uint32_t t = k.constants[LANTERN_SC_LIGHT_TYPES];
+    bool any = false;
+    for (auto [bit, name] : {std::pair{LANTERN_LIGHT_BIT_DIRECTIONAL, "directional"},
+                             std::pair{LANTERN_LIGHT_BIT_POINT, "point"},
+                             std::pair{LANTERN_LIGHT_BIT_SPOT, "spot"}})
+        if (t & std::uint32_t(bit)) {
+            s << (any ? "+" : "") << name;
+            any = true;
+        }
+    if (!any) s << "none";
+    const char* spec[] = {"none", "blinn", "phong"};
+    s << " specular=" << spec[std::min<std::uint32_t>(k.constants[LANTERN_SC_SPECULAR], 2)];
+    auto flag = [&](int id, const char* name) {
+        if (k.constants[std::size_t(id)]) s << " " << name;
+    };
+    flag(LANTERN_SC_GL_ATTENUATION, "attenuation");
+    flag(LANTERN_SC_GL_SPOT, "gl-spot");
+    flag(LANTERN_SC_GLTF_FALLOFF, "gltf-falloff");
+    flag(LANTERN_SC_LOCAL_VIEWER, "local-viewer");
+    flag(LANTERN_SC_TWO_SIDED, "two-sided");
+    flag(LANTERN_SC_VERTEX_COLOR, "vertex-color");
+    flag(LANTERN_SC_TEXTURE, "texture");
+    flag(LANTERN_SC_ALPHA_MASK, "alpha-mask");
+    flag(LANTERN_SC_UNLIT, "unlit");
+    flag(LANTERN_SC_AMBIENT_FOLLOWS_DIFFUSE, "ambient=diffuse");
+    const char* clamps[] = {"", " clamp", " gl-clamp"};
+    s << clamps[std::min<std::uint32_t>(k.constants[LANTERN_SC_CLAMP], 2)];
+    s << (k.constants[LANTERN_SC_OPAQUE] ? " opaque" : "");
+    if (k.blend) s << " blend";
+    if (k.aov) s << " aov";
+    if (k.samples > 1) s << " msaa=" << k.samples;
+    if (!k.reversedZ) s << " standard-z";
+    return s.str();
+}
+
+} // namespace lantern::render
