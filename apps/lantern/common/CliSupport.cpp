@@ -86,6 +86,13 @@ void CameraOptions::add(CLI::App& app) {
                    "Use the scene's camera N (glTF index); repeat once per --viewport");
     app.add_flag("--default-camera", defaultCamera,
                  "The GL default camera: origin, looking down -Z, orthographic 2x2x2 cube");
+    std::vector<std::string> views;
+    for (ViewDirection v : kViewDirections) views.emplace_back(toString(v));
+    app.add_option("--view", view,
+                   "Frame the scene from a named view instead of the scene's camera: "
+                   "three-quarter (the automatic default: front right, 30 degrees above), front, "
+                   "back, left, right, top, bottom, iso")
+        ->check(CLI::IsMember(views));
     app.add_option("--look-at", lookAt,
                    "Place the camera as gluLookAt: EX,EY,EZ,TX,TY,TZ,UX,UY,UZ");
     app.add_option("--perspective", perspective,
@@ -112,8 +119,14 @@ Result<void> CameraOptions::apply(RenderOptions& o) const {
     if (defaultCamera && !cameras.empty())
         return makeError(ErrorCode::Usage, "give either --camera or --default-camera", "--camera");
     if (!depth.empty()) o.depth = *parseDepthMode(depth); // CLI11 checked the spelling
+    if (!view.empty() && (defaultCamera || !cameras.empty()))
+        return makeError(ErrorCode::Usage,
+                         "--view frames the scene automatically: it cannot be combined with " +
+                             std::string(defaultCamera ? "--default-camera" : "--camera"),
+                         "--view");
     CameraSpec spec;
     if (defaultCamera) spec.source = CameraSpec::Source::GlDefault;
+    if (!view.empty()) spec = CameraSpec::framed(*parseViewDirection(view)); // CLI11 checked it
     if (!lookAt.empty()) {
         auto v = parseNumbers(lookAt, 9, "--look-at");
         if (!v) return std::move(v).error();
@@ -185,17 +198,11 @@ std::vector<View> quadLayout(int width, int height, const CameraSpec& perspectiv
     // A classic modeller's four views (GL origin bottom-left): top view top-left, front
     // top-right, side bottom-left, the perspective camera bottom-right.
     const int w = width / 2, h = height / 2;
-    auto orthoView = [](glm::dvec3 direction) {
-        CameraSpec s;
-        s.source = CameraSpec::Source::Framing;
-        s.framingDirection = direction;
-        s.framingOrthographic = true;
-        return s;
-    };
+    auto orthoView = [](ViewDirection view) { return CameraSpec::framed(view, true); };
     return {
-        View{0, height - h, w, h, orthoView({0, -1, 0})},
-        View{w, height - h, width - w, h, orthoView({0, 0, -1})},
-        View{0, 0, w, height - h, orthoView({-1, 0, 0})},
+        View{0, height - h, w, h, orthoView(ViewDirection::Top)},
+        View{w, height - h, width - w, h, orthoView(ViewDirection::Front)},
+        View{0, 0, w, height - h, orthoView(ViewDirection::Right)},
         View{w, 0, width - w, height - h, perspective},
     };
 }

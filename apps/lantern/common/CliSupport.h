@@ -39,6 +39,7 @@ struct CameraOptions {
     std::vector<std::string> viewports;
     std::string layout;
     std::string depth; ///< --depth reversed|standard (default: reversed)
+    std::string view;  ///< --view NAME: automatic framing from a named view
 
     void add(CLI::App& app);
     /// Fills options.camera / options.views; refuses bad values with the option named.

@@ -32,6 +32,9 @@ enum class ViewDirection {
     Bottom,        ///< from -Y
     Iso,           ///< from (+1, +1, +1): the isometric corner
 };
+inline constexpr ViewDirection kViewDirections[] = {
+    ViewDirection::ThreeQuarter, ViewDirection::Front, ViewDirection::Back,   ViewDirection::Left,
+    ViewDirection::Right,        ViewDirection::Top,   ViewDirection::Bottom, ViewDirection::Iso};
 /// "three-quarter", "front", "back", "left", "right", "top", "bottom", "iso".
 LANTERN_API const char* toString(ViewDirection view) noexcept;
 LANTERN_API std::optional<ViewDirection> parseViewDirection(std::string_view text) noexcept;
@@ -56,6 +59,15 @@ struct CameraSpec {
     /// The framing fits the bounding sphere, near and far planes around it.
     glm::dvec3 framingDirection{-0.6123724356957945, -0.5, -0.6123724356957945};
     bool framingOrthographic = false;  ///< frame with an orthographic projection
+
+    /// Automatic framing from a named view, whatever cameras the scene has.
+    static CameraSpec framed(ViewDirection view, bool orthographic = false) noexcept {
+        CameraSpec s;
+        s.source = Source::Framing;
+        s.framingDirection = lantern::framingDirection(view);
+        s.framingOrthographic = orthographic;
+        return s;
+    }
 };
 
 /// A pixel rectangle in GL's convention (origin at the bottom-left of the image, as
