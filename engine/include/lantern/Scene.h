@@ -45,7 +45,9 @@ LANTERN_API std::optional<SpecularModel> parseSpecularModel(std::string_view tex
 struct LightingModel {
     glm::dvec3 globalAmbient{0.2, 0.2, 0.2};  ///< GL_LIGHT_MODEL_AMBIENT, linear RGB
     bool localViewer = false;  ///< true: v points to the eye; false: v = (0,0,1) (GL's default)
-    bool twoSided = false;     ///< back faces use the back material and the negated normal
+    /// Back faces lit with the negated normal and the back material (GL_LIGHT_MODEL_TWO_SIDE),
+    /// for every draw when stated; absent: glTF's rule, two-sided for double-sided materials.
+    std::optional<bool> twoSided;
     ShadingMode shading = ShadingMode::Phong;
     SpecularModel specular = SpecularModel::Blinn;
 };

@@ -41,8 +41,10 @@ std::vector<Material> frameMaterials(const Scene& scene, bool glCompat) {
     return out;
 }
 
-DrawFeatures drawFeatures(const Material& mat, const Draw& d, const LightFeatures& lights) {
+DrawFeatures drawFeatures(const Material& mat, const Draw& d, const LightFeatures& lights,
+                          const Lighting& lighting) {
     DrawFeatures f;
+    f.twoSided = twoSidedLighting(lighting, mat);
     const bool materialSpecular =
         nonZero(mat.front.specular) || (mat.back && nonZero(mat.back->specular));
     f.specular = lights.specular && materialSpecular && !mat.unlit;
@@ -83,7 +85,7 @@ void addNodeDraws(const Scene& scene, const Frame& frame, std::size_t ni,
         d.hasColors = !prim.colors.empty();
         d.hasTexcoords = !prim.texcoords.empty();
         d.texture = (mat.baseColorTexture >= 0 && d.hasTexcoords) ? mat.baseColorTexture : -1;
-        d.features = drawFeatures(mat, d, frame.lightFeatures);
+        d.features = drawFeatures(mat, d, frame.lightFeatures, frame.lighting);
         if (d.features.blend) {
             // Sort key: the eye-space depth of the primitive's bounds centre.
             Bounds local;

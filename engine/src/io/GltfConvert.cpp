@@ -84,7 +84,7 @@ Result<std::optional<LightingModel>> convertLighting(const tinygltf::Scene& src,
     LightingModel model;
     model.globalAmbient = r.vec3("globalAmbient", model.globalAmbient);
     model.localViewer = r.boolean("localViewer", model.localViewer);
-    model.twoSided = r.boolean("twoSided", model.twoSided);
+    if (r.has("twoSided")) model.twoSided = r.boolean("twoSided", false);
     const std::string shading = r.string("shading", "phong");
     const std::string specular = r.string("specular", "blinn");
     LANTERN_TRY(r.status());

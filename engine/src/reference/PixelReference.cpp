@@ -75,7 +75,7 @@ DrawRules rulesOf(const Material& mat, const Primitive& prim, const frame::Light
     r.glClamp = lit.clamp == frame::Clamp::Gl;
     r.fragmentClamp = lit.clamp != frame::Clamp::None;
     r.opaque = mat.alphaMode != AlphaMode::Blend;
-    r.twoSided = lit.model.twoSided;
+    r.twoSided = frame::twoSidedLighting(lit, mat);
     r.textured = mat.baseColorTexture >= 0 && !prim.texcoords.empty();
     return r;
 }
@@ -233,7 +233,7 @@ void describeSwitches(ProbeReport& r, const frame::Lighting& lit) {
     r.shading = lit.model.shading;
     r.specular = lit.model.specular;
     r.localViewer = lit.model.localViewer;
-    r.twoSided = lit.model.twoSided;
+    r.twoSided = lit.model.twoSided.value_or(false);
     r.glCompat = lit.glCompat;
     r.clamped = lit.clamp != frame::Clamp::None;
 }
@@ -276,6 +276,7 @@ ProbeReport PixelReference::explain(int x, int y, std::uint32_t drawId, std::uin
     r.position = hit.point;
     // A mirroring transform makes clockwise triangles the front ones (glTF's rule).
     r.backFacing = d->mirrored ? hit.counterClockwise : !hit.counterClockwise;
+    r.twoSided = rules.twoSided;
     r.backMaterial = r.backFacing && rules.twoSided;
     const double sign = r.backMaterial ? -1.0 : 1.0;
     r.material = prim.material;
