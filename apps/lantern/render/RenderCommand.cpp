@@ -308,6 +308,10 @@ int run(const RenderArgs& a) {
         return report(
             makeError(ErrorCode::Usage, "--time and --frames cannot be combined", "--time"));
     if (auto r = checkImagePaths(outputs, "--output"); !r) return report(r.error());
+    // CLI11's range check lets NaN through (every comparison with it is false).
+    if (!(a.time >= 0.0 && a.time <= 1e9))
+        return report(makeError(ErrorCode::InvalidInput,
+                                "must be a number of seconds from 0 to 1e9", "--time"));
 
     LoadOptions load;
     load.maxBytes = a.maxSize;
@@ -352,7 +356,7 @@ Runner addRenderCommand(CLI::App& app) {
         ->check(CLI::NonNegativeNumber);
     cmd->add_option("--time", args->time, "Animation time in seconds (one frame; finite, >= 0)")
         ->capture_default_str()
-        ->check(CLI::Range(0.0, 1e9));
+        ->check(CLI::Range(0.0, 1e9)); // and not NaN: run() checks
     cmd->add_option("--background", args->background,
                     "Background colour R,G,B (opaque) or R,G,B,A, linear (default: transparent)");
     cmd->add_option("--frames", args->frames,

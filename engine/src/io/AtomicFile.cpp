@@ -252,9 +252,11 @@ Result<void> AtomicFile::openFolder() {
     m_dirFd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (m_dirFd < 0) return ioError(m_destination, "cannot open the output folder " + dir.string(), errno);
     // The name limit is the folder's file system's (NAME_MAX on Linux's usual ones).
-    m_temporaryName = temporaryNameWithin(m_destination.filename().string(), long(::getpid()),
-                                          randomBits(), nameMax(m_dirFd));
-    m_temporary = m_destination.parent_path() / m_temporaryName;
+    if (const std::size_t limit = nameMax(m_dirFd); limit != std::size_t(NAME_MAX)) {
+        m_temporaryName = temporaryNameWithin(m_destination.filename().string(),
+                                              long(::getpid()), randomBits(), limit);
+        m_temporary = m_destination.parent_path() / m_temporaryName;
+    }
     return {};
 }
 
