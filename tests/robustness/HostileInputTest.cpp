@@ -263,7 +263,9 @@ TEST(HostileFolder, ASymlinkLeadingOutsideIsRefusedAndNoByteQuoted) {
     fs::create_symlink(c.outside / "secret.bin", c.dir / "data.bin");
     auto o = loadCapturing(c.writeWithBufferUri("data.bin"));
     EXPECT_TRUE(refusedWith(o, "buffers[0].uri", "leads outside the scene's folder"));
-    if (!o.scene) EXPECT_EQ(o.scene.error().describe().find("SECRET"), std::string::npos);
+    if (!o.scene) {
+        EXPECT_EQ(o.scene.error().describe().find("SECRET"), std::string::npos);
+    }
     // Through a symlinked folder as well.
     fs::create_directory_symlink(c.outside, c.dir / "sub");
     auto viaFolder = loadCapturing(c.writeWithBufferUri("sub/secret.bin"));
@@ -331,11 +333,11 @@ TEST(HostileMemory, ManyLargeAccessorsFromATinyFileExceedTheTotalBudget) {
     b.doc["scenes"][0]["nodes"] = {0};
     const fs::path file = b.write(test::testOutputDir(), "tiny");
     const auto size = fs::file_size(file);
-    EXPECT_LT(size, 1024u);
+    EXPECT_LT(size, 2048u);
     auto o = loadCapturing(file, std::uint64_t(64) << 20);
     ASSERT_FALSE(o.scene);
     EXPECT_NE(o.scene.error().message.find("budget"), std::string::npos) << o.scene.error().describe();
-    EXPECT_NE(o.scene.error().object.find("meshes[0]"), std::string::npos) << o.scene.error().describe();
+    EXPECT_NE(o.scene.error().object.find("accessors["), std::string::npos) << o.scene.error().describe();
 }
 
 // A PNG whose header declares `side` x `side` RGBA pixels (the rest is no valid image data:
@@ -345,9 +347,9 @@ std::vector<unsigned char> pngHeader(std::uint32_t side) {
                                       'I', 'H', 'D', 'R'};
     for (int k = 3; k >= 0; --k) png.push_back((side >> (8 * k)) & 0xff);
     for (int k = 3; k >= 0; --k) png.push_back((side >> (8 * k)) & 0xff);
-    for (unsigned char v : {8, 6, 0, 0, 0}) png.push_back(v);
+    for (int v : {8, 6, 0, 0, 0}) png.push_back(static_cast<unsigned char>(v));
     for (int i = 0; i < 4; ++i) png.push_back(0); // CRC (stb does not check it)
-    for (unsigned char v : {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82}) png.push_back(v);
+    for (int v : {0, 0, 0, 0, int('I'), int('E'), int('N'), int('D'), 0xae, 0x42, 0x60, 0x82}) png.push_back(static_cast<unsigned char>(v));
     return png;
 }
 
