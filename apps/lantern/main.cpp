@@ -22,6 +22,14 @@ int main(int argc, char** argv) {
         return app.exit(e);
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
+    } catch (const CLI::ValidationError& e) {
+        // A value outside the range the help states: a bad option value (spec/cli.md: 1).
+        app.exit(e);
+        return kRefused;
+    } catch (const CLI::ConversionError& e) {
+        // Not a number where one is needed, or one too large for its type.
+        app.exit(e);
+        return kRefused;
     } catch (const CLI::ParseError& e) {
         app.exit(e);
         return kUsage;

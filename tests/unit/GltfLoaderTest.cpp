@@ -96,7 +96,10 @@ TEST(GltfLoader, SizesAreBoundedByMaxSize) {
     EXPECT_NE(file.scene.error().message.find("more than --max-size"), std::string::npos)
         << file.scene.error().describe();
     EXPECT_TRUE(refusedWith(loadCapturing(external, 4000), "buffers[0].uri", "more than --max-size"));
-    EXPECT_TRUE(loadCapturing(external, 20000).scene);
+    // --max-size is also the load's total budget: the 12 KB buffer plus what its accessors
+    // decode to (another 12 KB of floats) fit 40000 bytes, not 20000.
+    EXPECT_TRUE(refusedWith(loadCapturing(external, 20000), "accessors[1]", "budget"));
+    EXPECT_TRUE(loadCapturing(external, 40000).scene);
 
     // An accessor without a buffer view is zeros the loader would allocate: bounded too.
     GltfBuilder big;
@@ -237,7 +240,7 @@ TEST(GltfLoader, BoundsIndexAndCountViolationsAreRefusedWithTheObjectPath) {
              b.addTriangle();
              b.doc["accessors"][0]["byteOffset"] = 18446744073709551612ull;
          },
-         "accessors[0]", "run past the end"},
+         "accessors[0].byteOffset", "more than the largest size"},
         {"stride smaller than the element",
          [](GltfBuilder& b) {
              b.addTriangle();

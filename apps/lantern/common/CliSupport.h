@@ -31,6 +31,14 @@ Result<void> checkImagePaths(const std::vector<std::string>& paths, const std::s
 /// Parses --background: "R,G,B" (opaque) or "R,G,B,A", linear, into a premultiplied colour.
 Result<glm::vec4> parseBackground(const std::string& text);
 
+/// The largest --max-size (64 GiB): the bound is a number of bytes, and -1 must not wrap around
+/// to 2^64 - 1.
+inline constexpr std::uint64_t kMaxMaxSize = std::uint64_t(1) << 36;
+
+/// --max-size BYTES (1 to kMaxMaxSize): the largest file, buffer or image accepted and the most
+/// one scene may make Lantern decode (accessors, images) in all.
+void addMaxSizeOption(CLI::App& app, std::uint64_t& maxSize);
+
 /// The camera and view options shared by render and view.
 struct CameraOptions {
     std::vector<int> cameras; ///< --camera N (repeatable: one per --viewport)

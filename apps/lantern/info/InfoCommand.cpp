@@ -180,8 +180,7 @@ Runner addInfoCommand(CLI::App& app) {
     cmd->add_option("--scene", args->sceneIndex, "glTF scene index (default: the file's default)");
     cmd->add_option("--time", args->time, "Animation time in seconds for bounds and features")
         ->capture_default_str();
-    cmd->add_option("--max-size", args->maxSize, "Largest file, buffer or image accepted, in bytes")
-        ->capture_default_str();
+    addMaxSizeOption(*cmd, args->maxSize);
     return [args, cmd]() { return cmd->parsed() ? run(*args) : -1; };
 }
 

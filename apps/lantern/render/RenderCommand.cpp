@@ -308,6 +308,10 @@ int run(const RenderArgs& a) {
         return report(
             makeError(ErrorCode::Usage, "--time and --frames cannot be combined", "--time"));
     if (auto r = checkImagePaths(outputs, "--output"); !r) return report(r.error());
+    // CLI11's range check lets NaN through (every comparison with it is false).
+    if (!(a.time >= 0.0 && a.time <= 1e9))
+        return report(makeError(ErrorCode::InvalidInput,
+                                "must be a number of seconds from 0 to 1e9", "--time"));
 
     LoadOptions load;
     load.maxBytes = a.maxSize;
@@ -341,11 +345,18 @@ Runner addRenderCommand(CLI::App& app) {
     cmd->add_option(
         "-o,--output", args->outputs,
         "Output file(s): .exr or .png; repeat to write several (default out/render.exr)");
-    cmd->add_option("--width", args->width, "Image width in pixels")->capture_default_str();
-    cmd->add_option("--height", args->height, "Image height in pixels")->capture_default_str();
-    cmd->add_option("--scene", args->sceneIndex, "glTF scene index (default: the file's default)");
-    cmd->add_option("--time", args->time, "Animation time in seconds (one frame)")
-        ->capture_default_str();
+    cmd->add_option("--width", args->width, "Image width in pixels (1 to 16384)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 16384));
+    cmd->add_option("--height", args->height, "Image height in pixels (1 to 16384)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 16384));
+    cmd->add_option("--scene", args->sceneIndex,
+                    "glTF scene index (default: the file's default; 0 to the file's last)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--time", args->time, "Animation time in seconds (one frame; finite, >= 0)")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 1e9)); // and not NaN: run() checks
     cmd->add_option("--background", args->background,
                     "Background colour R,G,B (opaque) or R,G,B,A, linear (default: transparent)");
     cmd->add_option("--frames", args->frames,
@@ -358,9 +369,9 @@ Runner addRenderCommand(CLI::App& app) {
         ->check(CLI::PositiveNumber);
     cmd->add_option("--shard", args->shard, "Render only frames k with k mod N == I (I/N)");
     cmd->add_option("--encoder-threads", args->encoderThreads,
-                    "Threads encoding frames (0: one per core)")
+                    "Threads encoding frames (0: one per core; 0 to 256)")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(CLI::Range(0, kMaxEncoderThreads));
     cmd->add_option("--aov", args->aov, "Extra EXR channels: depth,normal");
     cmd->add_flag("--half", args->half, "Write 16-bit half channels instead of 32-bit float");
     cmd->add_option("--compression", args->compression,
@@ -371,8 +382,7 @@ Runner addRenderCommand(CLI::App& app) {
     cmd->add_option("--probe", args->probe,
                     "X,Y: print the lighting equation term by term at pixel X,Y (x from the left, "
                     "y from the top)");
-    cmd->add_option("--max-size", args->maxSize, "Largest file, buffer or image accepted, in bytes")
-        ->capture_default_str();
+    addMaxSizeOption(*cmd, args->maxSize);
     args->camera.add(*cmd);
     args->shading.add(*cmd);
     args->device.add(*cmd);

@@ -127,8 +127,7 @@ Runner addViewCommand(CLI::App& app) {
     cmd->add_flag("--wireframe", args->wireframe, "Start with the wireframe overlay on (Z)");
     cmd->add_flag("--normals", args->normals, "Start with the normals displayed (N)");
     cmd->add_flag("--stats", args->stats, "Print frame-time statistics when the viewer exits");
-    cmd->add_option("--max-size", args->maxSize, "Largest file, buffer or image accepted, in bytes")
-        ->capture_default_str();
+    addMaxSizeOption(*cmd, args->maxSize);
     args->camera.add(*cmd);
     args->shading.add(*cmd);
     args->device.add(*cmd);

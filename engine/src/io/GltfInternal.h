@@ -57,10 +57,16 @@ inline constexpr const char* kSupportedExtensions[] = {
     "LANTERN_camera",
 };
 
-/// Where a load's errors and warnings come from: every message names the file.
+/// Where a load's errors and warnings come from: every message names the file. It also keeps
+/// the load's allocation budget: every allocation whose size the file decides (buffers,
+/// decoded accessors, decoded images and their decoder's working memory, converted
+/// geometry) is charged with charge() before it is made, and the total may not exceed
+/// LoadOptions::maxBytes, however small the file (a count of 10^9 costs 20 bytes of JSON).
 class Diagnostics {
 public:
-    Diagnostics(std::string file, LogSink log) : m_file(std::move(file)), m_log(std::move(log)) {}
+    Diagnostics(std::string file, LogSink log, std::uint64_t budget = ~std::uint64_t(0))
+        : m_file(std::move(file)), m_log(std::move(log)),
+          m_budget(std::make_shared<Budget>(Budget{budget, 0})) {}
     const std::string& file() const { return m_file; }
     /// An InvalidInput error naming the file and `object`.
     Error error(std::string object, std::string message) const {
@@ -72,10 +78,22 @@ public:
     }
     /// A warning: something skipped or repaired. "file: object: message".
     void warn(const std::string& object, const std::string& message) const;
+    /// Charges `bytes` (`count` x `each`, overflow-safe) to the load's budget for `object`'s
+    /// `what`; an InvalidInput error naming both when the total would exceed it.
+    Result<void> charge(std::uint64_t count, std::uint64_t each, const std::string& object,
+                        const std::string& what) const;
+    /// Bytes charged so far, and the budget.
+    std::uint64_t charged() const { return m_budget->used; }
+    std::uint64_t budget() const { return m_budget->limit; }
 
 private:
+    struct Budget {
+        std::uint64_t limit;
+        std::uint64_t used;
+    };
     std::string m_file;
     LogSink m_log;
+    std::shared_ptr<Budget> m_budget;
 };
 
 /// "name[i]": the glTF object path convention of every message.
@@ -109,6 +127,24 @@ std::string percentDecode(std::string_view text);
 /// the reason it is refused as the error message.
 Result<std::string> checkRelativeUri(std::string_view uri, const std::string& object,
                                      const Diagnostics& diag);
+
+/// Text from a file made safe to quote in a message: control and non-ASCII bytes as \xNN, and
+/// cut after `limit` bytes ("..."). A message never carries a file's raw bytes.
+std::string printable(std::string_view text, std::size_t limit = 80);
+
+/// An external file a URI names, resolved and confined: `relative` (a checked relative path)
+/// is resolved to its real path (every symlink followed) and refused unless that lies inside
+/// the scene's real folder and is a regular file (not a folder, FIFO, socket or device) of at
+/// most `maxBytes`. The error message names the URI and the reason, never the file's bytes.
+Result<std::filesystem::path> resolveConfined(const std::filesystem::path& folder,
+                                              const std::string& relative,
+                                              std::uint64_t maxBytes);
+
+/// Reads a regular file of at most `maxBytes`: opened with O_NONBLOCK (a FIFO or device never
+/// blocks) and, when `noFollow`, O_NOFOLLOW (the last component may not be a symlink); the
+/// opened file is checked with fstat before a byte is read. The error message names the reason.
+Result<std::vector<unsigned char>> readRegularFile(const std::filesystem::path& path,
+                                                   std::uint64_t maxBytes, bool noFollow);
 
 /// What the JSON says that tinygltf does not keep: presence of optional numbers, the number
 /// of primitives written (tinygltf silently drops malformed ones), and why an external image

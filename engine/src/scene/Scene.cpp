@@ -174,16 +174,24 @@ Result<void> validateNode(const Scene& scene, const Node& nd, const std::string&
     return {};
 }
 
-// With one parent per node, a cycle is a chain of parents that never reaches a root.
+// With one parent per node, a cycle is a chain of parents that never reaches a root. Linear
+// time: each node's chain is walked once, marking every node on it; a walk stops at a node
+// already known to reach a root, and meets its own marks only on a cycle.
 Result<void> checkNoCycles(const std::vector<int>& parent) {
+    enum : unsigned char { Unknown, OnPath, ReachesRoot };
+    std::vector<unsigned char> state(parent.size(), Unknown);
+    std::vector<int> path;
     for (std::size_t i = 0; i < parent.size(); ++i) {
-        int p = parent[i];
-        std::size_t steps = 0;
-        while (p != -1 && steps <= parent.size()) {
-            p = parent[p];
-            ++steps;
+        path.clear();
+        int n = int(i);
+        while (n != -1 && state[std::size_t(n)] == Unknown) {
+            state[std::size_t(n)] = OnPath;
+            path.push_back(n);
+            n = parent[std::size_t(n)];
         }
-        if (p != -1) return invalid(at("nodes", i), "node hierarchy contains a cycle");
+        if (n != -1 && state[std::size_t(n)] == OnPath)
+            return invalid(at("nodes", std::size_t(n)), "node hierarchy contains a cycle");
+        for (int k : path) state[std::size_t(k)] = ReachesRoot;
     }
     return {};
 }
