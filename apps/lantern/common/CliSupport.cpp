@@ -208,9 +208,9 @@ std::vector<View> quadLayout(int width, int height, const CameraSpec& perspectiv
 }
 
 void ShadingOptions::add(CLI::App& app) {
-    app.add_option("--shading", shading, "Where lighting is evaluated: flat, gouraud or phong")
+    app.add_option("--shading", shading, help::kShading)
         ->check(CLI::IsMember({"flat", "gouraud", "phong"}));
-    app.add_option("--specular", specular, "Specular term: blinn or phong")
+    app.add_option("--specular", specular, help::kSpecular)
         ->check(CLI::IsMember({"blinn", "phong"}));
     app.add_flag("--local-viewer", localViewer,
                  "View vector towards the eye (GL_LIGHT_MODEL_LOCAL_VIEWER)");
@@ -220,8 +220,7 @@ void ShadingOptions::add(CLI::App& app) {
     app.add_flag("--gl-compat", glCompat,
                  "Reproduce OpenGL's fixed-function pipeline (provoking-vertex flat, per-vertex "
                  "clamp, limits)");
-    app.add_option("--msaa", msaa, "Samples per pixel: 1, 2, 4 or 8")
-        ->check(CLI::IsMember({1, 2, 4, 8}));
+    app.add_option("--msaa", msaa, help::kMsaa)->capture_default_str()->check(CLI::IsMember({1, 2, 4, 8}));
 }
 
 Result<void> ShadingOptions::apply(RenderOptions& o) const {
@@ -232,6 +231,70 @@ Result<void> ShadingOptions::apply(RenderOptions& o) const {
     o.clamp = clamp;
     o.glCompat = glCompat;
     o.msaa = msaa;
+    return {};
+}
+
+Result<void> ShadingOptions::checkDevice(const DeviceInfo& device) const {
+    return checkMsaa(msaa, device);
+}
+
+Result<void> checkMsaa(int msaa, const DeviceInfo& device) {
+    const auto& counts = device.msaaSampleCounts;
+    if (std::find(counts.begin(), counts.end(), msaa) != counts.end()) return {};
+    std::string supported;
+    for (int c : counts)
+        supported += (supported.empty() ? "" : ", ") + std::to_string(c);
+    return makeError(ErrorCode::Usage,
+                     std::to_string(msaa) + " samples per pixel: " + device.name + " supports " +
+                         supported,
+                     "--msaa");
+}
+
+std::pair<CLI::Option*, CLI::Option*> addSizeOptions(CLI::App& app, int& width, int& height) {
+    return {app.add_option("--width", width, help::kWidth)->capture_default_str()->check(CLI::Range(1, 16384)),
+            app.add_option("--height", height, help::kHeight)->capture_default_str()->check(CLI::Range(1, 16384))};
+}
+
+void addSizeListOptions(CLI::App& app, std::vector<int>& widths, std::vector<int>& heights) {
+    app.add_option("--width", widths, help::kWidthList)->delimiter(',')->capture_default_str()->check(CLI::Range(1, 16384));
+    app.add_option("--height", heights, help::kHeightList)->delimiter(',')->capture_default_str()->check(CLI::Range(1, 16384));
+}
+
+Result<std::vector<std::pair<int, int>>> pairSizes(const std::vector<int>& widths,
+                                                   const std::vector<int>& heights) {
+    for (const auto& [list, option] : {std::pair{&widths, "--width"}, {&heights, "--height"}}) {
+        if (list->empty()) return makeError(ErrorCode::InvalidInput, "the list is empty", option);
+        for (int v : *list)
+            if (v < 1 || v > 16384)
+                return makeError(ErrorCode::InvalidInput,
+                                 std::to_string(v) + " is outside 1..16384", option);
+    }
+    if (widths.size() != heights.size() && widths.size() != 1 && heights.size() != 1)
+        return makeError(ErrorCode::InvalidInput,
+                         std::to_string(widths.size()) + " widths and " +
+                             std::to_string(heights.size()) +
+                             " heights: give as many of each, or one of either",
+                         "--width/--height");
+    std::vector<std::pair<int, int>> sizes;
+    for (std::size_t i = 0; i < std::max(widths.size(), heights.size()); ++i)
+        sizes.emplace_back(widths[widths.size() == 1 ? 0 : i],
+                           heights[heights.size() == 1 ? 0 : i]);
+    return sizes;
+}
+
+Result<void> makeParentFolders(const std::vector<std::string>& paths, int frame,
+                               const std::string& option) {
+    for (const std::string& path : paths) {
+        const std::filesystem::path parent =
+            std::filesystem::path(expandFramePattern(path, frame)).parent_path();
+        if (parent.empty()) continue;
+        std::error_code ec;
+        std::filesystem::create_directories(parent, ec);
+        if (ec && !std::filesystem::is_directory(parent))
+            return makeError(ErrorCode::IoError,
+                             "cannot create the folder " + parent.string() + ": " + ec.message(),
+                             option, path);
+    }
     return {};
 }
 

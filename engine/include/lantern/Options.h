@@ -101,7 +101,10 @@ struct RenderOptions {
     std::vector<View> views; ///< several views in one image; empty: one full-image view
     AovSet aovs;
     FeatureMode features = FeatureMode::Specialised;
-    glm::vec4 background{0.0f, 0.0f, 0.0f, 0.0f};  ///< linear, premultiplied
+    /// Linear, premultiplied. Opaque black by default, as `lantern render` and `lantern view`
+    /// (one rule, docs/cli.md); {0, 0, 0, 0} for a transparent background, whose alpha is then
+    /// each pixel's coverage (for compositing).
+    glm::vec4 background{0.0f, 0.0f, 0.0f, 1.0f};
     /// Lights that follow the camera (a headlight rig): when set, every scene light is placed
     /// in eye space through this viewFromWorld instead of each view's own, so the lights keep
     /// their place relative to the camera however it moves. The viewer sets it to the camera
