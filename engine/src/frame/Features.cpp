@@ -97,6 +97,10 @@ std::vector<std::string> describeFeatures(const Frame& frame, const RenderOption
     if (any.alphaMask) f.push_back("alpha-mask");
     if (any.blend) f.push_back("alpha-blend");
     if (any.unlit) f.push_back("unlit");
+    std::size_t deformed = 0;
+    for (const View& v : frame.views)
+        for (const Draw& d : v.draws) deformed += d.deformed ? 1 : 0;
+    if (deformed > 0) f.push_back("deform:skin/morph x" + std::to_string(deformed));
     return f;
 }
 

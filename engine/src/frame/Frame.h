@@ -129,6 +129,9 @@ struct Draw {
     bool mirrored = false;  ///< det(viewFromModel) < 0: clockwise triangles face the viewer
     bool cullBack = true;   ///< false for double-sided materials
     bool hasColors = false, hasTexcoords = false;
+    /// Drawn with the pose's deformation (skin, morph targets: deformPrimitive()). Skinned
+    /// draws are in world space: viewFromModel is then the view's viewFromWorld.
+    bool deformed = false;
     int texture = -1;       ///< Scene::textures index of the base colour; -1: none (white)
     DrawFeatures features;
     double sortDepth = 0.0; ///< eye-space z of the primitive's bounds centre (blended draws)

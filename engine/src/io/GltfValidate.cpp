@@ -77,6 +77,9 @@ Result<void> validateMeshes(const tinygltf::Model& model, const RawFacts& raw,
     const Format texcoord{{TINYGLTF_TYPE_VEC2}, {kFloat, kUnsignedByte, kUnsignedShort}};
     const Format indices{
         {TINYGLTF_TYPE_SCALAR}, {kUnsignedByte, kUnsignedShort, kUnsignedInt}, false};
+    const Format joints{{TINYGLTF_TYPE_VEC4}, {kUnsignedByte, kUnsignedShort}, false};
+    const Format weights{{TINYGLTF_TYPE_VEC4}, {kFloat, kUnsignedByte, kUnsignedShort}};
+    const Format displacement{{TINYGLTF_TYPE_VEC3}, {kFloat}};
     for (std::size_t m = 0; m < model.meshes.size(); ++m) {
         const tinygltf::Mesh& mesh = model.meshes[m];
         if (m < raw.primitiveCounts.size() && raw.primitiveCounts[m] != mesh.primitives.size())
@@ -107,6 +110,10 @@ Result<void> validateMeshes(const tinygltf::Model& model, const RawFacts& raw,
                     format = &color;
                 else if (name.rfind("TEXCOORD_", 0) == 0)
                     format = &texcoord;
+                else if (name == "JOINTS_0" || name == "JOINTS_1")
+                    format = &joints;
+                else if (name == "WEIGHTS_0" || name == "WEIGHTS_1")
+                    format = &weights;
                 if (format) LANTERN_TRY(checkFormat(model, accessor, *format, aobj, diag));
                 const std::size_t n = model.accessors[std::size_t(accessor)].count;
                 if (count && *count != n)
@@ -116,6 +123,24 @@ Result<void> validateMeshes(const tinygltf::Model& model, const RawFacts& raw,
                 count = n;
                 countFrom = name;
             }
+            for (std::size_t t = 0; t < prim.targets.size(); ++t)
+                for (const auto& [name, accessor] : prim.targets[t]) {
+                    const std::string tobj = obj + "." + at("targets", t) + "." + name;
+                    LANTERN_TRY(checkIndex(accessor, model.accessors.size(), tobj, "accessor", diag));
+                    if (name == "POSITION" || name == "NORMAL")
+                        LANTERN_TRY(checkFormat(model, accessor, displacement, tobj, diag));
+                    const std::size_t n = model.accessors[std::size_t(accessor)].count;
+                    if (count && *count != n)
+                        return diag.error(tobj, "has " + std::to_string(n) + " elements but " +
+                                                    countFrom + " has " + std::to_string(*count) +
+                                                    " (a morph target matches its primitive)");
+                }
+            if (p > 0 && prim.targets.size() != mesh.primitives[0].targets.size())
+                return diag.error(obj + ".targets",
+                                  "has " + std::to_string(prim.targets.size()) +
+                                      " morph targets; primitives[0] has " +
+                                      std::to_string(mesh.primitives[0].targets.size()) +
+                                      " (every primitive of a mesh has the same number)");
             if (prim.indices != -1) {
                 LANTERN_TRY(checkIndex(prim.indices, model.accessors.size(), obj + ".indices",
                                        "accessor", diag));
@@ -179,6 +204,8 @@ Result<void> validateNodes(const tinygltf::Model& model, const Diagnostics& diag
         if (n.camera != -1)
             LANTERN_TRY(
                 checkIndex(n.camera, model.cameras.size(), obj + ".camera", "camera", diag));
+        if (n.skin != -1)
+            LANTERN_TRY(checkIndex(n.skin, model.skins.size(), obj + ".skin", "skin", diag));
         for (std::size_t c = 0; c < n.children.size(); ++c)
             LANTERN_TRY(checkIndex(n.children[c], model.nodes.size(), obj + "." + at("children", c),
                                    "node", diag));
@@ -210,6 +237,31 @@ Result<void> validateNodes(const tinygltf::Model& model, const Diagnostics& diag
                                    at("scenes", s) + "." + at("nodes", k), "node", diag));
     if (model.defaultScene != -1)
         LANTERN_TRY(checkIndex(model.defaultScene, model.scenes.size(), "scene", "scene", diag));
+    return {};
+}
+
+Result<void> validateSkins(const tinygltf::Model& model, const Diagnostics& diag) {
+    const Format matrices{{TINYGLTF_TYPE_MAT4}, {kFloat}};
+    for (std::size_t i = 0; i < model.skins.size(); ++i) {
+        const tinygltf::Skin& skin = model.skins[i];
+        const std::string obj = at("skins", i);
+        if (skin.joints.empty()) return diag.error(obj + ".joints", "a skin needs at least one joint");
+        for (std::size_t j = 0; j < skin.joints.size(); ++j)
+            LANTERN_TRY(checkIndex(skin.joints[j], model.nodes.size(), obj + "." + at("joints", j),
+                                   "node", diag));
+        if (skin.skeleton != -1)
+            LANTERN_TRY(checkIndex(skin.skeleton, model.nodes.size(), obj + ".skeleton", "node", diag));
+        if (skin.inverseBindMatrices != -1) {
+            const std::string mobj = obj + ".inverseBindMatrices";
+            LANTERN_TRY(checkIndex(skin.inverseBindMatrices, model.accessors.size(), mobj,
+                                   "accessor", diag));
+            LANTERN_TRY(checkFormat(model, skin.inverseBindMatrices, matrices, mobj, diag));
+            const std::size_t count = model.accessors[std::size_t(skin.inverseBindMatrices)].count;
+            if (count < skin.joints.size())
+                return diag.error(mobj, "has " + std::to_string(count) + " matrices for " +
+                                            std::to_string(skin.joints.size()) + " joints");
+        }
+    }
     return {};
 }
 
@@ -330,6 +382,7 @@ Result<void> validateModel(const tinygltf::Model& model, const RawFacts& raw,
     LANTERN_TRY(validateMeshes(model, raw, diag));
     LANTERN_TRY(validateMaterialsAndTextures(model, diag));
     LANTERN_TRY(validateNodes(model, diag));
+    LANTERN_TRY(validateSkins(model, diag));
     LANTERN_TRY(validateAnimations(model, diag));
     return {};
 }

@@ -260,6 +260,11 @@ Result<std::vector<Surface>> placeSurfaces(const Scene& scene, const Pose& pose,
                               "the spheres and planes listed in ReferenceOptions::shapes)",
                           object);
         const Primitive& prim = scene.meshes[node.mesh].primitives[0];
+        if (isDeformed(scene, int(ni), prim))
+            return refuse(ErrorCode::Unsupported,
+                          "a skinned or morphing mesh is not an analytic surface (the pixel "
+                          "reference covers deformed meshes)",
+                          object);
         const Material& mat =
             prim.material >= 0 ? scene.materials[prim.material] : kDefaultMaterial;
         const std::string matObject = "materials[" + std::to_string(prim.material) + "]";
