@@ -2,6 +2,7 @@
 #include <lantern/Io.h>
 
 #include "io/AtomicFile.h"
+#include "io/ImageEncode.h"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -325,10 +326,7 @@ Result<Image> readExr(const std::filesystem::path& path) {
     }
 }
 
-Result<void> writePng(const std::filesystem::path& path, const Image& image) {
-    LANTERN_TRY(checkImage(image, path));
-    io::AtomicFile file(path);
-    LANTERN_TRY(file.checkWritable());
+std::vector<unsigned char> io::pngPixels(const Image& image) {
     const std::size_t n = image.pixelCount();
     std::vector<unsigned char> pixels(n * 4);
     for (std::size_t i = 0; i < n; ++i) {
@@ -342,6 +340,14 @@ Result<void> writePng(const std::filesystem::path& path, const Image& image) {
         }
         pixels[i * 4 + 3] = static_cast<unsigned char>(std::lround(a * 255.0f));
     }
+    return pixels;
+}
+
+Result<void> writePng(const std::filesystem::path& path, const Image& image) {
+    LANTERN_TRY(checkImage(image, path));
+    io::AtomicFile file(path);
+    LANTERN_TRY(file.checkWritable());
+    const std::vector<unsigned char> pixels = io::pngPixels(image);
     std::vector<unsigned char> encoded;
     auto sink = [](void* ctx, void* data, int size) {
         auto* out = static_cast<std::vector<unsigned char>*>(ctx);
