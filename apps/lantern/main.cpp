@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
     std::vector<Runner> runners = {addRenderCommand(app), addInfoCommand(app), addBenchCommand(app),
                                    addViewCommand(app)};
     runners.push_back(addFarmCommand(app));
+    runners.push_back(addCompareCommand(app));
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

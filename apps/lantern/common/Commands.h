@@ -14,5 +14,6 @@ Runner addInfoCommand(CLI::App& app);
 Runner addBenchCommand(CLI::App& app);
 Runner addViewCommand(CLI::App& app);
 Runner addFarmCommand(CLI::App& app); // docs/farm.md
+Runner addCompareCommand(CLI::App& app); // docs/testing-with-lantern.md
 
 } // namespace lantern::cli

@@ -1,6 +1,7 @@
 // `lantern render SCENE`: headless rendering to EXR/PNG (spec/cli.md).
 #include "common/CliSupport.h"
 #include "common/Commands.h"
+#include "common/CompareCli.h"
 
 #include <algorithm>
 #include <atomic>
@@ -102,6 +103,8 @@ struct RenderArgs {
     CameraOptions camera;
     ShadingOptions shading;
     DeviceOptions device;
+    std::string compareRef;     // --compare REF: compare the picture with REF
+    CompareCliOptions compare;  // its thresholds (common/CompareCli.h)
 };
 
 // The signal that asked a sequence to stop (0: none). The first SIGINT/SIGTERM stops cleanly;
@@ -285,6 +288,7 @@ int renderFrame(const RenderArgs& a, Renderer& renderer, const PreparedScene& pr
                       << " values exceeded the half range and were clamped to 65504\n";
         std::cout << out << "\n";
     }
+    if (!a.compareRef.empty()) return compareRendered(a.compare, a.compareRef, *image, outputs.front());
     return kOk;
 }
 
@@ -308,6 +312,11 @@ int run(const RenderArgs& a) {
         return report(
             makeError(ErrorCode::Usage, "--time and --frames cannot be combined", "--time"));
     if (auto r = checkImagePaths(outputs, "--output"); !r) return report(r.error());
+    if (!a.compareRef.empty()) {
+        if (sequence)
+            return report(makeError(ErrorCode::Usage, "--compare renders one frame, not --frames", "--compare"));
+        if (auto o = a.compare.options(); !o) return report(o.error());
+    }
 
     LoadOptions load;
     load.maxBytes = a.maxSize;
@@ -376,6 +385,10 @@ Runner addRenderCommand(CLI::App& app) {
     args->camera.add(*cmd);
     args->shading.add(*cmd);
     args->device.add(*cmd);
+    cmd->add_option("--compare", args->compareRef,
+                    "Compare the picture with this reference (.exr or .png) as `lantern compare` "
+                    "does, with its thresholds; exit 1 when it fails");
+    args->compare.add(*cmd);
     return [args, cmd]() {
         if (!cmd->parsed()) return -1;
         args->timeGiven = cmd->count("--time") > 0;
