@@ -352,7 +352,8 @@ Image compareHeatMap(const CompareReport& report) {
     const std::vector<float>& map = flip && !report.flipMap.empty() ? report.flipMap : report.absMap;
     const std::size_t n = std::size_t(report.width) * std::size_t(report.height);
     if (map.size() != n || n == 0) return {};
-    const double scale = (&map == &report.flipMap) ? 1.0 : report.maxAbs > 0.0 ? 1.0 / report.maxAbs : 0.0;
+    // Divided by the largest error in float, so that the largest pixel maps to exactly 1.
+    const float largest = (&map == &report.flipMap) ? 1.0f : float(report.maxAbs);
     Image out(report.width, report.height);
     for (std::size_t i = 0; i < n; ++i) {
         float* p = out.rgba.data() + i * 4;
@@ -364,7 +365,7 @@ Image compareHeatMap(const CompareReport& report) {
             continue;
         }
         // black -> red -> yellow -> white
-        const float t = std::clamp(float(map[i] * scale), 0.0f, 1.0f) * 3.0f;
+        const float t = largest > 0.0f ? std::clamp(map[i] / largest, 0.0f, 1.0f) * 3.0f : 0.0f;
         p[0] = std::min(t, 1.0f);
         p[1] = std::clamp(t - 1.0f, 0.0f, 1.0f);
         p[2] = std::clamp(t - 2.0f, 0.0f, 1.0f);

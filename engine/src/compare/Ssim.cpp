@@ -19,13 +19,23 @@ double ssimChannel(const float* reference, const float* test, int width, int hei
     for (int i = -5; i <= 5; ++i) sum += std::exp(-double(i) * i / (2.0 * 1.5 * 1.5));
     for (int i = -5; i <= 5; ++i)
         k[std::size_t(i + 5)] = float(std::exp(-double(i) * i / (2.0 * 1.5 * 1.5)) / sum);
+    // Second moments from values centred on each image's mean: variances are shift-invariant,
+    // and float sums of x^2 would otherwise cancel (a constant image gets variance 0 exactly).
+    double meanX = 0.0, meanY = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        meanX += reference[i];
+        meanY += test[i];
+    }
+    meanX /= double(n);
+    meanY /= double(n);
     Plane x(width, height), y(width, height), xx(width, height), yy(width, height), xy(width, height);
     for (std::size_t i = 0; i < n; ++i) {
-        x.v[i] = reference[i];
-        y.v[i] = test[i];
-        xx.v[i] = reference[i] * reference[i];
-        yy.v[i] = test[i] * test[i];
-        xy.v[i] = reference[i] * test[i];
+        const float a = float(reference[i] - meanX), b = float(test[i] - meanY);
+        x.v[i] = a;
+        y.v[i] = b;
+        xx.v[i] = a * a;
+        yy.v[i] = b * b;
+        xy.v[i] = a * b;
     }
     const Plane mx = compare::filterSeparable(x, k, k), my = compare::filterSeparable(y, k, k);
     const Plane sxx = compare::filterSeparable(xx, k, k), syy = compare::filterSeparable(yy, k, k);
@@ -33,11 +43,12 @@ double ssimChannel(const float* reference, const float* test, int width, int hei
     const double c1 = (0.01 * range) * (0.01 * range), c2 = (0.03 * range) * (0.03 * range);
     double total = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
-        const double ux = mx.v[i], uy = my.v[i];
+        const double cx = mx.v[i], cy = my.v[i];  // centred local means
+        const double ux = cx + meanX, uy = cy + meanY;
         // Not clamped at 0: identical inputs then give exactly 1 whatever the rounding.
-        const double vx = double(sxx.v[i]) - ux * ux;
-        const double vy = double(syy.v[i]) - uy * uy;
-        const double cxy = double(sxy.v[i]) - ux * uy;
+        const double vx = double(sxx.v[i]) - cx * cx;
+        const double vy = double(syy.v[i]) - cy * cy;
+        const double cxy = double(sxy.v[i]) - cx * cy;
         total += ((2.0 * ux * uy + c1) * (2.0 * cxy + c2)) / ((ux * ux + uy * uy + c1) * (vx + vy + c2));
     }
     return total / double(n);
