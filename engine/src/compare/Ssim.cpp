@@ -5,6 +5,7 @@
 
 #include <lantern/Compare.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace lantern {
@@ -49,7 +50,8 @@ double ssimChannel(const float* reference, const float* test, int width, int hei
         const double vx = double(sxx.v[i]) - cx * cx;
         const double vy = double(syy.v[i]) - cy * cy;
         const double cxy = double(sxy.v[i]) - cx * cy;
-        total += ((2.0 * ux * uy + c1) * (2.0 * cxy + c2)) / ((ux * ux + uy * uy + c1) * (vx + vy + c2));
+        const double s = ((2.0 * ux * uy + c1) * (2.0 * cxy + c2)) / ((ux * ux + uy * uy + c1) * (vx + vy + c2));
+        total += std::clamp(s, -1.0, 1.0);  // float filtering can overshoot the bound by ~1e-6
     }
     return total / double(n);
 }
