@@ -1,6 +1,7 @@
 // `lantern render SCENE`: headless rendering to EXR/PNG (docs/cli.md).
 #include "common/CliSupport.h"
 #include "common/Commands.h"
+#include "common/CompareCli.h"
 
 #include <algorithm>
 #include <atomic>
@@ -110,6 +111,8 @@ struct RenderArgs {
     CameraOptions camera;
     ShadingOptions shading;
     DeviceOptions device;
+    std::string compareRef;     // --compare REF: compare the picture with REF
+    CompareCliOptions compare;  // its thresholds (common/CompareCli.h)
 };
 
 // The signal that asked a sequence to stop (0: none). The first SIGINT/SIGTERM stops cleanly;
@@ -289,6 +292,7 @@ int renderFrame(const SingleFrame& frame, Renderer& renderer, const PreparedScen
                       << " values exceeded the half range and were clamped to 65504\n";
         std::cout << out << "\n";
     }
+    if (!a.compareRef.empty()) return compareRendered(a.compare, a.compareRef, *image, outputs.front());
     return kOk;
 }
 
@@ -354,6 +358,11 @@ int run(const RenderArgs& a) {
                                     "the frame number of --time " + std::to_string(a.time) +
                                         " is negative; '#' runs need a frame >= 0",
                                     "--output"));
+    }
+    if (!a.compareRef.empty()) {
+        if (sequence)
+            return report(makeError(ErrorCode::Usage, "--compare renders one frame, not --frames", "--compare"));
+        if (auto o = a.compare.options(); !o) return report(o.error());
     }
 
     LoadOptions load;
@@ -434,6 +443,10 @@ Runner addRenderCommand(CLI::App& app) {
     args->camera.add(*cmd);
     args->shading.add(*cmd);
     args->device.add(*cmd);
+    cmd->add_option("--compare", args->compareRef,
+                    "Compare the picture with this reference (.exr or .png) as `lantern compare` "
+                    "does, with its thresholds; exit 1 when it fails");
+    args->compare.add(*cmd);
     return [args, cmd]() {
         if (!cmd->parsed()) return -1;
         args->timeGiven = cmd->count("--time") > 0;

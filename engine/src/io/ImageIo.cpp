@@ -2,6 +2,7 @@
 #include <lantern/Io.h>
 
 #include "io/AtomicFile.h"
+#include "io/ImageEncode.h"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -360,10 +361,7 @@ bool encodePng(PngWriteState* state, int width, int height, unsigned char* const
 
 } // namespace
 
-Result<void> writePng(const std::filesystem::path& path, const Image& image) {
-    LANTERN_TRY(checkImage(image, path));
-    io::AtomicFile file(path);
-    LANTERN_TRY(file.checkWritable());
+std::vector<unsigned char> io::pngPixels(const Image& image) {
     const std::size_t n = image.pixelCount();
     std::vector<unsigned char> pixels(n * 4);
     for (std::size_t i = 0; i < n; ++i) {
@@ -377,6 +375,15 @@ Result<void> writePng(const std::filesystem::path& path, const Image& image) {
         }
         pixels[i * 4 + 3] = static_cast<unsigned char>(std::lround(a * 255.0f));
     }
+    return pixels;
+}
+
+Result<void> writePng(const std::filesystem::path& path, const Image& image) {
+    LANTERN_TRY(checkImage(image, path));
+    io::AtomicFile file(path);
+    LANTERN_TRY(file.checkWritable());
+    std::vector<unsigned char> pixels = io::pngPixels(image);
+    const std::size_t n = image.pixelCount();
     std::vector<unsigned char*> rows(std::size_t(image.height));
     for (int y = 0; y < image.height; ++y)
         rows[std::size_t(y)] = pixels.data() + std::size_t(y) * std::size_t(image.width) * 4;
