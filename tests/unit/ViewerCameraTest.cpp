@@ -151,7 +151,9 @@ TEST(ViewerCamera, NamedViewsLookAsTheCommandLineViewsDo) {
         const bool vertical = std::abs(want.y) > 0.999;
         EXPECT_LT(glm::length(cam.forward() - want), vertical ? 0.01 : 1e-12) << toString(v);
         EXPECT_LT(glm::length(cam.target()), 1e-12) << toString(v) << ": the pivot is the centre";
-        if (vertical) EXPECT_LT(cam.forward().z, 0.0) << toString(v) << ": -Z is up on screen";
+        if (vertical) {
+            EXPECT_LT(cam.forward().z, 0.0) << toString(v) << ": -Z is up on screen";
+        }
     }
 }
 

@@ -40,8 +40,12 @@ std::string plotScriptPath() {
         exe.parent_path() / LANTERN_BIN_TO_DATA / "lantern" / "plot_accuracy.py",
         fs::path(LANTERN_SOURCE_PLOT_SCRIPT),
     };
-    for (const fs::path& c : candidates)
-        if (!ec && fs::is_regular_file(c, ec)) return fs::weakly_canonical(c, ec).string();
+    for (const fs::path& c : candidates) {
+        // Each candidate with its own error code: a first one that cannot be looked at (a
+        // component that is not a folder) must not hide the next.
+        std::error_code cec;
+        if (fs::is_regular_file(c, cec)) return fs::weakly_canonical(c, cec).string();
+    }
     return "plot_accuracy.py";
 }
 

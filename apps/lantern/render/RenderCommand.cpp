@@ -277,8 +277,8 @@ Result<void> explainAndProbe(const RenderArgs& a, Renderer& renderer, const Scen
 
 // One frame, written to every output with its '#' runs replaced by the frame number (the
 // paths on stdout).
-int renderFrame(const SingleFrame& frame, Renderer& renderer, const PreparedScene& prepared,
-                const RenderOptions& options, ExrOptions exr,
+int renderFrame(const RenderArgs& a, const SingleFrame& frame, Renderer& renderer,
+                const PreparedScene& prepared, const RenderOptions& options, ExrOptions exr,
                 const std::vector<std::string>& patterns) {
     auto image = renderer.render(prepared, options, frame.time);
     if (!image) return report(image.error());
@@ -292,7 +292,9 @@ int renderFrame(const SingleFrame& frame, Renderer& renderer, const PreparedScen
                       << " values exceeded the half range and were clamped to 65504\n";
         std::cout << out << "\n";
     }
-    if (!a.compareRef.empty()) return compareRendered(a.compare, a.compareRef, *image, outputs.front());
+    if (!a.compareRef.empty())
+        return compareRendered(a.compare, a.compareRef, *image,
+                               expandFramePattern(patterns.front(), frame.number));
     return kOk;
 }
 
@@ -390,7 +392,7 @@ int run(const RenderArgs& a) {
         !r)
         return report(r.error());
     if (sequence) return runSequence(a, *renderer, *prepared, *options, exr, outputs);
-    return renderFrame(frame, *renderer, *prepared, *options, exr, outputs);
+    return renderFrame(a, frame, *renderer, *prepared, *options, exr, outputs);
 }
 
 } // namespace
