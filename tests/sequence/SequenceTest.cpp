@@ -128,8 +128,9 @@ TEST(Sequence, RefusesPatternlessOutputsAndUnwritableFolders) {
     { std::ofstream(dir / "blocker") << "a file"; }
     r = runLantern(withOutput(kSequence, (dir / "blocker" / "f_#.exr").string()));
     EXPECT_EQ(r.exitCode, 3) << r.err;
+    EXPECT_EQ(listing(dir), std::vector<std::string>{"blocker"}) << "nothing but the file in the way";
+    { std::ifstream in(dir / "blocker"); std::string text; std::getline(in, text); EXPECT_EQ(text, "a file"); }
     std::filesystem::remove(dir / "blocker");
-    EXPECT_TRUE(listing(dir).empty());
     r = runLantern({"render", "builtin:spheres", "--shard", "0/2"});
     EXPECT_EQ(r.exitCode, 2) << r.err;
     r = runLantern({"render", "builtin:spheres", "--frames", "0-3", "--time", "1", "-o", (dir / "f#.exr").string()});

@@ -21,9 +21,10 @@ Result<CompareImage> readExrChannels(const std::filesystem::path& path) {
     try {
         Imf::InputFile in(path.c_str());
         const Imath::Box2i dw = in.header().dataWindow();
-        const long long w = (long long)dw.max.x - dw.min.x + 1, h = (long long)dw.max.y - dw.min.y + 1;
-        if (w <= 0 || h <= 0 || w * h > (1LL << 31))
-            return makeError(ErrorCode::InvalidInput, "unsupported data window", {}, path.string());
+        const io::ExrWindow window{dw.min.x, dw.min.y, dw.max.x, dw.max.y};
+        auto size = io::exrWindowSize(window, path);
+        if (!size) return std::move(size).error();
+        const auto [w, h] = *size;
         CompareImage img;
         img.width = int(w);
         img.height = int(h);
@@ -53,9 +54,8 @@ Result<CompareImage> readExrChannels(const std::filesystem::path& path) {
         Imf::FrameBuffer fb;
         const std::size_t xs = nc * sizeof(float), ys = xs * std::size_t(w);
         for (std::size_t c = 0; c < nc; ++c) {
-            char* base = reinterpret_cast<char*>(img.values.data() + c) -
-                         (std::ptrdiff_t(dw.min.x) * std::ptrdiff_t(xs) + std::ptrdiff_t(dw.min.y) * std::ptrdiff_t(ys));
-            fb.insert(img.channels[c], Imf::Slice(Imf::FLOAT, base, xs, ys));
+            fb.insert(img.channels[c],
+                      Imf::Slice(Imf::FLOAT, io::exrSliceBase(img.values.data() + c, window, xs, ys), xs, ys));
         }
         in.setFrameBuffer(fb);
         in.readPixels(dw.min.y, dw.max.y);
