@@ -109,9 +109,9 @@ const char* toString(CompareStatus s) noexcept {
     return s == CompareStatus::Pass ? "pass" : s == CompareStatus::Warn ? "warn" : "fail";
 }
 
-Result<CompareReport> compareImages(const CompareImage& ref, const CompareImage& test,
-                                    const CompareOptions& options) {
-    LANTERN_TRY(checkComparable(ref, test));
+namespace {
+
+Result<void> checkOptions(const CompareOptions& options) {
     const CompareThresholds& th = options.thresholds;
     if (!std::isfinite(th.fail) || !std::isfinite(th.failPercent) || th.failPercent < 0 ||
         (th.warn && !std::isfinite(*th.warn)) || !std::isfinite(th.warnPercent) || th.warnPercent < 0)
@@ -121,200 +121,226 @@ Result<CompareReport> compareImages(const CompareImage& ref, const CompareImage&
         return makeError(ErrorCode::Usage, std::string("metric ") + toString(th.metric) + " needs FLIP, which is off");
     if (th.metric == CompareMetric::Ssim && !options.ssim)
         return makeError(ErrorCode::Usage, "metric ssim needs SSIM, which is off");
+    return {};
+}
 
-    CompareReport rep;
-    rep.reference = ref.source;
-    rep.test = test.source;
-    rep.width = ref.width;
-    rep.height = ref.height;
-    rep.encoding = ref.encoding;
-    rep.thresholds = th;
-    rep.colourChannels = colourChannelsOf(ref);
-    rep.tolerance = options.pixelTolerance >= 0 ? options.pixelTolerance
-                    : th.metric == CompareMetric::Abs ? th.fail
-                                                      : 1e-6;
-    const std::size_t n = ref.pixelCount(), nc = ref.channels.size();
-    std::vector<std::size_t> testIndex(nc);
-    for (std::size_t c = 0; c < nc; ++c) testIndex[c] = std::size_t(test.channelIndex(ref.channels[c]));
+// The two images of one comparison, the test's channels looked up in the reference's order.
+struct ImagePair {
+    const CompareImage& ref;
+    const CompareImage& test;
+    std::size_t n = 0, nc = 0;
+    std::vector<std::size_t> testIndex;
 
-    // --- Absolute errors, PSNR, shares over the tolerance ---------------------------------
-    auto start = std::chrono::steady_clock::now();
-    rep.channels.resize(nc);
-    std::vector<double> sum(nc, 0.0), sumSq(nc, 0.0);
-    std::vector<std::uint64_t> over(nc, 0), finite(nc, 0);
-    std::vector<float> absMap(n, 0.0f);
-    std::vector<unsigned char> mismatch(n, 0);
-    std::uint64_t overAny = 0;
-    double sumAll = 0.0;
-    std::uint64_t finiteAll = 0;
-    for (std::size_t c = 0; c < nc; ++c) rep.channels[c].name = ref.channels[c];
-    for (std::size_t i = 0; i < n; ++i) {
-        const float* a = ref.values.data() + i * nc;
-        const float* b = test.values.data() + i * test.channels.size();
-        float pixelMax = 0.0f;
-        bool bad = false, overHere = false;
-        for (std::size_t c = 0; c < nc; ++c) {
-            const float x = a[c], y = b[testIndex[c]];
-            ChannelStats& s = rep.channels[c];
-            const bool fx = std::isfinite(x), fy = std::isfinite(y);
-            if (!fx) ++s.nonFiniteRef;
-            if (!fy) ++s.nonFiniteTest;
-            if (!fx || !fy) {
-                // The same Inf (or NaN in both) matches; anything else is a mismatch.
-                const bool same = (std::isnan(x) && std::isnan(y)) || x == y;
-                if (!same) {
-                    bad = true;
-                    ++over[c];
-                }
-                continue;
-            }
-            const double e = std::abs(double(y) - double(x));
-            sum[c] += e;
-            sumSq[c] += e * e;
-            ++finite[c];
-            if (e > s.maxAbs) {
-                s.maxAbs = e;
-                s.maxX = int(i % std::size_t(ref.width));
-                s.maxY = int(i / std::size_t(ref.width));
-            }
-            if (e > rep.tolerance) {
-                ++over[c];
-                overHere = true;
-            }
-            pixelMax = std::max(pixelMax, float(e));
-        }
-        if (bad) {
-            ++rep.nonFiniteMismatch;
-            mismatch[i] = 1;
-            absMap[i] = std::numeric_limits<float>::quiet_NaN();
-        } else {
-            absMap[i] = pixelMax;
-        }
-        if (bad || overHere) ++overAny;
+    ImagePair(const CompareImage& r, const CompareImage& t)
+        : ref(r), test(t), n(r.pixelCount()), nc(r.channels.size()), testIndex(nc) {
+        for (std::size_t c = 0; c < nc; ++c) testIndex[c] = std::size_t(test.channelIndex(ref.channels[c]));
     }
-    double colourMse = 0.0;
-    for (std::size_t c = 0; c < nc; ++c) {
-        ChannelStats& s = rep.channels[c];
-        const double count = double(std::max<std::uint64_t>(finite[c], 1));
-        s.meanAbs = sum[c] / count;
-        s.mse = sumSq[c] / count;
-        s.psnr = s.mse > 0.0 ? 10.0 * std::log10(1.0 / s.mse) : kInf;
-        s.overShare = double(over[c]) / double(n);
-        s.ssim = std::numeric_limits<double>::quiet_NaN();
-        rep.maxAbs = std::max(rep.maxAbs, s.maxAbs);
-        sumAll += sum[c];
-        finiteAll += finite[c];
-        if (std::find(rep.colourChannels.begin(), rep.colourChannels.end(), s.name) != rep.colourChannels.end())
-            colourMse += s.mse / double(rep.colourChannels.size());
+    float refValue(std::size_t i, std::size_t c) const { return ref.values[i * nc + c]; }
+    float testValue(std::size_t i, std::size_t c) const {
+        return test.values[i * test.channels.size() + testIndex[c]];
     }
-    rep.meanAbs = sumAll / double(std::max<std::uint64_t>(finiteAll, 1));
-    rep.psnr = colourMse > 0.0 ? 10.0 * std::log10(1.0 / colourMse) : kInf;
-    rep.overShare = double(overAny) / double(n);
-    rep.secondsAbs = secondsSince(start);
-
     // One channel of both images as planes, a non-finite value in either image zero in both.
-    auto planes = [&](std::size_t c, std::vector<float>& x, std::vector<float>& y) {
+    void planes(std::size_t c, std::vector<float>& x, std::vector<float>& y) const {
         x.resize(n);
         y.resize(n);
         for (std::size_t i = 0; i < n; ++i) {
-            const float a = ref.values[i * nc + c], b = test.values[i * test.channels.size() + testIndex[c]];
+            const float a = refValue(i, c), b = testValue(i, c);
             const bool ok = std::isfinite(a) && std::isfinite(b);
             x[i] = ok ? a : 0.0f;
             y[i] = ok ? b : 0.0f;
         }
-    };
-
-    // --- SSIM -----------------------------------------------------------------------------
-    rep.ssim = std::numeric_limits<double>::quiet_NaN();
-    if (options.ssim) {
-        start = std::chrono::steady_clock::now();
-        std::vector<float> x, y;
-        double colourSsim = 0.0;
-        for (std::size_t c = 0; c < nc; ++c) {
-            planes(c, x, y);
-            ChannelStats& s = rep.channels[c];
-            s.ssim = ssimChannel(x.data(), y.data(), ref.width, ref.height, 1.0);
-            if (std::find(rep.colourChannels.begin(), rep.colourChannels.end(), s.name) != rep.colourChannels.end())
-                colourSsim += s.ssim / double(rep.colourChannels.size());
-        }
-        rep.ssim = colourSsim;
-        rep.secondsSsim = secondsSince(start);
     }
+};
 
-    // --- FLIP -----------------------------------------------------------------------------
-    std::vector<float> flipMap;
+bool isColour(const CompareReport& rep, const std::string& name) {
+    return std::find(rep.colourChannels.begin(), rep.colourChannels.end(), name) != rep.colourChannels.end();
+}
+
+// Per-pixel maps the judgement reads: the largest absolute error over channels (NaN for a
+// non-finite mismatch), whether the pixel is such a mismatch, and FLIP when computed.
+struct ErrorMaps {
+    std::vector<float> abs, flip;
+    std::vector<unsigned char> mismatch;
+};
+
+// Per-channel sums of one pass over the pixels.
+struct ChannelSums {
+    double sum = 0.0, sumSq = 0.0;
+    std::uint64_t over = 0, finite = 0;
+};
+
+// One pixel's channels into the sums; returns whether a non-finite value mismatched, and
+// sets `overHere` when a finite error passes the tolerance.
+bool accumulatePixel(const ImagePair& p, std::size_t i, CompareReport& rep, std::vector<ChannelSums>& sums,
+                     float& pixelMax, bool& overHere) {
+    bool bad = false;
+    for (std::size_t c = 0; c < p.nc; ++c) {
+        const float x = p.refValue(i, c), y = p.testValue(i, c);
+        ChannelStats& s = rep.channels[c];
+        ChannelSums& sum = sums[c];
+        const bool fx = std::isfinite(x), fy = std::isfinite(y);
+        if (!fx) ++s.nonFiniteRef;
+        if (!fy) ++s.nonFiniteTest;
+        if (!fx || !fy) {
+            // The same Inf (or NaN in both) matches; anything else is a mismatch.
+            if (!((std::isnan(x) && std::isnan(y)) || x == y)) {
+                bad = true;
+                ++sum.over;
+            }
+            continue;
+        }
+        const double e = std::abs(double(y) - double(x));
+        sum.sum += e;
+        sum.sumSq += e * e;
+        ++sum.finite;
+        if (e > s.maxAbs) {
+            s.maxAbs = e;
+            s.maxX = int(i % std::size_t(p.ref.width));
+            s.maxY = int(i / std::size_t(p.ref.width));
+        }
+        if (e > rep.tolerance) {
+            ++sum.over;
+            overHere = true;
+        }
+        pixelMax = std::max(pixelMax, float(e));
+    }
+    return bad;
+}
+
+// Absolute errors, MSE and PSNR, shares over the tolerance.
+void absolutePass(const ImagePair& p, CompareReport& rep, ErrorMaps& maps) {
+    const auto start = std::chrono::steady_clock::now();
+    rep.channels.resize(p.nc);
+    for (std::size_t c = 0; c < p.nc; ++c) rep.channels[c].name = p.ref.channels[c];
+    std::vector<ChannelSums> sums(p.nc);
+    maps.abs.assign(p.n, 0.0f);
+    maps.mismatch.assign(p.n, 0);
+    std::uint64_t overAny = 0;
+    for (std::size_t i = 0; i < p.n; ++i) {
+        float pixelMax = 0.0f;
+        bool overHere = false;
+        const bool bad = accumulatePixel(p, i, rep, sums, pixelMax, overHere);
+        if (bad) {
+            ++rep.nonFiniteMismatch;
+            maps.mismatch[i] = 1;
+        }
+        maps.abs[i] = bad ? std::numeric_limits<float>::quiet_NaN() : pixelMax;
+        if (bad || overHere) ++overAny;
+    }
+    double colourMse = 0.0, sumAll = 0.0;
+    std::uint64_t finiteAll = 0;
+    for (std::size_t c = 0; c < p.nc; ++c) {
+        ChannelStats& s = rep.channels[c];
+        const double count = double(std::max<std::uint64_t>(sums[c].finite, 1));
+        s.meanAbs = sums[c].sum / count;
+        s.mse = sums[c].sumSq / count;
+        s.psnr = s.mse > 0.0 ? 10.0 * std::log10(1.0 / s.mse) : kInf;
+        s.overShare = double(sums[c].over) / double(p.n);
+        s.ssim = std::numeric_limits<double>::quiet_NaN();
+        rep.maxAbs = std::max(rep.maxAbs, s.maxAbs);
+        sumAll += sums[c].sum;
+        finiteAll += sums[c].finite;
+        if (isColour(rep, s.name)) colourMse += s.mse / double(rep.colourChannels.size());
+    }
+    rep.meanAbs = sumAll / double(std::max<std::uint64_t>(finiteAll, 1));
+    rep.psnr = colourMse > 0.0 ? 10.0 * std::log10(1.0 / colourMse) : kInf;
+    rep.overShare = double(overAny) / double(p.n);
+    rep.secondsAbs = secondsSince(start);
+}
+
+void ssimPass(const ImagePair& p, CompareReport& rep) {
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<float> x, y;
+    double colourSsim = 0.0;
+    for (std::size_t c = 0; c < p.nc; ++c) {
+        p.planes(c, x, y);
+        ChannelStats& s = rep.channels[c];
+        s.ssim = ssimChannel(x.data(), y.data(), p.ref.width, p.ref.height, 1.0);
+        if (isColour(rep, s.name)) colourSsim += s.ssim / double(rep.colourChannels.size());
+    }
+    rep.ssim = colourSsim;
+    rep.secondsSsim = secondsSince(start);
+}
+
+// Mean, max, median and 95th percentile of a FLIP map.
+void flipSummary(const std::vector<float>& map, FlipStats& fs) {
+    const std::size_t n = map.size();
+    double total = 0.0;
+    for (float v : map) {
+        total += v;
+        fs.max = std::max(fs.max, double(v));
+    }
+    fs.mean = total / double(n);
+    std::vector<float> sorted = map;
+    std::sort(sorted.begin(), sorted.end());
+    auto pct = [&](double q) {
+        const double pos = q * double(n - 1);
+        const std::size_t lo = std::size_t(pos);
+        const double hi = sorted[std::min(lo + 1, n - 1)];
+        return sorted[lo] + (hi - sorted[lo]) * (pos - double(lo));
+    };
+    fs.median = pct(0.5);
+    fs.p95 = pct(0.95);
+}
+
+// FLIP over R,G,B (or Y in all three), LDR or HDR as asked; nothing without colour channels.
+void flipPass(const ImagePair& p, const CompareOptions& options, CompareReport& rep, ErrorMaps& maps) {
     const bool hasRgb = rep.colourChannels.size() == 3 && rep.colourChannels[0] == "R";
     const bool hasY = rep.colourChannels.size() == 1 && rep.colourChannels[0] == "Y";
-    if (options.flip != FlipForm::Off && (hasRgb || hasY)) {
-        start = std::chrono::steady_clock::now();
-        std::vector<float> r(n * 3), t(n * 3), x, y;
-        for (int k = 0; k < 3; ++k) {
-            const std::size_t c = std::size_t(ref.channelIndex(hasRgb ? rep.colourChannels[std::size_t(k)] : "Y"));
-            planes(c, x, y);
-            for (std::size_t i = 0; i < n; ++i) {
-                r[i * 3 + std::size_t(k)] = x[i];
-                t[i * 3 + std::size_t(k)] = y[i];
-            }
+    if (options.flip == FlipForm::Off || !(hasRgb || hasY)) return;
+    const auto start = std::chrono::steady_clock::now();
+    const std::size_t n = p.n;
+    std::vector<float> r(n * 3), t(n * 3), x, y;
+    for (int k = 0; k < 3; ++k) {
+        const std::size_t c = std::size_t(p.ref.channelIndex(hasRgb ? rep.colourChannels[std::size_t(k)] : "Y"));
+        p.planes(c, x, y);
+        for (std::size_t i = 0; i < n; ++i) {
+            r[i * 3 + std::size_t(k)] = x[i];
+            t[i * 3 + std::size_t(k)] = y[i];
         }
-        FlipStats fs;
-        fs.pixelsPerDegree = options.pixelsPerDegree;
-        const bool hdr = options.flip == FlipForm::Hdr ||
-                         (options.flip == FlipForm::Auto && ref.encoding == PixelEncoding::Linear);
-        if (hdr) {
-            if (ref.encoding == PixelEncoding::Srgb)
-                for (std::vector<float>* v : {&r, &t})
-                    for (float& f : *v) {
-                        f = std::clamp(f, 0.0f, 1.0f);
-                        f = f <= 0.04045f ? f / 12.92f : std::pow((f + 0.055f) / 1.055f, 2.4f);
-                    }
-            flipMap = flipHdr(r.data(), t.data(), ref.width, ref.height, options.pixelsPerDegree, &fs);
-        } else {
-            flipMap = flipLdr(r.data(), t.data(), ref.width, ref.height,
-                              ref.encoding == PixelEncoding::Srgb, options.pixelsPerDegree);
-        }
-        double total = 0.0;
-        for (float v : flipMap) {
-            total += v;
-            fs.max = std::max(fs.max, double(v));
-        }
-        fs.mean = total / double(n);
-        std::vector<float> sorted = flipMap;
-        std::sort(sorted.begin(), sorted.end());
-        auto pct = [&](double q) {
-            const double pos = q * double(n - 1);
-            const std::size_t lo = std::size_t(pos);
-            const double hi = sorted[std::min(lo + 1, n - 1)];
-            return sorted[lo] + (hi - sorted[lo]) * (pos - double(lo));
-        };
-        fs.median = pct(0.5);
-        fs.p95 = pct(0.95);
-        rep.flip = fs;
-        rep.secondsFlip = secondsSince(start);
     }
-    if ((th.metric == CompareMetric::Flip || th.metric == CompareMetric::FlipMean) && !rep.flip)
-        return makeError(ErrorCode::InvalidInput,
-                         std::string("metric ") + toString(th.metric) + " needs R,G,B or Y channels; " +
-                             ref.source + " has " + join(ref.channels),
-                         {}, ref.source);
+    FlipStats fs;
+    fs.pixelsPerDegree = options.pixelsPerDegree;
+    const bool srgb = p.ref.encoding == PixelEncoding::Srgb;
+    const bool hdr = options.flip == FlipForm::Hdr || (options.flip == FlipForm::Auto && !srgb);
+    if (hdr) {
+        if (srgb)
+            for (std::vector<float>* v : {&r, &t})
+                for (float& f : *v) {
+                    f = std::clamp(f, 0.0f, 1.0f);
+                    f = f <= 0.04045f ? f / 12.92f : std::pow((f + 0.055f) / 1.055f, 2.4f);
+                }
+        maps.flip = flipHdr(r.data(), t.data(), p.ref.width, p.ref.height, options.pixelsPerDegree, &fs);
+    } else {
+        maps.flip = flipLdr(r.data(), t.data(), p.ref.width, p.ref.height, srgb, options.pixelsPerDegree);
+    }
+    flipSummary(maps.flip, fs);
+    rep.flip = fs;
+    rep.secondsFlip = secondsSince(start);
+}
 
-    // --- Judgement ------------------------------------------------------------------------
-    auto judge = [&](double limit, double percent, double& value) {
-        if (perPixel(th.metric)) {
-            const std::vector<float>& map = th.metric == CompareMetric::Abs ? absMap : flipMap;
-            std::uint64_t failing = 0;
-            for (std::size_t i = 0; i < n; ++i) failing += mismatch[i] || map[i] > limit;
-            value = double(failing) / double(n);
-            return value * 100.0 > percent;
-        }
-        value = th.metric == CompareMetric::Mae    ? rep.meanAbs
-                : th.metric == CompareMetric::Psnr ? rep.psnr
-                : th.metric == CompareMetric::Ssim ? rep.ssim
-                                                   : rep.flip->mean;
-        return exceeds(th.metric, value, limit);
-    };
-    const bool failed = judge(th.fail, th.failPercent, rep.judged) || rep.nonFiniteMismatch > 0;
-    bool warned = false;
-    if (th.warn) warned = judge(*th.warn, th.warnPercent, rep.judgedWarn);
+// Whether the judged metric passes `limit` (per-pixel metrics: the share of pixels over
+// it against `percent`); the judged value goes to `value`.
+bool judge(const CompareReport& rep, const ErrorMaps& maps, double limit, double percent, double& value) {
+    const CompareMetric m = rep.thresholds.metric;
+    if (perPixel(m)) {
+        const std::vector<float>& map = m == CompareMetric::Abs ? maps.abs : maps.flip;
+        std::uint64_t failing = 0;
+        for (std::size_t i = 0; i < map.size(); ++i) failing += maps.mismatch[i] || map[i] > limit;
+        value = double(failing) / double(map.size());
+        return value * 100.0 > percent;
+    }
+    value = m == CompareMetric::Mae    ? rep.meanAbs
+            : m == CompareMetric::Psnr ? rep.psnr
+            : m == CompareMetric::Ssim ? rep.ssim
+                                       : rep.flip->mean;
+    return exceeds(m, value, limit);
+}
+
+void judgeAndSummarise(CompareReport& rep, const ErrorMaps& maps) {
+    const CompareThresholds& th = rep.thresholds;
+    const bool failed = judge(rep, maps, th.fail, th.failPercent, rep.judged) || rep.nonFiniteMismatch > 0;
+    const bool warned = th.warn && judge(rep, maps, *th.warn, th.warnPercent, rep.judgedWarn);
     rep.status = failed ? CompareStatus::Fail : warned ? CompareStatus::Warn : CompareStatus::Pass;
     std::ostringstream s;
     s << toString(rep.status) << ": ";
@@ -329,10 +355,41 @@ Result<CompareReport> compareImages(const CompareImage& ref, const CompareImage&
         s << "; " << rep.nonFiniteMismatch << " pixels hold NaN or Inf in one image only";
     if (warned && !failed) s << "; over the warning threshold " << number(*th.warn);
     rep.summary = s.str();
+}
 
+} // namespace
+
+Result<CompareReport> compareImages(const CompareImage& ref, const CompareImage& test,
+                                    const CompareOptions& options) {
+    LANTERN_TRY(checkComparable(ref, test));
+    LANTERN_TRY(checkOptions(options));
+    const CompareThresholds& th = options.thresholds;
+    CompareReport rep;
+    rep.reference = ref.source;
+    rep.test = test.source;
+    rep.width = ref.width;
+    rep.height = ref.height;
+    rep.encoding = ref.encoding;
+    rep.thresholds = th;
+    rep.colourChannels = colourChannelsOf(ref);
+    rep.tolerance = options.pixelTolerance >= 0 ? options.pixelTolerance
+                    : th.metric == CompareMetric::Abs ? th.fail
+                                                      : 1e-6;
+    const ImagePair pair(ref, test);
+    ErrorMaps maps;
+    absolutePass(pair, rep, maps);
+    rep.ssim = std::numeric_limits<double>::quiet_NaN();
+    if (options.ssim) ssimPass(pair, rep);
+    flipPass(pair, options, rep, maps);
+    if ((th.metric == CompareMetric::Flip || th.metric == CompareMetric::FlipMean) && !rep.flip)
+        return makeError(ErrorCode::InvalidInput,
+                         std::string("metric ") + toString(th.metric) + " needs R,G,B or Y channels; " +
+                             ref.source + " has " + join(ref.channels),
+                         {}, ref.source);
+    judgeAndSummarise(rep, maps);
     if (options.keepMaps) {
-        rep.absMap = std::move(absMap);
-        rep.flipMap = std::move(flipMap);
+        rep.absMap = std::move(maps.abs);
+        rep.flipMap = std::move(maps.flip);
     }
     return rep;
 }

@@ -62,91 +62,103 @@ Result<std::unique_ptr<Deformer>> Deformer::create(Context& ctx, Pipelines& pipe
     return d;
 }
 
+namespace {
+
+// One command's job: where its inputs are, its parameters appended to `params` (joint
+// matrices, then morph weights), its output streams at 16-byte-aligned offsets from `out`.
+DeformJob planJob(const DeformCommand& c, const PrimitiveBuffers& gp, std::vector<float>& params,
+                  VkDeviceSize& out, DeformStreams& st) {
+    DeformJob job;
+    job.flatMode = c.flat ? 1u : 0u;
+    job.vertexCount = gp.vertexCount;
+    job.count = c.flat ? gp.flatVertexCount / 3u : gp.vertexCount;
+    job.position = gp.deformPosition;
+    job.normal = gp.deformNormal;
+    job.joints = gp.deformJoints;
+    job.weights = gp.deformWeights;
+    job.influences = c.joints.empty() ? 0u : gp.influences;
+    job.targets = gp.deformTargets;
+    job.targetCount = c.weights.empty() ? 0u : std::min<std::uint32_t>(gp.targetCount,
+                                                                std::uint32_t(c.weights.size()));
+    job.indices = gp.deformIndices;
+    job.matrices = std::uint32_t(params.size());
+    for (const Mat4& m : c.joints) params.insert(params.end(), m.m, m.m + 16);
+    job.morphWeights = std::uint32_t(params.size());
+    params.insert(params.end(), c.weights.begin(), c.weights.end());
+    const VkDeviceSize corners = c.flat ? VkDeviceSize(gp.flatVertexCount) : gp.vertexCount;
+    st.position = out;
+    out = align16(out + corners * 12);
+    st.normal = out;
+    out = align16(out + corners * 12);
+    st.centroid = st.normal;
+    if (c.flat) {
+        st.centroid = out;
+        out = align16(out + corners * 12);
+    }
+    job.outPosition = std::uint32_t(st.position / 4);
+    job.outNormal = std::uint32_t(st.normal / 4);
+    job.outCentroid = std::uint32_t(st.centroid / 4);
+    return job;
+}
+
+// Grows `buffer` to twice `bytes` when it holds fewer.
+Result<void> ensureSize(Context& ctx, Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage,
+                        MemoryUsage memory, const char* name) {
+    if (buffer.size >= bytes) return {};
+    auto b = createBuffer(ctx, bytes * 2, usage, memory, name);
+    if (!b) return std::move(b).error();
+    buffer = std::move(*b);
+    return {};
+}
+
+} // namespace
+
 Result<void> Deformer::prepare(DeformSlot& slot, const DrawList& list, const SceneBuffers& scene) {
-    // Parameters: per command its joint matrices, then its morph weights (floats). Output: per
-    // command its streams at 16-byte-aligned offsets.
     slot.jobs.clear();
     slot.streams.clear();
     std::vector<float> params;
     VkDeviceSize out = 0;
     for (const DeformCommand& c : list.deforms) {
-        const PrimitiveBuffers& gp = scene.primitive(c.mesh, c.primitive);
-        DeformJob job;
-        job.flatMode = c.flat ? 1u : 0u;
-        job.vertexCount = gp.vertexCount;
-        job.count = c.flat ? gp.flatVertexCount / 3u : gp.vertexCount;
-        job.position = gp.deformPosition;
-        job.normal = gp.deformNormal;
-        job.joints = gp.deformJoints;
-        job.weights = gp.deformWeights;
-        job.influences = c.joints.empty() ? 0u : gp.influences;
-        job.targets = gp.deformTargets;
-        job.targetCount = c.weights.empty() ? 0u : std::min<std::uint32_t>(gp.targetCount,
-                                                                    std::uint32_t(c.weights.size()));
-        job.indices = gp.deformIndices;
-        job.matrices = std::uint32_t(params.size());
-        for (const Mat4& m : c.joints) params.insert(params.end(), m.m, m.m + 16);
-        job.morphWeights = std::uint32_t(params.size());
-        params.insert(params.end(), c.weights.begin(), c.weights.end());
-        const VkDeviceSize corners = c.flat ? VkDeviceSize(gp.flatVertexCount) : gp.vertexCount;
         DeformStreams st;
-        st.position = out;
-        out = align16(out + corners * 12);
-        st.normal = out;
-        out = align16(out + corners * 12);
-        st.centroid = st.normal;
-        if (c.flat) {
-            st.centroid = out;
-            out = align16(out + corners * 12);
-        }
-        if (out / 4 >= LANTERN_DEFORM_NONE) return tooLarge();
-        job.outPosition = std::uint32_t(st.position / 4);
-        job.outNormal = std::uint32_t(st.normal / 4);
-        job.outCentroid = std::uint32_t(st.centroid / 4);
-        slot.jobs.push_back(job);
+        slot.jobs.push_back(planJob(c, scene.primitive(c.mesh, c.primitive), params, out, st));
         slot.streams.push_back(st);
+        if (out / 4 >= LANTERN_DEFORM_NONE) return tooLarge();
     }
     params.push_back(0.0f);  // never empty
     const VkDeviceSize paramBytes = params.size() * sizeof(float);
-    out = std::max<VkDeviceSize>(out, 16);
-    if (slot.params.size < paramBytes) {
-        auto b = createBuffer(m_ctx, paramBytes * 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                              MemoryUsage::Upload, "deform parameters");
-        if (!b) return std::move(b).error();
-        slot.params = std::move(*b);
-    }
-    if (slot.output.size < out) {
-        auto b = createBuffer(m_ctx, out * 2,
-                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
-                              MemoryUsage::DeviceLocal, "deformed streams");
-        if (!b) return std::move(b).error();
-        slot.output = std::move(*b);
-    }
+    LANTERN_TRY(ensureSize(m_ctx, slot.params, paramBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                           MemoryUsage::Upload, "deform parameters"));
+    LANTERN_TRY(ensureSize(m_ctx, slot.output, std::max<VkDeviceSize>(out, 16),
+                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+                           MemoryUsage::DeviceLocal, "deformed streams"));
     std::memcpy(slot.params.mapped, params.data(), paramBytes);
     LANTERN_TRY(flush(m_ctx, slot.params));
-
-    if (!slot.pool) {
-        VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3};
-        VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-        dpci.maxSets = 1;
-        dpci.poolSizeCount = 1;
-        dpci.pPoolSizes = &size;
-        VkDescriptorPool pool = VK_NULL_HANDLE;
-        LANTERN_VK_TRY(vkCreateDescriptorPool(m_ctx.device(), &dpci, nullptr, &pool));
-        slot.pool = UniqueDescriptorPool(m_ctx.device(), pool);
-        VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-        ai.descriptorPool = pool;
-        ai.descriptorSetCount = 1;
-        const VkDescriptorSetLayout layout = m_setLayout.get();
-        ai.pSetLayouts = &layout;
-        LANTERN_VK_TRY(vkAllocateDescriptorSets(m_ctx.device(), &ai, &slot.set));
-    }
+    LANTERN_TRY(ensureDescriptorSet(slot));
     // The slot is not in flight (its fence was waited for): its set may be rewritten.
     constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     writeBufferDescriptors(m_ctx, slot.set,
                            {{LANTERN_BINDING_DEFORM_INPUT, kStorage, {scene.deformInput(), 0, VK_WHOLE_SIZE}},
                             {LANTERN_BINDING_DEFORM_PARAMS, kStorage, {slot.params.get(), 0, VK_WHOLE_SIZE}},
                             {LANTERN_BINDING_DEFORM_OUTPUT, kStorage, {slot.output.get(), 0, VK_WHOLE_SIZE}}});
+    return {};
+}
+
+Result<void> Deformer::ensureDescriptorSet(DeformSlot& slot) {
+    if (slot.pool) return {};
+    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3};
+    VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    dpci.maxSets = 1;
+    dpci.poolSizeCount = 1;
+    dpci.pPoolSizes = &size;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkCreateDescriptorPool(m_ctx.device(), &dpci, nullptr, &pool));
+    slot.pool = UniqueDescriptorPool(m_ctx.device(), pool);
+    VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    ai.descriptorPool = pool;
+    ai.descriptorSetCount = 1;
+    const VkDescriptorSetLayout layout = m_setLayout.get();
+    ai.pSetLayouts = &layout;
+    LANTERN_VK_TRY(vkAllocateDescriptorSets(m_ctx.device(), &ai, &slot.set));
     return {};
 }
 

@@ -45,6 +45,7 @@ public:
 
 private:
     explicit Deformer(Context& ctx) : m_ctx(ctx) {}
+    Result<void> ensureDescriptorSet(DeformSlot& slot);  ///< the slot's pool and set, once
     Context& m_ctx;
     UniqueDescriptorSetLayout m_setLayout;
     UniquePipelineLayout m_layout;
