@@ -17,6 +17,7 @@ build_pkgs=(
     libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenexr-dev
     libcli11-dev libfmt-dev libglfw3-dev libimgui-dev libx11-dev
     libgtest-dev libgmock-dev libbenchmark-dev
+    libmeshoptimizer-dev libdraco-dev
 )
 # The farm tests start a private single-node Slurm (scripts/slurm-single-node.sh).
 slurm_pkgs=(slurm-wlm slurmctld slurmd slurm-client munge)

@@ -68,13 +68,58 @@ Result<void> checkFormat(const tinygltf::Model& model, int accessor, const Forma
                                   componentTypeName(a.componentType) + "; expected " + allowed);
 }
 
+/// Whether the file declares `name` (in extensionsUsed; extensionsRequired should be a subset).
+bool declares(const tinygltf::Model& model, const char* name) {
+    for (const auto* list : {&model.extensionsUsed, &model.extensionsRequired})
+        if (std::find(list->begin(), list->end(), name) != list->end()) return true;
+    return false;
+}
+
+/// The formats allowed for each vertex attribute Lantern reads: glTF 2.0's, or, when the file
+/// declares KHR_mesh_quantization, that extension's wider table (integer positions and texture
+/// coordinates, normalized or not; BYTE/SHORT normalized normals).
+struct AttributeFormats {
+    Format position, normal, color, texcoord;
+    explicit AttributeFormats(bool quantized)
+        : position{{TINYGLTF_TYPE_VEC3}, {kFloat}}, normal{{TINYGLTF_TYPE_VEC3}, {kFloat}},
+          color{{TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, {kFloat, kUnsignedByte, kUnsignedShort}},
+          texcoord{{TINYGLTF_TYPE_VEC2}, {kFloat, kUnsignedByte, kUnsignedShort}} {
+        if (!quantized) return;
+        const std::vector<int> all{kFloat, kByte, kUnsignedByte, kShort, kUnsignedShort};
+        position = {{TINYGLTF_TYPE_VEC3}, all, false};
+        normal = {{TINYGLTF_TYPE_VEC3}, {kFloat, kByte, kShort}};
+        texcoord = {{TINYGLTF_TYPE_VEC2}, all, false};
+    }
+    /// The format for attribute `name`, or null for attributes Lantern does not read.
+    const Format* of(const std::string& name) const {
+        if (name == "POSITION") return &position;
+        if (name == "NORMAL") return &normal;
+        if (name == "COLOR_0") return &color;
+        if (name.rfind("TEXCOORD_", 0) == 0) return &texcoord;
+        return nullptr;
+    }
+};
+
+/// An attribute's format; a refusal says when KHR_mesh_quantization would have allowed it.
+Result<void> checkAttributeFormat(const tinygltf::Model& model, int accessor,
+                                  const std::string& name, bool quantized, const std::string& object,
+                                  const Diagnostics& diag) {
+    static const AttributeFormats core(false), withQuantization(true);
+    const Format* format = (quantized ? withQuantization : core).of(name);
+    if (!format) return {};
+    auto checked = checkFormat(model, accessor, *format, object, diag);
+    if (checked || quantized || !checkFormat(model, accessor, *withQuantization.of(name), object,
+                                             Diagnostics("", {})))
+        return checked;
+    Error e = std::move(checked).error();
+    e.message += " (KHR_mesh_quantization allows it, but the file does not declare that "
+                 "extension in extensionsUsed)";
+    return e;
+}
+
 Result<void> validateMeshes(const tinygltf::Model& model, const RawFacts& raw,
                             const Diagnostics& diag) {
-    const Format position{{TINYGLTF_TYPE_VEC3}, {kFloat}};
-    const Format normal{{TINYGLTF_TYPE_VEC3}, {kFloat}};
-    const Format color{{TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4},
-                       {kFloat, kUnsignedByte, kUnsignedShort}};
-    const Format texcoord{{TINYGLTF_TYPE_VEC2}, {kFloat, kUnsignedByte, kUnsignedShort}};
+    const bool quantized = declares(model, "KHR_mesh_quantization");
     const Format indices{
         {TINYGLTF_TYPE_SCALAR}, {kUnsignedByte, kUnsignedShort, kUnsignedInt}, false};
     for (std::size_t m = 0; m < model.meshes.size(); ++m) {
@@ -98,16 +143,7 @@ Result<void> validateMeshes(const tinygltf::Model& model, const RawFacts& raw,
             for (const auto& [name, accessor] : prim.attributes) {
                 const std::string aobj = obj + ".attributes." + name;
                 LANTERN_TRY(checkIndex(accessor, model.accessors.size(), aobj, "accessor", diag));
-                const Format* format = nullptr;
-                if (name == "POSITION")
-                    format = &position;
-                else if (name == "NORMAL")
-                    format = &normal;
-                else if (name == "COLOR_0")
-                    format = &color;
-                else if (name.rfind("TEXCOORD_", 0) == 0)
-                    format = &texcoord;
-                if (format) LANTERN_TRY(checkFormat(model, accessor, *format, aobj, diag));
+                LANTERN_TRY(checkAttributeFormat(model, accessor, name, quantized, aobj, diag));
                 const std::size_t n = model.accessors[std::size_t(accessor)].count;
                 if (count && *count != n)
                     return diag.error(aobj, "has " + std::to_string(n) + " elements but " +
