@@ -6,6 +6,9 @@
 #
 # Usage: scripts/slurm-single-node.sh COMMAND
 #   install             install slurm-wlm slurmctld slurmd slurm-client munge (apt, root or sudo)
+#   probe               check, starting nothing, that this machine can run the cluster (root,
+#                       the programs, the loopback interface, a free port pair); rc 1 and the
+#                       reason on stderr when it cannot (the farm tests then skip with it)
 #   start [--watch PID] start the cluster; with --watch, a watchdog stops it when PID exits
 #                       (so a test that crashes or is killed leaves nothing running)
 #   env                 print `export SLURM_CONF=...` (eval it to use sbatch/squeue/scancel)
@@ -155,6 +158,51 @@ close_inherited_fds() {
 
 cmd_install() { exec "$here/install-deps.sh" slurm; }
 
+# free_port_pair: the first port P from 6817 up (or LANTERN_SLURM_PORT) with P and P+1 free.
+free_port_pair() {
+    local port
+    if [ -n "${LANTERN_SLURM_PORT:-}" ]; then
+        port=$LANTERN_SLURM_PORT
+        port_free "$port" && port_free $((port + 1)) && echo "$port"
+        return
+    fi
+    for ((port = 6817; port < 7017; port += 2)); do
+        if port_free "$port" && port_free $((port + 1)); then
+            echo "$port"
+            return 0
+        fi
+    done
+    return 1
+}
+
+need_tools() {
+    local tool
+    for tool in munged mungekey munge unmunge slurmctld slurmd scontrol sinfo; do
+        command -v "$tool" >/dev/null || die "$tool not found: run '$0 install' first"
+    done
+}
+
+# What a machine may lack that start needs, checked without starting anything.
+cmd_probe() {
+    need_root
+    need_tools
+    # The daemons talk over 127.0.0.1; in a network namespace without networking (a container
+    # run with --network none, say) lo is down and a connection there is "unreachable".
+    local answer
+    answer=$(LC_ALL=C bash -c 'exec 3<>/dev/tcp/127.0.0.1/6817' 2>&1 || true)
+    case "$answer" in
+    *unreachable* | *"Cannot assign"*)
+        die "no loopback network (127.0.0.1: ${answer##*: }): the daemons talk over it" ;;
+    esac
+    if [ -n "${LANTERN_SLURM_PORT:-}" ]; then
+        free_port_pair >/dev/null ||
+            die "TCP port $LANTERN_SLURM_PORT or $((LANTERN_SLURM_PORT + 1)) is in use (LANTERN_SLURM_PORT)"
+    else
+        free_port_pair >/dev/null || die "no free TCP port pair in 6817-7016 for slurmctld and slurmd"
+    fi
+    hostname -s >/dev/null 2>&1 || die "'hostname -s' fails: the node needs a host name"
+}
+
 cmd_start() {
     local watch=""
     if [ "${1:-}" = "--watch" ]; then
@@ -164,9 +212,7 @@ cmd_start() {
     need_root
     check_dir
     close_inherited_fds
-    for tool in munged mungekey munge unmunge slurmctld slurmd scontrol sinfo; do
-        command -v "$tool" >/dev/null || die "$tool not found: run '$0 install' first"
-    done
+    need_tools
     if pid_of slurmctld >/dev/null || pid_of slurmd >/dev/null || pid_of munged >/dev/null; then
         die "a cluster is already running in $D: '$0 stop' first (or set LANTERN_SLURM_DIR)"
     fi
@@ -195,18 +241,12 @@ cmd_start() {
     exec 9</tmp
     flock -w 60 9 || die "could not lock /tmp to choose the ports"
     if [ -n "${LANTERN_SLURM_PORT:-}" ]; then
-        CTLD_PORT=$LANTERN_SLURM_PORT
-        SLURMD_PORT=$((CTLD_PORT + 1))
-        port_free "$CTLD_PORT" && port_free "$SLURMD_PORT" ||
-            die "port $CTLD_PORT or $SLURMD_PORT is in use (LANTERN_SLURM_PORT)"
+        CTLD_PORT=$(free_port_pair) ||
+            die "port $LANTERN_SLURM_PORT or $((LANTERN_SLURM_PORT + 1)) is in use (LANTERN_SLURM_PORT)"
     else
-        CTLD_PORT=6817
-        until port_free "$CTLD_PORT" && port_free $((CTLD_PORT + 1)); do
-            CTLD_PORT=$((CTLD_PORT + 2))
-            [ "$CTLD_PORT" -lt 7017 ] || die "no free port pair in 6817-7016 (set LANTERN_SLURM_PORT)"
-        done
-        SLURMD_PORT=$((CTLD_PORT + 1))
+        CTLD_PORT=$(free_port_pair) || die "no free port pair in 6817-7016 (set LANTERN_SLURM_PORT)"
     fi
+    SLURMD_PORT=$((CTLD_PORT + 1))
     write_conf
     export SLURM_CONF=$CONF
     slurmctld -f "$CONF" </dev/null >>"$D/log/start.log" 2>&1
@@ -328,6 +368,7 @@ cmd_stop() {
 
 case "${1:-}" in
 install) cmd_install ;;
+probe) cmd_probe ;;
 start) cmd_start "${@:2}" ;;
 _watch) cmd_watch "${2:?}" ;;
 env) cmd_env ;;

@@ -34,6 +34,11 @@ protected:
         if (::geteuid() != 0)
             GTEST_SKIP() << "a single-node Slurm needs root (slurmd starts each job as its owner); "
                             "run as root";
+        // What else the cluster needs from the machine (the loopback network, two free TCP
+        // ports), checked before starting it: a machine without them skips, naming what.
+        const auto probe = script({"probe"});
+        if (probe.exitCode != 0)
+            GTEST_SKIP() << "this machine cannot run a private single-node Slurm: " << probe.err;
         m_dir = "/tmp/lantern-farm-test-" + std::to_string(::getpid());
         const auto start = script({"start", "--watch", std::to_string(::getpid())});
         m_started = true; // stop even after a failed start: it cleans up whatever did start

@@ -3,7 +3,7 @@
 // frame plan with its cameras, lights and draws). Crashes, hangs, sanitizer reports and
 // uncaught exceptions are findings; refusals are the expected outcome for most inputs.
 #include "io/GltfLoad.h"
-#include "render/FramePlan.h"
+#include "frame/Frame.h"
 
 #include <lantern/Scene.h>
 
@@ -42,7 +42,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (double time : {0.0, 0.5, 1e6}) {
         for (int root = 0; root < int(scene->roots.size()) && root < 4; ++root) {
             render.root = root;
-            (void)render::buildFramePlan(*scene, render, time);
+            (void)frame::buildFrame(*scene, render, time);
         }
     }
     return 0;

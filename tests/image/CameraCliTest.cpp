@@ -25,6 +25,7 @@ std::vector<std::string> spheres(std::vector<std::string> extra) {
 }
 
 TEST(CameraCli, RefusesBadCameraValuesWithExit1) {
+    LANTERN_SKIP_IF_MISSING(lantern::test::missingVulkanDevice());
     struct Row {
         std::vector<std::string> args;
         std::string option, mention;

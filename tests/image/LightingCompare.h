@@ -1,7 +1,7 @@
 // LightingCompare.h: what the lighting image tests share: a scene builder for several lit
 // objects, and the comparison of a render with the double-precision reference pixel by
 // pixel (each pixel's draw and triangle from the id AOV, its colour from the reference under
-// the same interpolation rule: render/Probe.h).
+// the same interpolation rule: reference/PixelReference.h).
 #pragma once
 
 #include "TestSupport.h"

@@ -199,8 +199,10 @@ class ProbeCli : public GpuTest {}; // skips without a device, like the renders 
 TEST_F(ProbeCli, PrintsTheEquationAtAPixel) {
     const auto dir = test::testOutputDir();
     const std::string out = (dir / "probe.png").string();
-    const auto r = test::runLantern({"render", "builtin:spheres", "--width", "64", "--height", "48",
-                                     "--probe", "32,24", "-o", out, "--validation"});
+    std::vector<std::string> command = {"render", "builtin:spheres", "--width", "64",
+                                        "--height", "48", "--probe", "32,24", "-o", out};
+    for (const std::string& flag : test::validationFlag()) command.push_back(flag);
+    const auto r = test::runLantern(command);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(r.err.find("validation"), std::string::npos) << "validation messages: " << r.err;
     for (const char* text :

@@ -13,10 +13,13 @@ using lantern::test::runLantern;
 using lantern::test::testOutputDir;
 
 TEST(CliRender, WritesExrAndPngAndPrintsTheirPaths) {
+    LANTERN_SKIP_IF_MISSING(lantern::test::missingVulkanDevice());
     const auto out = testOutputDir();
     const auto exr = out / "spheres.exr", png = out / "spheres.png";
-    const auto r = runLantern({"render", "builtin:spheres", "--width", "80", "--height", "48", "-o",
-                               exr.string(), "-o", png.string(), "--validation"});
+    std::vector<std::string> args = {"render", "builtin:spheres", "--width", "80", "--height",
+                                     "48", "-o", exr.string(), "-o", png.string()};
+    for (const std::string& flag : lantern::test::validationFlag()) args.push_back(flag);
+    const auto r = runLantern(args);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(r.out, exr.string() + "\n" + png.string() + "\n");
     EXPECT_EQ(r.err.find("validation"), std::string::npos) << "validation messages: " << r.err;
@@ -31,6 +34,7 @@ TEST(CliRender, WritesExrAndPngAndPrintsTheirPaths) {
 }
 
 TEST(CliRender, AovChannelsAndHalf) {
+    LANTERN_SKIP_IF_MISSING(lantern::test::missingVulkanDevice());
     const auto out = testOutputDir();
     const auto exr = out / "aov.exr";
     const auto r = runLantern({"render", "builtin:spheres", "--width", "64", "--height", "40", "--aov",

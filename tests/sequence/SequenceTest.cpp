@@ -71,6 +71,7 @@ std::vector<std::string> withOutput(std::vector<std::string> args, const std::st
 }
 
 TEST(Sequence, ShardsTogetherAreByteIdenticalToOneRun) {
+    LANTERN_SKIP_IF_MISSING(lantern::test::missingVulkanDevice());
     const auto dir = testOutputDir();
     std::filesystem::create_directories(dir / "single");
     std::filesystem::create_directories(dir / "again");
@@ -96,6 +97,7 @@ TEST(Sequence, ShardsTogetherAreByteIdenticalToOneRun) {
 }
 
 TEST(Sequence, MetadataNamesTheFrameAndTheCamera) {
+    LANTERN_SKIP_IF_MISSING(lantern::test::missingVulkanDevice());
     const auto dir = testOutputDir();
     ASSERT_EQ(runLantern(withOutput(kSequence, (dir / "f_##.exr").string())).exitCode, 0);
     auto img = readExr(dir / "f_03.exr");
@@ -116,6 +118,7 @@ TEST(Sequence, MetadataNamesTheFrameAndTheCamera) {
 }
 
 TEST(Sequence, RefusesPatternlessOutputsAndUnwritableFolders) {
+    LANTERN_SKIP_IF_MISSING(lantern::test::missingVulkanDevice());
     const auto dir = testOutputDir();
     auto r = runLantern(withOutput(kSequence, (dir / "same.exr").string()));
     EXPECT_EQ(r.exitCode, 1) << r.err;
@@ -131,6 +134,7 @@ TEST(Sequence, RefusesPatternlessOutputsAndUnwritableFolders) {
 
 // Starts a long sequence, signals it once frames exist, and checks that it stopped cleanly.
 void stopWith(int signal) {
+    LANTERN_SKIP_IF_MISSING(lantern::test::missingVulkanDevice());
     const auto dir = testOutputDir();
     const std::string cli = test::cliPath().string();
     const std::string pattern = (dir / "f_####.exr").string();

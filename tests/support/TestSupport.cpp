@@ -191,6 +191,50 @@ ProcessResult runLantern(const std::vector<std::string>& args, const std::vector
     return runProcess(full, environment);
 }
 
+std::string missingProgram(const std::string& program, const std::string& debianPackage) {
+    const char* path = std::getenv("PATH");
+    std::string dirs = path ? path : "/usr/bin:/bin";
+    std::size_t start = 0;
+    while (start <= dirs.size()) {
+        std::size_t end = dirs.find(':', start);
+        if (end == std::string::npos) end = dirs.size();
+        const std::string dir = dirs.substr(start, end - start);
+        if (!dir.empty() && ::access((std::filesystem::path(dir) / program).c_str(), X_OK) == 0)
+            return {};
+        start = end + 1;
+    }
+    return program + " is not installed (Debian package " + debianPackage + ")";
+}
+
+std::string missingVulkanDevice() {
+    if (sharedRenderer()) return {};
+    return "no Vulkan device: " + noDeviceReason();
+}
+
+std::vector<std::string> validationFlag() {
+    if (sharedRenderer() && sharedRenderer()->device().validationEnabled) return {"--validation"};
+    std::cerr << "note: VK_LAYER_KHRONOS_validation is not installed; validation not checked\n";
+    return {};
+}
+
+std::string missingUserNamespaceMount(const std::vector<std::string>& environment) {
+    // Mounted over /tmp inside the private namespace, so nothing outside it sees the mount.
+    const auto r = runProcess({"unshare", "-rm", "sh", "-c",
+                               "mount -t tmpfs -o size=64k tmpfs /tmp || exit 77"},
+                              environment, 30.0);
+    if (r.exitCode == 0) return {};
+    std::string said = r.err;
+    while (!said.empty() && (said.back() == '\n' || said.back() == ' ')) said.pop_back();
+    if (r.exitCode == 127)
+        return "unshare is not installed (Debian package util-linux): " + said;
+    if (r.exitCode == 77)
+        return "no tmpfs can be mounted in an unprivileged user namespace here (`unshare -rm` "
+               "then mount: " + said + ")";
+    return "no unprivileged user namespace can be created here (`unshare -rm`: " + said +
+           "); Linux refuses one in a chroot, and Docker's default seccomp profile in a "
+           "container";
+}
+
 float maxAbsDifference(const Image& a, const Image& b) {
     if (a.width != b.width || a.height != b.height || a.rgba.size() != b.rgba.size())
         return std::numeric_limits<float>::infinity();

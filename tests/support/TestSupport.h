@@ -1,6 +1,7 @@
 // TestSupport.h: what every Lantern test shares: paths (source tree, ../shared, build tree),
 // a renderer on the test machine's device with validation on (GPU tests skip without one and
-// fail on any validation message), running the `lantern` command, and image comparison that
+// fail on any validation message), checks for what a plain machine may lack (a test skips,
+// naming it, rather than fails), running the `lantern` command, and image comparison that
 // writes actual/expected/diff images on failure.
 #pragma once
 
@@ -47,6 +48,33 @@ private:
     Renderer* m_renderer = nullptr;
     std::uint64_t m_validationBefore = 0;
 };
+
+/// What a test needs from the machine that a plain one (a chroot, a container, a user's CI)
+/// may lack. Each returns why a test must skip, naming what is missing and how to get it, or
+/// an empty string when it is there. A test checks first, with LANTERN_SKIP_IF_MISSING, so that
+/// a missing tool or privilege is reported as a skip with its reason, never as a failure.
+/// `environment` entries are added for the probe's processes (tests of the probes use it).
+///
+/// An executable on $PATH (`debianPackage` installs it).
+std::string missingProgram(const std::string& program, const std::string& debianPackage);
+/// A Vulkan device (for tests that render through the `lantern` command or a window; GpuTest
+/// fixtures check it themselves). Creates sharedRenderer() once per process.
+std::string missingVulkanDevice();
+/// {"--validation"} for a `lantern` command line when VK_LAYER_KHRONOS_validation is
+/// installed; otherwise nothing, and a note on stderr (the command would warn that the layer
+/// is missing, and tests check that it prints nothing about validation). As in GpuTest, a
+/// missing layer means validation is not checked, not that the test fails or skips.
+std::vector<std::string> validationFlag();
+/// An unprivileged user namespace in which a tmpfs can be mounted (`unshare -rm`): Linux
+/// refuses one inside a chroot, and Docker's default seccomp profile inside a container.
+std::string missingUserNamespaceMount(const std::vector<std::string>& environment = {});
+
+/// Skips the current test, with `reason` as the message, unless `reason` is empty.
+#define LANTERN_SKIP_IF_MISSING(reason)                                                            \
+    do {                                                                                           \
+        if (const std::string lanternSkipReason_ = (reason); !lanternSkipReason_.empty())          \
+            GTEST_SKIP() << lanternSkipReason_;                                                    \
+    } while (false)
 
 /// The result of running a command.
 struct ProcessResult {

@@ -1,14 +1,19 @@
 // EXR and PNG output: exact float round trip, half precision and clamping, AOV channel names,
-// metadata, atomic writes (nothing left behind on failure), and other tools reading the files.
+// metadata, atomic writes (nothing left behind on failure, a full disk at any write included),
+// and other tools reading the files.
 #include "TestSupport.h"
+#include "io/AtomicFile.h"
 
 #include <lantern/Io.h>
 
 #include <gtest/gtest.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
+#include <iterator>
 #include <random>
 
 namespace {
@@ -109,6 +114,102 @@ TEST(ImageIo, AFailedWriteKeepsTheOldFile) {
     EXPECT_FALSE(writeExr(path, bad));
     EXPECT_EQ(std::filesystem::file_size(path), before);
     EXPECT_EQ(filesIn(dir), 1u);
+}
+
+// An EXR that reads back, or a PNG that ends with its IEND chunk.
+bool isComplete(const std::filesystem::path& path) {
+    if (path.extension() == ".exr") return bool(readExr(path));
+    std::ifstream f(path, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    return bytes.size() > 12 && bytes.compare(bytes.size() - 8, 4, "IEND") == 0;
+}
+
+constexpr const char* kNoHooks =
+    "this build has no fault-injection hooks (LANTERN_TESTING_HOOKS=OFF)";
+
+// Disarms the I/O fault hook when a test ends, however it ends.
+struct IoFaultsCleared {
+    ~IoFaultsCleared() { io::clearIoFaults(); }
+};
+
+// A disk that fills at any one of a file's writes: an IoError naming the file and saying the
+// disk is full, and neither a partial file nor a temporary one left. EXR's last write is its
+// offset table, which OpenEXR rewrites in a destructor that swallows errors; the file must
+// still not be committed. Once the disk has room, the same call writes a complete file.
+TEST(ImageIo, AFullDiskAtAnyWriteLeavesNothingBehind) {
+    IoFaultsCleared cleared;
+    if (!io::injectIoFault(io::IoOp::Write, ENOSPC, 1 << 30)) GTEST_SKIP() << kNoHooks;
+    const auto dir = testOutputDir();
+    // 96x96 float RGBA + Z + N, uncompressed: about 290 kB, several of the stream's writes.
+    const Image img = randomImage(96, 96, true);
+    ExrOptions exr;
+    exr.compression = ExrCompression::None;
+    struct Row {
+        const char* name;
+        int minimumWrites;
+        std::function<Result<void>(const std::filesystem::path&)> write;
+    };
+    const Row rows[] = {
+        {"full.exr", 5, [&](const auto& p) { return writeExr(p, img, exr); }},
+        {"full.png", 1, [&](const auto& p) { return writePng(p, img); }},
+    };
+    for (const Row& row : rows) {
+        SCOPED_TRACE(row.name);
+        const auto path = dir / row.name;
+        int failedAt = 0;
+        for (; failedAt < 200; ++failedAt) {
+            io::injectIoFault(io::IoOp::Write, ENOSPC, failedAt);
+            const auto r = writeImage(path, img, exr);
+            io::clearIoFaults();
+            if (r) break;
+            EXPECT_EQ(r.error().code, ErrorCode::IoError);
+            EXPECT_EQ(r.error().file, path.string());
+            EXPECT_NE(r.error().message.find("No space left on device (the disk is full)"),
+                      std::string::npos)
+                << r.error().describe();
+            EXPECT_EQ(filesIn(dir), 0u) << "left behind after a full disk at write " << failedAt;
+        }
+        EXPECT_GE(failedAt, row.minimumWrites) << "the file took fewer writes than expected";
+        ASSERT_TRUE(std::filesystem::exists(path));
+        EXPECT_TRUE(isComplete(path)) << "the file written once the disk had room is not complete";
+        std::filesystem::remove(path);
+    }
+}
+
+// A failed fsync or rename (EIO, a read-only remount) keeps the old file and leaves no
+// temporary one.
+TEST(ImageIo, AFailedFsyncOrRenameKeepsTheOldFile) {
+    IoFaultsCleared cleared;
+    if (!io::injectIoFault(io::IoOp::Fsync, EIO, 1 << 30)) GTEST_SKIP() << kNoHooks;
+    io::clearIoFaults();
+    const auto dir = testOutputDir();
+    const Image old = randomImage(8, 8, false), replacement = randomImage(16, 16, false);
+    struct Row {
+        io::IoOp op;
+        int error;
+        const char* expected;
+    };
+    const Row rows[] = {
+        {io::IoOp::Fsync, EIO, "fsync failed: Input/output error"},
+        {io::IoOp::Rename, EROFS, "cannot rename the finished file into place: Read-only"},
+    };
+    for (const Row& row : rows)
+        for (const char* name : {"keep.exr", "keep.png"}) {
+            SCOPED_TRACE(std::string(name) + ": " + row.expected);
+            const auto path = dir / name;
+            ASSERT_TRUE(writeImage(path, old));
+            const auto before = std::filesystem::file_size(path);
+            io::injectIoFault(row.op, row.error);
+            const auto r = writeImage(path, replacement);
+            io::clearIoFaults();
+            ASSERT_FALSE(r);
+            EXPECT_EQ(r.error().code, ErrorCode::IoError);
+            EXPECT_NE(r.error().message.find(row.expected), std::string::npos)
+                << r.error().describe();
+            EXPECT_EQ(std::filesystem::file_size(path), before);
+            EXPECT_EQ(filesIn(dir), 1u);
+            std::filesystem::remove(path);
+        }
 }
 
 TEST(ImageIo, PngIsSrgbEncodedAndUnpremultiplied) {

@@ -128,7 +128,19 @@ int maxDifference(const XImageRgb& x, const Image& image, int x0, int y0, int x1
     return worst;
 }
 
-bool XServer::available() { return !findProgram("Xvfb").empty(); }
+std::string XServer::missing() {
+    std::string reason;
+    for (const auto& [program, package] :
+         {std::pair<const char*, const char*>{"Xvfb", "xvfb"}, {"xauth", "xauth"}}) {
+        if (!findProgram(program).empty()) continue;
+        reason += (reason.empty() ? "" : ", ") + std::string(program) +
+                  " is not installed (Debian package " + package + ")";
+    }
+    if (!reason.empty())
+        reason += ": no X server (display) for the window tests; `scripts/install-deps.sh test` "
+                  "installs it";
+    return reason;
+}
 
 std::unique_ptr<XServer> XServer::start(const fs::path& dir, std::string& error,
                                         const std::string& screen) {

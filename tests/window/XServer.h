@@ -63,8 +63,9 @@ int maxDifference(const XImageRgb& x, const Image& image, int x0 = 0, int y0 = 0
 /// An Xvfb server for one test.
 class XServer {
 public:
-    /// Whether Xvfb is installed (the window tests skip without it).
-    static bool available();
+    /// Why no X server can be started here (Xvfb or xauth is not installed), naming the
+    /// packages; empty when both are there. The window tests skip with this reason.
+    static std::string missing();
     /// Starts Xvfb (screen `screen`, e.g. "1024x768x24") on a free display with a fresh
     /// MIT-MAGIC-COOKIE-1 in an auth file under `dir`, and waits until it accepts clients.
     /// nullptr and `error` on failure.

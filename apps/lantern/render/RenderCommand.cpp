@@ -315,6 +315,10 @@ int run(const RenderArgs& a) {
     auto scene = loadScene(a.scene, load);
     if (!scene) return report(scene.error());
     auto shared = std::make_shared<const Scene>(std::move(*scene));
+    // A valid file may draw nothing: say why the image is only the background.
+    if (auto why = nothingToDraw(*shared, options->root))
+        std::cerr << "lantern: warning: " << a.scene << ": nothing to draw (" << *why
+                  << "); the image is the background\n";
 
     auto renderer = Renderer::create(a.device.desc());
     if (!renderer) return report(renderer.error());

@@ -70,6 +70,9 @@ bool Viewer::adopt(std::shared_ptr<Scene> scene) {
     }
     m_st.camera.setBounds(animatedBounds(*m_st.scene, m_st.root, m_st.startTime(), m_st.endTime()));
     resolveLightingDefaults();
+    if (auto why = nothingToDraw(*m_st.scene, m_st.root))
+        std::cerr << "lantern: warning: " << m_st.source << ": nothing to draw (" << *why
+                  << "); the window shows the background\n";
     return true;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <lantern/Camera.h>
+#include <lantern/Export.h>
 #include <lantern/Image.h>
 #include <lantern/Scene.h>
 
@@ -12,9 +13,30 @@
 #include <glm/vec4.hpp>
 
 #include <optional>
+#include <string_view>
 #include <vector>
 
 namespace lantern {
+
+/// Where automatic framing puts the camera, as the views modelling programs name them. The
+/// default is a three-quarter view from the front right, above (Blender's and F3D's habit):
+/// 45 degrees round from the front (+Z, glTF's front) towards +X, 30 degrees up, so a scene that
+/// lies in any axis plane is seen at 30 degrees or more, never edge-on.
+enum class ViewDirection {
+    ThreeQuarter,  ///< from front right, above (the default)
+    Front,         ///< from +Z, looking down -Z
+    Back,          ///< from -Z
+    Left,          ///< from -X
+    Right,         ///< from +X
+    Top,           ///< from +Y, looking down (+X to the right, -Z up on screen)
+    Bottom,        ///< from -Y
+    Iso,           ///< from (+1, +1, +1): the isometric corner
+};
+/// "three-quarter", "front", "back", "left", "right", "top", "bottom", "iso".
+LANTERN_API const char* toString(ViewDirection view) noexcept;
+LANTERN_API std::optional<ViewDirection> parseViewDirection(std::string_view text) noexcept;
+/// The unit direction the camera looks along (world space, towards the scene) for `view`.
+LANTERN_API glm::dvec3 framingDirection(ViewDirection view) noexcept;
 
 /// Which camera a view uses, and optional overrides of its parts.
 struct CameraSpec {
@@ -29,9 +51,10 @@ struct CameraSpec {
     std::optional<LookAt> lookAt;          ///< replaces the view (gluLookAt), world space
     std::optional<Projection> projection;  ///< replaces the projection
 
-    /// Which fixed direction automatic framing looks from (world space, towards the scene):
-    /// the default is the GL camera's -Z. The quad layout uses -Y (top) and -X (side) too.
-    glm::dvec3 framingDirection{0.0, 0.0, -1.0};
+    /// The direction automatic framing looks along (world space, towards the scene; need not
+    /// be unit length): the three-quarter view by default (framingDirection(ViewDirection)).
+    /// The framing fits the bounding sphere, near and far planes around it.
+    glm::dvec3 framingDirection{-0.6123724356957945, -0.5, -0.6123724356957945};
     bool framingOrthographic = false;  ///< frame with an orthographic projection
 };
 

@@ -207,8 +207,8 @@ struct LANTERN_API Scene {
     std::vector<Camera> cameras;
     std::vector<Node> nodes;
     std::vector<Animation> animations;
-    std::vector<SceneRoot> roots;  ///< glTF scenes
-    int defaultRoot = 0;           ///< the root drawn unless another is chosen
+    std::vector<SceneRoot> roots;  ///< glTF scenes; may be empty (nothing is drawn)
+    int defaultRoot = 0;           ///< the root drawn unless another is chosen (0 when none)
 
     /// Checks every index, count and number (spec section 6); the error names the object.
     Result<void> validate() const;
@@ -265,6 +265,11 @@ struct SceneSummary {
     Bounds bounds;  ///< at time 0, default root
 };
 LANTERN_API SceneSummary summarize(const Scene& scene);
+
+/// Why scene root `root` (-1: the default) draws nothing, e.g. "the file defines no scene and
+/// no node" or "scene 0 \"Empty\" has no nodes"; nothing when it draws something. A valid
+/// scene that draws nothing renders the background: hosts show this reason as a warning.
+LANTERN_API std::optional<std::string> nothingToDraw(const Scene& scene, int root = -1);
 
 // --- Building blocks ------------------------------------------------------------------------
 

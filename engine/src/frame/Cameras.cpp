@@ -92,8 +92,9 @@ ViewCamera framingCamera(const Scene& scene, int root, const CameraSpec& spec, d
         const double xfov = 2.0 * std::atan(std::tan(yfov / 2.0) * aspect);
         const double d = r * margin / std::sin(std::min(yfov, xfov) / 2.0);
         rc.viewFromWorld = lookAt(c - dir * d, c, up);
+        // Near and far planes fitted around the bounding sphere, with a margin.
         rc.projection = Projection::makePerspective(yfov, 0.0, std::max(d - 1.5 * r, d * 1e-3),
-                                                    kInfinity);
+                                                    d + 1.5 * r);
         rc.description = "automatic framing";
     }
     return rc;
@@ -203,3 +204,54 @@ Result<ViewCamera> resolveCamera(const Scene& scene, const Pose& pose, const Cam
 }
 
 } // namespace lantern::frame
+
+// The public naming of views (lantern/Options.h) lives with the framing that uses it.
+namespace lantern {
+namespace {
+constexpr double kPiValue = 3.14159265358979323846;
+} // namespace
+
+const char* toString(ViewDirection view) noexcept {
+    switch (view) {
+    case ViewDirection::ThreeQuarter: return "three-quarter";
+    case ViewDirection::Front: return "front";
+    case ViewDirection::Back: return "back";
+    case ViewDirection::Left: return "left";
+    case ViewDirection::Right: return "right";
+    case ViewDirection::Top: return "top";
+    case ViewDirection::Bottom: return "bottom";
+    case ViewDirection::Iso: return "iso";
+    }
+    return "?";
+}
+
+std::optional<ViewDirection> parseViewDirection(std::string_view text) noexcept {
+    for (ViewDirection v : {ViewDirection::ThreeQuarter, ViewDirection::Front, ViewDirection::Back,
+                            ViewDirection::Left, ViewDirection::Right, ViewDirection::Top,
+                            ViewDirection::Bottom, ViewDirection::Iso})
+        if (text == toString(v)) return v;
+    return std::nullopt;
+}
+
+glm::dvec3 framingDirection(ViewDirection view) noexcept {
+    // The camera's position relative to the scene; the camera looks the other way.
+    glm::dvec3 from(0.0, 0.0, 1.0);
+    switch (view) {
+    case ViewDirection::ThreeQuarter: {
+        // 45 degrees round from the front towards +X, 30 degrees up.
+        const double c = std::cos(kPiValue / 6.0), s = std::sin(kPiValue / 6.0);
+        from = glm::dvec3(c * std::sin(kPiValue / 4.0), s, c * std::cos(kPiValue / 4.0));
+        break;
+    }
+    case ViewDirection::Front: from = {0, 0, 1}; break;
+    case ViewDirection::Back: from = {0, 0, -1}; break;
+    case ViewDirection::Left: from = {-1, 0, 0}; break;
+    case ViewDirection::Right: from = {1, 0, 0}; break;
+    case ViewDirection::Top: from = {0, 1, 0}; break;
+    case ViewDirection::Bottom: from = {0, -1, 0}; break;
+    case ViewDirection::Iso: from = glm::normalize(glm::dvec3(1, 1, 1)); break;
+    }
+    return -from;
+}
+
+} // namespace lantern

@@ -1,10 +1,12 @@
 // AtomicFile.h: output that is complete or absent. A writer fills a temporary file in the
 // destination folder; commit() flushes it to disk and renames it over the destination; a
-// writer destroyed without commit() removes its temporary file.
+// writer destroyed without commit() removes its temporary file. Every byte Lantern writes to
+// an image goes through write() here, which is where the test-only I/O fault hook sits.
 #pragma once
 
 #include <lantern/Result.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
@@ -23,14 +25,22 @@ public:
 
     /// Checks that the destination folder exists and is writable (IoError otherwise).
     Result<void> checkWritable() const;
-    /// Writes `bytes` to the temporary file.
+    /// Creates (or truncates) the temporary file; write() and seek() open it when needed.
+    Result<void> open();
+    /// Writes `size` bytes at the current position. A full disk is an IoError naming the
+    /// destination whose message says so ("No space left on device (the disk is full)").
+    Result<void> write(const void* data, std::size_t size);
+    /// Moves the write position (OpenEXR rewrites its offset table at the end of a file).
+    Result<void> seek(std::uint64_t offset);
+    /// Writes `bytes` to the temporary file: open(), then write().
     Result<void> writeAll(const void* data, std::size_t size);
-    /// fsyncs the temporary file and renames it to the destination.
+    /// fsyncs and closes the temporary file and renames it to the destination.
     Result<void> commit();
 
 private:
     std::filesystem::path m_destination;
     std::filesystem::path m_temporary;
+    int m_fd = -1;
     bool m_committed = false;
 };
 
@@ -40,5 +50,18 @@ std::size_t removeStaleTemporaries(const std::filesystem::path& destination);
 
 /// The same for every temporary file in `folder`, whatever its destination name.
 std::size_t removeStaleTemporariesIn(const std::filesystem::path& folder);
+
+/// Fault injection for file output (tests only). In builds with LANTERN_TESTING_HOOKS (dev
+/// and CI; not release), the environment variable
+///     LANTERN_TEST_IO_FAULT="OP=ERRNO[@N][;OP=ERRNO[@N]...]"
+/// with OP one of write, fsync, rename and ERRNO one of ENOSPC, EDQUOT, EIO, EROFS lets the
+/// first N calls of OP succeed (counted over the whole process, every file; N defaults to 0)
+/// and makes every later one fail with ERRNO, as a disk that has filled stays full. The
+/// failure then takes the path a real one takes. injectIoFault() arms the same in-process
+/// (replacing what was armed for `op`); it returns false, arming nothing, in builds without
+/// the hooks.
+enum class IoOp { Write, Fsync, Rename };
+bool injectIoFault(IoOp op, int error, int after = 0);
+void clearIoFaults();
 
 } // namespace lantern::io

@@ -13,6 +13,7 @@
 #include <ImfRationalAttribute.h>
 #include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
+#include <IexBaseExc.h>
 #include <half.h>
 
 #include <stb_image_write.h>
@@ -21,6 +22,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <vector>
 
 namespace lantern {
@@ -52,6 +54,73 @@ Result<void> checkImage(const Image& image, const std::filesystem::path& path) {
         return makeError(ErrorCode::InvalidInput, "normal plane has a wrong size", {}, path.string());
     return {};
 }
+
+// OpenEXR's output stream onto an AtomicFile, so that EXR bytes reach the disk through
+// AtomicFile::write like every other output (one place where a full disk shows, and where
+// the test hook can fill it). Buffered: OpenEXR writes its header a few bytes at a time.
+// OpenEXR's OutputFile destructor rewrites the offset table and swallows any error doing so,
+// so the stream keeps its first error and finish() reports it: a file whose table the disk
+// refused is never committed.
+class AtomicFileStream final : public Imf::OStream {
+public:
+    explicit AtomicFileStream(io::AtomicFile& file)
+        : Imf::OStream(file.temporaryPath().c_str()), m_file(file) {
+        m_buffer.reserve(kCapacity);
+    }
+
+    void write(const char c[], int n) override {
+        if (m_error) throw Iex::IoExc(m_error->message);
+        if (m_buffer.size() + std::size_t(n) > kCapacity) flush();
+        if (std::size_t(n) >= kCapacity)
+            check(m_file.write(c, std::size_t(n)));
+        else
+            m_buffer.insert(m_buffer.end(), c, c + n);
+        m_position += std::uint64_t(n);
+    }
+
+    std::uint64_t tellp() override { return m_position; }
+
+    void seekp(std::uint64_t position) override {
+        flush();
+        check(m_file.seek(position));
+        m_position = position;
+    }
+
+    /// Writes what is buffered; the first error this stream met, if any.
+    Result<void> finish() {
+        if (!m_error) {
+            try {
+                flush();
+            } catch (const Iex::BaseExc&) {
+            }
+        }
+        if (m_error) return *m_error;
+        return {};
+    }
+
+    const std::optional<Error>& error() const { return m_error; }
+
+private:
+    static constexpr std::size_t kCapacity = std::size_t(1) << 16;
+
+    void flush() {
+        if (m_buffer.empty()) return;
+        auto written = m_file.write(m_buffer.data(), m_buffer.size());
+        m_buffer.clear();
+        check(std::move(written));
+    }
+
+    void check(Result<void> r) {
+        if (r) return;
+        m_error = std::move(r).error();
+        throw Iex::IoExc(m_error->message);
+    }
+
+    io::AtomicFile& m_file;
+    std::vector<char> m_buffer;
+    std::uint64_t m_position = 0;
+    std::optional<Error> m_error;
+};
 
 float srgbEncode(float linear) {
     const float c = std::clamp(linear, 0.0f, 1.0f);
@@ -184,6 +253,7 @@ Result<void> writeExr(const std::filesystem::path& path, const Image& image,
     LANTERN_TRY(checkImage(image, path));
     io::AtomicFile file(path);
     LANTERN_TRY(file.checkWritable());
+    AtomicFileStream stream(file);
     std::vector<half> halves;
     std::uint64_t clamped = 0;
     try {
@@ -197,14 +267,18 @@ Result<void> writeExr(const std::filesystem::path& path, const Image& image,
         if (image.camera) addCameraAttributes(header, *image.camera);
         if (image.framesPerSecond > 0.0)
             Imf::addFramesPerSecond(header, Imf::guessExactFps(image.framesPerSecond));
-        Imf::OutputFile out(file.temporaryPath().c_str(), header);
+        // The OutputFile is destroyed (writing its offset table) before the stream finishes.
+        Imf::OutputFile out(stream, header);
         out.setFrameBuffer(fb);
         out.writePixels(image.height);
     } catch (const std::exception& e) {
-        // A full disk shows up here as an exception from OpenEXR's stream.
+        // A full disk shows up here as the stream's exception: report the stream's own error,
+        // which names the errno, rather than OpenEXR's rewording of it.
+        if (stream.error()) return *stream.error();
         return makeError(ErrorCode::IoError, std::string("OpenEXR could not write the file: ") + e.what(),
                          {}, path.string());
     }
+    LANTERN_TRY(stream.finish());
     if (options.clampedCount) *options.clampedCount = clamped;
     return file.commit();
 }

@@ -267,7 +267,8 @@ Result<void> validateAnimations(const Scene& scene) {
 // The scenes (roots): at least one, the default one existing, each listing root nodes only.
 Result<void> validateRoots(const Scene& scene, const std::vector<int>& parent) {
     const std::vector<SceneRoot>& roots = scene.roots;
-    if (roots.empty()) return invalid("scenes", "the scene has no roots (nothing to draw)");
+    // No root at all is a valid scene that draws nothing (nothingToDraw() says so).
+    if (roots.empty() && scene.defaultRoot == 0) return {};
     if (scene.defaultRoot < 0 || scene.defaultRoot >= int(roots.size()))
         return invalid("scene",
                        "default scene " + std::to_string(scene.defaultRoot) + " does not exist");
@@ -467,6 +468,26 @@ SceneSummary summarize(const Scene& scene) {
         }
     if (!scene.roots.empty()) s.bounds = computeBounds(scene, evaluatePose(scene, -1, 0.0));
     return s;
+}
+
+std::optional<std::string> nothingToDraw(const Scene& scene, int root) {
+    const int r = root < 0 ? scene.defaultRoot : root;
+    if (scene.roots.empty())
+        return std::string(scene.nodes.empty() ? "the file defines no scene and no node"
+                                               : "the scene has no root nodes");
+    if (r < 0 || r >= int(scene.roots.size())) return "scene " + std::to_string(r) + " does not exist";
+    std::string name = "scene " + std::to_string(r);
+    if (!scene.roots[std::size_t(r)].name.empty())
+        name += " \"" + scene.roots[std::size_t(r)].name + "\"";
+    if (scene.roots[std::size_t(r)].nodes.empty()) return name + " has no nodes";
+    const Pose pose = evaluatePose(scene, r, 0.0);
+    for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
+        const int mesh = scene.nodes[i].mesh;
+        if (!pose.visible[i] || mesh < 0) continue;
+        for (const Primitive& p : scene.meshes[std::size_t(mesh)].primitives)
+            if (p.triangleCount() > 0) return std::nullopt;
+    }
+    return "no node of " + name + " draws a mesh with anything in it";
 }
 
 } // namespace lantern
