@@ -169,6 +169,81 @@ TEST(GltfCompression, MeshoptFallbackBufferWithDataIsIgnoredForTheDecodedViews) 
                                    test::toleranceOf(Encoding::MeshoptQuantized, cube)));
 }
 
+/// The data every meshopt view of `b` decodes to, laid out as the views say, decoded here with
+/// meshoptimizer (independently of the loader): what an uncompressed fallback buffer holds.
+std::vector<unsigned char> meshoptFallbackData(const GltfBuilder& b, std::size_t length) {
+    std::vector<unsigned char> out(length, 0);
+    for (const json& view : b.doc["bufferViews"]) {
+        if (!view.contains("extensions")) continue;
+        const json& e = view["extensions"]["EXT_meshopt_compression"];
+        const std::size_t count = e["count"], stride = e["byteStride"];
+        const unsigned char* src = b.bin.data() + std::size_t(e.value("byteOffset", 0));
+        const std::size_t srcLength = e["byteLength"];
+        unsigned char* dst = out.data() + std::size_t(view.value("byteOffset", 0));
+        const std::string mode = e["mode"], filter = e.value("filter", "NONE");
+        int rc = 0;
+        if (mode == "ATTRIBUTES")
+            rc = meshopt_decodeVertexBuffer(dst, count, stride, src, srcLength);
+        else if (mode == "TRIANGLES")
+            rc = meshopt_decodeIndexBuffer(dst, count, stride, src, srcLength);
+        else
+            rc = meshopt_decodeIndexSequence(dst, count, stride, src, srcLength);
+        EXPECT_EQ(rc, 0) << view.dump();
+        if (filter == "OCTAHEDRAL") meshopt_decodeFilterOct(dst, count, stride);
+        if (filter == "QUATERNION") meshopt_decodeFilterQuat(dst, count, stride);
+        if (filter == "EXPONENTIAL") meshopt_decodeFilterExp(dst, count, stride);
+    }
+    return out;
+}
+
+TEST(GltfCompression, MeshoptOnlyUsedFallsBackWithAWarningWhenAStreamCannotBeDecoded) {
+    const auto dir = testOutputDir();
+    const TestMesh sphere = test::makeSphere(6, 12);
+    for (Encoding e : {Encoding::MeshoptQuantized, Encoding::MeshoptFloat}) {
+        SCOPED_TRACE(test::encodingName(e));
+        GltfBuilder b;
+        test::addEncodedMesh(b, sphere, e);
+        json& fallback = b.extraBuffers.back();
+        fallback["uri"] = "data:application/octet-stream;base64," +
+                          GltfBuilder::base64(meshoptFallbackData(b, fallback["byteLength"]));
+        // Every stream's version byte made one meshoptimizer 0.18 does not know; one view's
+        // mode made one the extension does not have.
+        json& views = b.doc["bufferViews"];
+        for (const json& view : views)
+            b.bin[std::size_t(view["extensions"]["EXT_meshopt_compression"].value("byteOffset", 0))] = 0xF5;
+        views[1]["extensions"]["EXT_meshopt_compression"]["mode"] = "STRIPS";
+        b.doc["extensionsUsed"] = json::array({"EXT_meshopt_compression"});
+        b.doc["extensionsRequired"] = json::array();
+        if (e == Encoding::MeshoptQuantized) {
+            b.doc["extensionsUsed"].push_back("KHR_mesh_quantization");
+            b.doc["extensionsRequired"].push_back("KHR_mesh_quantization");
+        }
+        auto o = loadCapturing(b.write(dir, "fallback-used-" + test::encodingName(e)));
+        ASSERT_TRUE(o.scene) << o.scene.error().describe();
+        EXPECT_TRUE(test::sameGeometry(loadedMesh(*o.scene), sphere, test::toleranceOf(e, sphere)));
+        for (std::size_t v = 0; v < views.size(); ++v)
+            EXPECT_TRUE(o.warned("bufferViews[" + std::to_string(v) +
+                                 "].extensions.EXT_meshopt_compression"))
+                << o.allWarnings();
+        EXPECT_TRUE(o.warned("encoding version meshoptimizer 0.18 does not decode; "
+                             "EXT_meshopt_compression is not required, so the view's "
+                             "uncompressed fallback data in buffers[1] is used"))
+            << o.allWarnings();
+        EXPECT_TRUE(o.warned("\"STRIPS\" is not ATTRIBUTES")) << o.allWarnings();
+
+        // Required: no fallback; the broken rule, then the undecodable stream, refused by name.
+        b.doc["extensionsRequired"].push_back("EXT_meshopt_compression");
+        const std::string name = "fallback-required-" + test::encodingName(e);
+        EXPECT_TRUE(refusedWith(loadCapturing(b.write(dir, name)),
+                                "bufferViews[1].extensions.EXT_meshopt_compression.mode",
+                                "\"STRIPS\" is not ATTRIBUTES"));
+        views[1]["extensions"]["EXT_meshopt_compression"]["mode"] = "ATTRIBUTES";
+        EXPECT_TRUE(refusedWith(loadCapturing(b.write(dir, name)),
+                                "bufferViews[0].extensions.EXT_meshopt_compression",
+                                "encoding version meshoptimizer 0.18 does not decode"));
+    }
+}
+
 TEST(GltfCompression, MeshoptQuaternionFilterDecodesAnimatedRotations) {
     const auto dir = testOutputDir();
     GltfBuilder b;
@@ -197,8 +272,10 @@ TEST(GltfCompression, MeshoptQuaternionFilterDecodesAnimatedRotations) {
                                   {"count", rotations.size()}, {"type", "VEC4"}});
     const int output = int(b.doc["accessors"].size()) - 1;
     const int input = b.addFloats({0, 1, 2, 3, 4}, "SCALAR");
-    b.doc["animations"] = {{{"samplers", {{{"input", input}, {"output", output}}}},
-                            {"channels", {{{"sampler", 0}, {"target", {{"node", 0}, {"path", "rotation"}}}}}}}}};
+    const json sampler = {{"input", input}, {"output", output}};
+    const json channel = {{"sampler", 0}, {"target", {{"node", 0}, {"path", "rotation"}}}};
+    b.doc["animations"] = json::array(
+        {{{"samplers", json::array({sampler})}, {"channels", json::array({channel})}}});
     test::declareExtension(b, "EXT_meshopt_compression", true);
     auto o = loadCapturing(b.write(dir, "quaternions", GltfBuilder::Storage::Glb));
     ASSERT_TRUE(o.scene) << o.scene.error().describe();

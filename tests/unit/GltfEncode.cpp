@@ -357,7 +357,8 @@ Tolerance toleranceOf(Encoding e, const TestMesh& mesh) {
     // A grid of `steps` over the extent: half a step per component, sqrt(3)/2 steps in 3D.
     const double grid = std::sqrt(3.0) / 2 * extent / kPositionSteps + floatPosition;
     const double byteNormal = std::sqrt(3.0) * 0.5 / 127.0 + 1e-6;
-    const double shortUv = unitUv ? 0.5 / 65535.0 + 1e-7 : 1e-6;
+    // Half a step per component, sqrt(2)/2 steps in 2D.
+    const double shortUv = unitUv ? std::sqrt(2.0) * 0.5 / 65535.0 + 1e-7 : 1e-6;
     switch (e) {
     case Encoding::Float:
         return {floatPosition, 1e-6, 1e-6};

@@ -1,7 +1,7 @@
 // sameGeometry (GltfEncode.h): a loaded primitive against the mesh it was written from, whatever
 // the vertex order. Each loaded vertex is matched to the nearest original vertex (position,
-// normal and uv each within the encoding's tolerance); then every loaded triangle, through the
-// match, must be an original triangle with the same winding.
+// normal and uv each within the encoding's tolerance); then every loaded triangle, through some
+// choice of its corners' matches, must be an original triangle with the same winding.
 #include "GltfEncode.h"
 
 #include <array>
@@ -55,14 +55,14 @@ public:
     }
     std::uint32_t representative(std::uint32_t i) const { return m_representative[i]; }
 
-    /// The best original vertex within every tolerance for loaded vertex `i`, or -1 (and the
-    /// position distance of the nearest candidate in `nearest`).
-    long long match(const TestMesh& loaded, std::uint32_t i, const Tolerance& t,
-                    double& nearest) const {
+    /// Every original vertex within every tolerance for loaded vertex `i` (an original may hold
+    /// vertices closer together than an encoding's error), or none (and the distances of the
+    /// candidate nearest by position in `nearest`).
+    std::vector<std::uint32_t> match(const TestMesh& loaded, std::uint32_t i,
+                                     const Tolerance& t, Tolerance& nearest) const {
         const Key k = cellOf(loaded.positions, i);
-        long long best = -1;
-        double bestScore = 1e300;
-        nearest = 1e300;
+        std::vector<std::uint32_t> within;
+        nearest = {1e300, 0.0, 0.0};
         for (long long dx = -1; dx <= 1; ++dx)
             for (long long dy = -1; dy <= 1; ++dy)
                 for (long long dz = -1; dz <= 1; ++dz) {
@@ -72,16 +72,12 @@ public:
                         const double dp = distance(loaded.positions, i, m_mesh.positions, j, 3);
                         const double dn = distance(loaded.normals, i, m_mesh.normals, j, 3);
                         const double dt = distance(loaded.texcoords, i, m_mesh.texcoords, j, 2);
-                        nearest = std::min(nearest, dp);
+                        if (dp < nearest.position) nearest = {dp, dn, dt};
                         if (dp > t.position || dn > t.normal || dt > t.texcoord) continue;
-                        const double score = dp / t.position + dn / t.normal + dt / t.texcoord;
-                        if (score < bestScore) {
-                            bestScore = score;
-                            best = j;
-                        }
+                        within.push_back(j);
                     }
                 }
-        return best;
+        return within;
     }
 
 private:
@@ -105,31 +101,41 @@ private:
                                              << original.indices.size() / 3;
     // Cells at least as large as the position tolerance: a match lies in a neighbouring cell.
     const VertexIndex index(original, std::max(2 * tolerance.position, 1e-9));
-    std::vector<std::uint32_t> match(loaded.vertexCount());
+    std::vector<std::vector<std::uint32_t>> match(loaded.vertexCount());
     for (std::uint32_t i = 0; i < loaded.vertexCount(); ++i) {
-        double nearest = 0;
-        const long long j = index.match(loaded, i, tolerance, nearest);
-        if (j < 0)
+        Tolerance nearest{};
+        match[i] = index.match(loaded, i, tolerance, nearest);
+        if (match[i].empty())
             return ::testing::AssertionFailure()
                    << "loaded vertex " << i << " (" << loaded.positions[3 * i] << ", "
                    << loaded.positions[3 * i + 1] << ", " << loaded.positions[3 * i + 2]
                    << ") matches no original vertex within the tolerances (" << tolerance.position
                    << ", " << tolerance.normal << ", " << tolerance.texcoord
-                   << "); nearest position at " << nearest;
-        match[i] = std::uint32_t(j);
+                   << "); the nearest position is at " << nearest.position
+                   << " (its normal at " << nearest.normal << ", its uv at " << nearest.texcoord
+                   << ")";
     }
     std::set<std::array<std::uint32_t, 3>> triangles;
     for (std::size_t t = 0; t + 2 < original.indices.size(); t += 3)
         triangles.insert(canonical(index.representative(original.indices[t]),
                                    index.representative(original.indices[t + 1]),
                                    index.representative(original.indices[t + 2])));
+    // A loaded triangle must be an original one for some choice of its corners' matches.
     for (std::size_t t = 0; t + 2 < loaded.indices.size(); t += 3) {
-        const auto tri = canonical(match[loaded.indices[t]], match[loaded.indices[t + 1]],
-                                   match[loaded.indices[t + 2]]);
-        if (!triangles.count(tri))
+        const auto& a = match[loaded.indices[t]];
+        const auto& b = match[loaded.indices[t + 1]];
+        const auto& c = match[loaded.indices[t + 2]];
+        bool found = false;
+        for (std::size_t i = 0; i < a.size() && !found; ++i)
+            for (std::size_t j = 0; j < b.size() && !found; ++j)
+                for (std::size_t k = 0; k < c.size() && !found; ++k)
+                    found = triangles.count(canonical(a[i], b[j], c[k])) > 0;
+        if (!found)
             return ::testing::AssertionFailure()
-                   << "loaded triangle " << t / 3 << " (original vertices " << tri[0] << ", "
-                   << tri[1] << ", " << tri[2] << ") is not an original triangle with that winding";
+                   << "loaded triangle " << t / 3 << " (nearest original vertices " << a[0]
+                   << ", " << b[0] << ", " << c[0] << " of " << a.size() << ", " << b.size()
+                   << ", " << c.size()
+                   << " within the tolerances) is not an original triangle with that winding";
     }
     return ::testing::AssertionSuccess();
 }

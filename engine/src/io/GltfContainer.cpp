@@ -429,6 +429,31 @@ Result<void> checkCompressionIntegers(const json& doc, const Diagnostics& diag) 
     return {};
 }
 
+// tinygltf 2.7.0 (built without Draco) refuses a primitive whose indices accessor has no
+// bufferView, which is how KHR_draco_mesh_compression primitives are written: their indices are
+// taken out of the JSON it reads and put back after it (restoreDracoIndices, GltfDraco.cpp).
+void hideDracoIndices(json& doc, RawFacts& facts) {
+    auto meshes = doc.find("meshes");
+    if (meshes == doc.end() || !meshes->is_array()) return;
+    for (std::size_t m = 0; m < meshes->size(); ++m) {
+        json& mesh = (*meshes)[m];
+        auto prims = mesh.is_object() ? mesh.find("primitives") : mesh.end();
+        if (!mesh.is_object() || prims == mesh.end() || !prims->is_array()) continue;
+        for (std::size_t p = 0; p < prims->size(); ++p) {
+            json& prim = (*prims)[p];
+            if (!prim.is_object()) continue;
+            auto ext = prim.find("extensions");
+            auto indices = prim.find("indices");
+            if (ext == prim.end() || !ext->is_object() ||
+                !ext->contains("KHR_draco_mesh_compression") || indices == prim.end() ||
+                !indices->is_number_unsigned() || indices->get<std::uint64_t>() > INT32_MAX)
+                continue;
+            facts.dracoIndices[{int(m), int(p)}] = indices->get<int>();
+            prim.erase(indices);
+        }
+    }
+}
+
 } // namespace
 
 Result<RawFacts> inspectJson(std::string_view text, const Source& source, const Diagnostics& diag) {
@@ -441,15 +466,15 @@ Result<RawFacts> inspectJson(std::string_view text, const Source& source, const 
     auto counts = primitiveCounts(*doc, diag);
     if (!counts) return std::move(counts).error();
     facts.primitiveCounts = std::move(*counts);
-    if (!facts.placeholderBuffers.empty()) {
-        // Four zero bytes: tinygltf refuses a buffer without data, and nothing reads these.
-        for (const auto& [index, length] : facts.placeholderBuffers) {
-            json& buffer = (*doc)["buffers"][std::size_t(index)];
-            buffer["uri"] = "data:application/octet-stream;base64,AAAAAA==";
-            buffer["byteLength"] = 4;
-        }
-        facts.jsonForTinygltf = doc->dump();
+    // Four zero bytes: tinygltf refuses a buffer without data, and nothing reads these.
+    for (const auto& [index, length] : facts.placeholderBuffers) {
+        json& buffer = (*doc)["buffers"][std::size_t(index)];
+        buffer["uri"] = "data:application/octet-stream;base64,AAAAAA==";
+        buffer["byteLength"] = 4;
     }
+    hideDracoIndices(*doc, facts);
+    if (!facts.placeholderBuffers.empty() || !facts.dracoIndices.empty())
+        facts.jsonForTinygltf = doc->dump();
     return facts;
 }
 

@@ -9,6 +9,7 @@
 #include <draco/compression/decode.h>
 #include <draco/mesh/mesh.h>
 
+#include <algorithm>
 #include <cstring>
 
 namespace lantern::gltf {
@@ -73,6 +74,9 @@ Result<DracoPrimitive> readExtension(const tinygltf::Model& model, const tinyglt
         d.attributes.push_back({name, id.GetNumberAsInt(), it->second});
     }
     if (d.attributes.empty()) return diag.error(d.object + ".attributes", "is empty");
+    // POSITION first: the counts are reported against it (the JSON's keys come sorted).
+    std::stable_partition(d.attributes.begin(), d.attributes.end(),
+                          [](const DracoPrimitive::Attribute& a) { return a.name == "POSITION"; });
     d.indices = prim.indices;
     if (d.indices >= 0 && std::size_t(d.indices) >= model.accessors.size())
         return diag.error(d.object, "the primitive's indices accessor " +
@@ -350,6 +354,16 @@ Result<void> decodePrimitive(tinygltf::Model& model, const DracoPrimitive& d, Fi
 }
 
 } // namespace
+
+void restoreDracoIndices(tinygltf::Model& model, const RawFacts& raw) {
+    for (const auto& [where, indices] : raw.dracoIndices) {
+        const auto [m, p] = where;
+        // One tinygltf primitive per JSON primitive (inspectJson refuses any it would drop).
+        if (std::size_t(m) < model.meshes.size() &&
+            std::size_t(p) < model.meshes[std::size_t(m)].primitives.size())
+            model.meshes[std::size_t(m)].primitives[std::size_t(p)].indices = indices;
+    }
+}
 
 Result<void> decodeDraco(tinygltf::Model& model, DecodeBudget& budget, const Diagnostics& diag) {
     Filled filled;

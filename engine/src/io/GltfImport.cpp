@@ -229,6 +229,7 @@ Result<Scene> loadBytes(std::vector<unsigned char> bytes, const std::filesystem:
     std::vector<unsigned char>().swap(rebuiltGlb);
     std::string().swap(raw->jsonForTinygltf);
 
+    restoreDracoIndices(*model, *raw);
     DecodeBudget budget(options.maxBytes);
     LANTERN_TRY(decodeMeshopt(*model, *raw, budget, diag));
     LANTERN_TRY(decodeDraco(*model, budget, diag));

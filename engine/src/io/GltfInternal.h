@@ -132,7 +132,12 @@ struct RawFacts {
     /// tinygltf cannot read a buffer without data, so each is handed to it as a 4-byte data: URI
     /// (`jsonForTinygltf`); every view into one must be compressed (GltfMeshopt.cpp).
     std::map<int, std::uint64_t> placeholderBuffers;
-    /// The JSON to hand tinygltf when it differs from the file's (placeholders); else empty.
+    /// Indices accessors of KHR_draco_mesh_compression primitives, per (mesh, primitive):
+    /// left out of the JSON tinygltf reads (it refuses an indices accessor without a
+    /// bufferView) and put back by restoreDracoIndices.
+    std::map<std::pair<int, int>, int> dracoIndices;
+    /// The JSON to hand tinygltf when it differs from the file's (placeholders, Draco indices);
+    /// else empty.
     std::string jsonForTinygltf;
 };
 
@@ -183,6 +188,9 @@ Result<void> decodeMeshopt(tinygltf::Model& model, const RawFacts& raw, DecodeBu
 /// decoded data; the stream's counts are checked against the accessors before decoding
 /// (GltfDracoHeader.cpp reads them) and after.
 Result<void> decodeDraco(tinygltf::Model& model, DecodeBudget& budget, const Diagnostics& diag);
+
+/// Puts back the Draco primitives' indices accessors that inspectJson hid from tinygltf.
+void restoreDracoIndices(tinygltf::Model& model, const RawFacts& raw);
 
 /// What a Draco stream's header says, read without decoding it.
 struct DracoHeader {

@@ -7,6 +7,7 @@
 
 #include <meshoptimizer.h>
 
+#include <algorithm>
 #include <cstring>
 
 namespace lantern::gltf {
@@ -44,6 +45,7 @@ struct Compressed {
     Mode mode = Mode::Attributes;
     Filter filter = Filter::None;
     std::string filterName = "NONE";
+    const char* name = kMeshoptExtensions[0]; ///< which of the two extensions
 };
 
 /// An integer member >= `minimum`; `fallback` when absent and not required.
@@ -221,7 +223,26 @@ Result<const char*> extensionOf(const tinygltf::BufferView& view, std::size_t v,
     return found;
 }
 
+/// Whether view `v`'s uncompressed fallback may replace its decoded data when it cannot be
+/// decoded: the extension is only used (not in extensionsRequired) and the view's own buffer
+/// holds data (it is not a placeholder).
+bool mayFallBack(const tinygltf::Model& model, const tinygltf::BufferView& view, const char* name,
+                 const RawFacts& raw) {
+    const auto& required = model.extensionsRequired;
+    return std::find(required.begin(), required.end(), name) == required.end() &&
+           !raw.placeholderBuffers.count(view.buffer);
+}
+
+/// The warning for a view read from its fallback data instead: why it was not decoded.
+void warnFallback(const tinygltf::BufferView& view, const char* name, const Error& why,
+                  const Diagnostics& diag) {
+    diag.warn(why.object, why.message + "; " + name +
+                              " is not required, so the view's uncompressed fallback data in " +
+                              at("buffers", std::size_t(view.buffer)) + " is used");
+}
+
 /// Every compressed view, checked; views into placeholders that are not compressed are refused.
+/// A view whose extension breaks a rule, when it may fall back, is left to read its fallback.
 Result<std::vector<Compressed>> compressedViews(const tinygltf::Model& model, const RawFacts& raw,
                                                 const Diagnostics& diag) {
     std::vector<Compressed> out;
@@ -247,7 +268,12 @@ Result<std::vector<Compressed>> compressedViews(const tinygltf::Model& model, co
                                   std::to_string(placeholder->second) + " of " +
                                   at("buffers", std::size_t(view.buffer)));
         auto c = readCompressed(model, v, *name, *extension(view.extensions, *name), raw, diag);
-        if (!c) return std::move(c).error();
+        if (!c) {
+            if (!mayFallBack(model, view, *name, raw)) return std::move(c).error();
+            warnFallback(view, *name, c.error(), diag);
+            continue;
+        }
+        c->name = *name;
         out.push_back(std::move(*c));
     }
     return out;
@@ -308,10 +334,19 @@ Result<void> decodeMeshopt(tinygltf::Model& model, const RawFacts& raw, DecodeBu
         total = offset + bytes;
     }
     std::vector<unsigned char> decoded(total, 0);
-    for (std::size_t k = 0; k < views->size(); ++k)
-        LANTERN_TRY(decode(model, (*views)[k], decoded.data() + offsets[k], diag));
+    std::vector<bool> fellBack(views->size(), false);
+    for (std::size_t k = 0; k < views->size(); ++k) {
+        const Compressed& c = (*views)[k];
+        auto done = decode(model, c, decoded.data() + offsets[k], diag);
+        if (done) continue;
+        const tinygltf::BufferView& view = model.bufferViews[std::size_t(c.view)];
+        if (!mayFallBack(model, view, c.name, raw)) return std::move(done).error();
+        warnFallback(view, c.name, done.error(), diag);
+        fellBack[k] = true;
+    }
     const int buffer = addDecodedBuffer(model, std::move(decoded));
     for (std::size_t k = 0; k < views->size(); ++k) {
+        if (fellBack[k]) continue;
         tinygltf::BufferView& view = model.bufferViews[std::size_t((*views)[k].view)];
         view.buffer = buffer;
         view.byteOffset = offsets[k];
