@@ -244,6 +244,44 @@ TEST(GltfCompression, MeshoptOnlyUsedFallsBackWithAWarningWhenAStreamCannotBeDec
     }
 }
 
+TEST(GltfCompression, DracoOnlyUsedFallsBackWithAWarningWhenItsStreamCannotBeDecoded) {
+    const auto dir = testOutputDir();
+    const TestMesh cube = test::makeCube();
+    GltfBuilder b;
+    test::addEncodedMesh(b, cube, Encoding::Draco);
+    // The uncompressed fallback: the cube's own data behind the primitive's accessors (Draco
+    // keeps the cube's 24 points and 12 triangles, so the counts agree).
+    json& accessors = b.doc["accessors"];
+    ASSERT_EQ(accessors[0]["count"], cube.vertexCount());
+    ASSERT_EQ(accessors[3]["count"], cube.indices.size());
+    accessors[0]["bufferView"] = b.addView(cube.positions.data(), 4 * cube.positions.size());
+    accessors[1]["bufferView"] = b.addView(cube.normals.data(), 4 * cube.normals.size());
+    accessors[2]["bufferView"] = b.addView(cube.texcoords.data(), 4 * cube.texcoords.size());
+    accessors[3]["bufferView"] = b.addView(cube.indices.data(), 4 * cube.indices.size());
+    const std::size_t stream = b.doc["bufferViews"][0]["byteOffset"];
+    b.bin[stream] = 'X'; // no "DRACO" magic
+    b.doc["extensionsRequired"] = json::array();
+    auto o = loadCapturing(b.write(dir, "draco-used"));
+    ASSERT_TRUE(o.scene) << o.scene.error().describe();
+    EXPECT_TRUE(test::sameGeometry(loadedMesh(*o.scene), cube,
+                                   test::toleranceOf(Encoding::Float, cube)));
+    EXPECT_TRUE(o.warned("meshes[0].primitives[0].extensions.KHR_draco_mesh_compression: the data "
+                         "is not a Draco stream (no \"DRACO\" header); KHR_draco_mesh_compression "
+                         "is not required, so the primitive's uncompressed accessors are read"))
+        << o.allWarnings();
+
+    // Required, or an accessor without data: refused.
+    b.doc["extensionsRequired"] = json::array({"KHR_draco_mesh_compression"});
+    EXPECT_TRUE(refusedWith(loadCapturing(b.write(dir, "draco-required")),
+                            "meshes[0].primitives[0].extensions.KHR_draco_mesh_compression",
+                            "is not a Draco stream"));
+    b.doc["extensionsRequired"] = json::array();
+    accessors[1].erase("bufferView");
+    EXPECT_TRUE(refusedWith(loadCapturing(b.write(dir, "draco-no-fallback")),
+                            "meshes[0].primitives[0].extensions.KHR_draco_mesh_compression",
+                            "is not a Draco stream"));
+}
+
 TEST(GltfCompression, MeshoptQuaternionFilterDecodesAnimatedRotations) {
     const auto dir = testOutputDir();
     GltfBuilder b;

@@ -353,6 +353,23 @@ Result<void> decodePrimitive(tinygltf::Model& model, const DracoPrimitive& d, Fi
     return {};
 }
 
+/// Whether a primitive whose Draco data cannot be decoded may be read from its accessors' own
+/// data: the extension is only used (not in extensionsRequired) and every accessor the
+/// primitive names has a bufferView (the uncompressed fallback the extension asks for then).
+bool mayFallBack(const tinygltf::Model& model, const tinygltf::Primitive& prim) {
+    const auto& required = model.extensionsRequired;
+    if (std::find(required.begin(), required.end(), "KHR_draco_mesh_compression") !=
+        required.end())
+        return false;
+    auto hasData = [&](int accessor) {
+        return accessor >= 0 && std::size_t(accessor) < model.accessors.size() &&
+               model.accessors[std::size_t(accessor)].bufferView >= 0;
+    };
+    for (const auto& [name, accessor] : prim.attributes)
+        if (!hasData(accessor)) return false;
+    return prim.indices < 0 || hasData(prim.indices);
+}
+
 } // namespace
 
 void restoreDracoIndices(tinygltf::Model& model, const RawFacts& raw) {
@@ -374,8 +391,15 @@ Result<void> decodeDraco(tinygltf::Model& model, DecodeBudget& budget, const Dia
             if (!ext) continue;
             auto d = readExtension(model, prim, *ext, at("meshes", m) + "." + at("primitives", p),
                                    diag);
-            if (!d) return std::move(d).error();
-            LANTERN_TRY(decodePrimitive(model, *d, filled, budget, diag));
+            auto decoded = d ? decodePrimitive(model, *d, filled, budget, diag)
+                             : Result<void>(std::move(d).error());
+            if (decoded) continue;
+            // Nothing of the model is changed by a primitive that fails (fill() comes last).
+            if (!mayFallBack(model, prim)) return decoded;
+            diag.warn(decoded.error().object,
+                      decoded.error().message +
+                          "; KHR_draco_mesh_compression is not required, so the primitive's "
+                          "uncompressed accessors are read instead");
         }
     return {};
 }
