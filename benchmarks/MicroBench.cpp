@@ -10,6 +10,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -129,6 +130,75 @@ void BM_RenderFrame(benchmark::State& state) {
     state.SetLabel(state.range(0) ? "at 1e7" : "at the origin");
 }
 BENCHMARK(BM_RenderFrame)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// A plane of 257 x 257 vertices (131072 triangles) bent about +Y by a two-bone skin: unskinned
+// (arg 0: the same mesh without joints or skin), skinned (1), skinned with 8 influences per
+// vertex (2). The frame's pose changes every iteration, so the pre-pass runs every frame.
+Scene skinnedPlaneScene(int influences) {
+    Scene s;
+    Primitive p = makePlane(2.0, 256);
+    if (influences > 0)
+        for (const glm::vec3& v : p.positions) {
+            const float w1 = std::clamp(v.x + 0.5f, 0.0f, 1.0f), w0 = 1.0f - w1;
+            if (influences == 8) {
+                p.joints0.push_back({0, 1, 0, 1});
+                p.weights0.push_back({w0 / 2, w1 / 2, 0, 0});
+                p.joints1.push_back({0, 1, 0, 1});
+                p.weights1.push_back({w0 / 2, w1 / 2, 0, 0});
+            } else {
+                p.joints0.push_back({0, 1, 0, 0});
+                p.weights0.push_back({w0, w1, 0, 0});
+            }
+        }
+    s.meshes.push_back(Mesh{"plane", {p}, {}});
+    Node bone0, bone1, plane;
+    bone0.children = {1};
+    plane.mesh = 0;
+    plane.skin = influences > 0 ? 0 : -1;
+    s.nodes = {bone0, bone1, plane};
+    if (influences > 0) s.skins.push_back(Skin{"bones", {0, 1}, {glm::dmat4(1.0), glm::dmat4(1.0)}, -1});
+    AnimationSampler smp;
+    smp.times = {0.0, 1.0};
+    smp.values = {glm::dvec4(0, 0, 0, 1), glm::dvec4(0, std::sin(0.785398), 0, std::cos(0.785398))};
+    Animation a;
+    a.samplers.push_back(smp);
+    a.channels.push_back({1, AnimationPath::Rotation, 0});
+    s.animations.push_back(a);
+    s.roots.push_back(SceneRoot{"", {0, 2}, std::nullopt});
+    return s;
+}
+
+void BM_RenderSkinned(benchmark::State& state) {
+    static auto renderer = Renderer::create();
+    if (!renderer) {
+        state.SkipWithError(("no Vulkan device: " + renderer.error().describe()).c_str());
+        return;
+    }
+    auto prepared = renderer->prepare(
+        std::make_shared<const Scene>(skinnedPlaneScene(int(state.range(0)))));
+    if (!prepared) {
+        state.SkipWithError(prepared.error().describe().c_str());
+        return;
+    }
+    RenderOptions options;
+    options.width = 640;
+    options.height = 360;
+    // A fixed camera: automatic framing would sample the animation's bounds on the CPU.
+    options.camera.lookAt = LookAt{{0, 2, 4}, {0, 0, 0}, {0, 1, 0}};
+    double t = 0.0;
+    for (auto _ : state) {
+        auto image = renderer->render(*prepared, options, t);
+        if (!image) {
+            state.SkipWithError(image.error().describe().c_str());
+            break;
+        }
+        benchmark::DoNotOptimize(image);
+        t = t >= 1.0 ? 0.0 : t + 0.05;
+    }
+    state.SetLabel(state.range(0) == 0 ? "unskinned" : state.range(0) == 4 ? "skinned, 4 influences"
+                                                                           : "skinned, 8 influences");
+}
+BENCHMARK(BM_RenderSkinned)->Arg(0)->Arg(4)->Arg(8)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Angle-weighted smooth normals (what a glTF without NORMAL costs at load) on a sphere of
 // about 2 * segments^2 / 2 triangles.

@@ -57,6 +57,9 @@ if(TARGET lantern_glfw)
 endif()
 if(TARGET lantern_cli)
     install(TARGETS lantern_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+    # The accuracy plot (matplotlib), run by `lantern bench accuracy`.
+    install(PROGRAMS ${PROJECT_SOURCE_DIR}/benchmarks/plot_accuracy.py
+        DESTINATION ${CMAKE_INSTALL_DATADIR}/lantern)
 endif()
 
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/LanternConfig.cmake.in
@@ -84,7 +87,7 @@ if(LANTERN_SHARED)
     set(LANTERN_PC_GLFW_REQUIRES "lantern")
 else()
     # meshoptimizer installs no pkg-config file: its library goes on the Libs line.
-    set(LANTERN_PC_REQUIRES "glm vulkan OpenEXR tinygltf stb draco")
+    set(LANTERN_PC_REQUIRES "glm vulkan OpenEXR tinygltf stb libpng draco")
     set(LANTERN_PC_LIBS " -lmeshoptimizer -pthread")
     set(LANTERN_PC_GLFW_REQUIRES "lantern glfw3")
 endif()

@@ -20,3 +20,29 @@ option(LANTERN_SHADER_DEBUG_INFO "Compile shaders with debug info (-g)" OFF)
 option(LANTERN_FUZZ "Build libFuzzer targets (needs clang)" OFF)
 option(LANTERN_TESTING_HOOKS "Compile fault-injection hooks into the engine (tests only)" ${LANTERN_BUILD_TESTS})
 set(LANTERN_SANITIZE "" CACHE STRING "Sanitizers to build with, e.g. address;undefined")
+# The Python module (apps/python): on when the apps are built and Python's headers (Debian:
+# python3-dev) and pybind11 (pybind11-dev) are found. Off in sanitizer builds: an instrumented
+# extension cannot be loaded by an uninstrumented interpreter.
+set(_lantern_python_default OFF)
+if(LANTERN_BUILD_APPS)
+    set(PYBIND11_FINDPYTHON ON)
+    # Debian's interpreter, whose python3-numpy, python3-pytest and python3-matplotlib the
+    # module and its tests use, rather than whichever python3 comes first on PATH (pyenv's
+    # shims, a virtualenv). -DPython_EXECUTABLE=... chooses another.
+    if(NOT DEFINED Python_EXECUTABLE AND EXISTS /usr/bin/python3)
+        set(Python_EXECUTABLE /usr/bin/python3 CACHE FILEPATH "The Python the module is built for")
+    endif()
+    find_package(Python 3.7 COMPONENTS Interpreter Development.Module QUIET)
+    if(Python_FOUND)
+        find_package(pybind11 2.6 CONFIG QUIET)
+    endif()
+    if(Python_FOUND AND pybind11_FOUND AND NOT LANTERN_SANITIZE)
+        set(_lantern_python_default ON)
+    endif()
+endif()
+option(LANTERN_BUILD_PYTHON "Build the Python module (needs python3-dev and pybind11-dev)"
+    ${_lantern_python_default})
+if(LANTERN_BUILD_PYTHON AND NOT (Python_FOUND AND pybind11_FOUND))
+    message(FATAL_ERROR "LANTERN_BUILD_PYTHON needs Python's headers and pybind11 (Debian: "
+                        "python3-dev pybind11-dev), which were not found")
+endif()

@@ -3,10 +3,16 @@
 # them all behind an enum, so nothing is looked up on disk at run time.
 find_program(LANTERN_GLSLANG_VALIDATOR glslangValidator REQUIRED)
 
-# lantern_add_shader(<id> SOURCE <file> [DEFINES A=1 B ...])
+# lantern_add_shader(<id> SOURCE <file> [DEFINES A=1 B ...] [TARGET_ENV vulkan1.2])
+# TARGET_ENV (default vulkan1.3): compute shaders use vulkan1.2, whose SPIR-V states the
+# workgroup size as LocalSize (vulkan1.3's LocalSizeId needs the maintenance4 feature, which a
+# host's device need not enable).
 # Appends the compiled header to the LANTERN_SHADER_HEADERS / LANTERN_SHADER_IDS globals.
 function(lantern_add_shader id)
-    cmake_parse_arguments(ARG "" "SOURCE" "DEFINES" ${ARGN})
+    cmake_parse_arguments(ARG "" "SOURCE;TARGET_ENV" "DEFINES" ${ARGN})
+    if(NOT ARG_TARGET_ENV)
+        set(ARG_TARGET_ENV vulkan1.3)
+    endif()
     cmake_path(ABSOLUTE_PATH ARG_SOURCE BASE_DIRECTORY "${CMAKE_CURRENT_SOURCE_DIR}" OUTPUT_VARIABLE src)
     set(out "${CMAKE_CURRENT_BINARY_DIR}/spv/${id}.h")
     set(defs "")
@@ -25,7 +31,7 @@ function(lantern_add_shader id)
     add_custom_command(
         OUTPUT "${out}"
         COMMAND "${CMAKE_COMMAND}" -E rm -f "${out}"
-        COMMAND "${LANTERN_GLSLANG_VALIDATOR}" -V --target-env vulkan1.3 --quiet ${dbg}
+        COMMAND "${LANTERN_GLSLANG_VALIDATOR}" -V --target-env ${ARG_TARGET_ENV} --quiet ${dbg}
                 -I${CMAKE_CURRENT_SOURCE_DIR}/include ${defs}
                 --depfile "${out}.d" --vn lantern_spv_${id} -o "${out}" "${src}"
         COMMAND "${CMAKE_COMMAND}" "-DOUTPUT=${out}" "-DSOURCE=${src}"

@@ -5,7 +5,8 @@
 # Usage: scripts/install-deps.sh [build|test|all|slurm]   (default: all)
 #   build  what `cmake --build` and `lantern render` need
 #   test   build + the tools the test suite drives (Xvfb, xdotool, oiiotool, valgrind, clang,
-#          gltfpack and draco_transcoder, and a single-node Slurm for the farm tests)
+#          gltfpack and draco_transcoder, a single-node Slurm for the farm tests, pytest and NumPy
+#          for the Python module's tests, matplotlib for the accuracy plot)
 #   slurm  only Slurm and munge (scripts/slurm-single-node.sh install)
 set -euo pipefail
 
@@ -16,8 +17,10 @@ build_pkgs=(
     libvulkan-dev vulkan-validationlayers mesa-vulkan-drivers glslang-tools
     libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenexr-dev
     libcli11-dev libfmt-dev libglfw3-dev libimgui-dev libx11-dev
+    libpng-dev libyaml-cpp-dev
     libgtest-dev libgmock-dev libbenchmark-dev
     libmeshoptimizer-dev libdraco-dev
+    python3-dev pybind11-dev python3-numpy
 )
 # The farm tests start a private single-node Slurm (scripts/slurm-single-node.sh).
 slurm_pkgs=(slurm-wlm slurmctld slurmd slurm-client munge)
@@ -25,7 +28,7 @@ test_pkgs=(
     xvfb xauth xdotool x11-utils openimageio-tools vulkan-tools
     clang-14 libclang-rt-14-dev valgrind python3 librsvg2-bin
     gltfpack draco
-    "${slurm_pkgs[@]}" python3-yaml
+    "${slurm_pkgs[@]}" python3-yaml python3-pytest python3-matplotlib
 )
 
 case "$what" in

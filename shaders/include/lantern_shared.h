@@ -12,6 +12,13 @@
 #define LANTERN_SET_TEXTURE 1
 #define LANTERN_BINDING_BASE_COLOR 0 // sampler2D, the material's base-colour texture
 
+// The deformation pre-pass (shaders/deform.comp): its own set, used by no graphics pipeline.
+#define LANTERN_BINDING_DEFORM_INPUT 0   // buffer: the scene's deformation inputs
+#define LANTERN_BINDING_DEFORM_PARAMS 1  // buffer: this frame's joint matrices, morph weights
+#define LANTERN_BINDING_DEFORM_OUTPUT 2  // buffer: deformed streams, read as vertex buffers
+#define LANTERN_DEFORM_GROUP 64          // invocations per workgroup
+#define LANTERN_DEFORM_NONE 0xFFFFFFFFu  // an absent offset
+
 // Vertex attribute locations; each attribute has its own vertex-buffer binding of the same
 // number (non-interleaved streams, so absent attributes can be bound to a stride-0 default).
 #define LANTERN_LOC_POSITION 0

@@ -1,6 +1,7 @@
 // The benchmark harness, not its numbers: `lantern bench accuracy` and `lantern bench speed` run
 // a tiny sweep and write a CSV with one row per configuration, named columns and finite values,
-// a plot and a summary; bad options are refused with exit 1. Nothing here is timed.
+// a plot (matplotlib) and a summary; bad options are refused with exit 1 (2 for unknown ones).
+// Nothing here is timed.
 #include "TestSupport.h"
 
 #include <cmath>
@@ -65,6 +66,32 @@ std::string readText(const std::filesystem::path& path) {
 
 class BenchHarness : public GpuTest {};
 
+// The plot of the sweep, drawn by benchmarks/plot_accuracy.py when matplotlib is installed: an
+// SVG whose legend names every curve, the Pareto front and the acceptance line, and a PNG.
+// Without matplotlib the run says how to draw it.
+void expectPlot(const std::filesystem::path& dir, const std::string& err) {
+    if (test::runProcess({"python3", "-c", "import matplotlib"}).exitCode != 0) {
+        EXPECT_NE(err.find("python3-matplotlib"), std::string::npos) << err;
+        EXPECT_NE(err.find("plot_accuracy.py"), std::string::npos) << err;
+        return;
+    }
+    const std::string svg = readText(dir / "accuracy.svg");
+    ASSERT_FALSE(svg.empty()) << "no accuracy.svg: " << err;
+    EXPECT_NE(svg.find("</svg>"), std::string::npos);
+    for (const char* label : {"flat, 1x MSAA", "gouraud, 1x MSAA", "phong, 1x MSAA",
+                              "flat, 4x MSAA", "gouraud, 4x MSAA", "phong, 4x MSAA",
+                              "Pareto front", "1e-3 acceptance", "sphere, shininess 128, 64x48",
+                              "spot, shininess 128, 64x48"})
+        EXPECT_NE(svg.find(label), std::string::npos) << "the plot has no \"" << label << "\"";
+    EXPECT_GT(std::filesystem::file_size(dir / "accuracy.png"), 1000u);
+    if (std::system("command -v rsvg-convert >/dev/null 2>&1") == 0) {
+        const auto png = dir / "accuracy-rsvg.png";
+        const auto c =
+            test::runProcess({"rsvg-convert", (dir / "accuracy.svg").string(), "-o", png.string()});
+        EXPECT_EQ(c.exitCode, 0) << "another SVG reader refuses the plot: " << c.err;
+    }
+}
+
 TEST_F(BenchHarness, TinyAccuracySweepWritesOneFiniteRowPerConfiguration) {
     const auto dir = test::testOutputDir();
     const auto r = runLantern({"bench",
@@ -75,8 +102,10 @@ TEST_F(BenchHarness, TinyAccuracySweepWritesOneFiniteRowPerConfiguration) {
                                "8,16",
                                "--msaa",
                                "1,4",
-                               "--resolutions",
-                               "64x48",
+                               "--width",
+                               "64",
+                               "--height",
+                               "48",
                                "--rounds",
                                "1",
                                "--frames",
@@ -135,16 +164,7 @@ TEST_F(BenchHarness, TinyAccuracySweepWritesOneFiniteRowPerConfiguration) {
     EXPECT_NE(md.find("fastest setting"), std::string::npos);
     EXPECT_NE(md.find("lantern bench accuracy --shading flat,gouraud,phong"), std::string::npos)
         << "the summary names the command that reproduces it";
-    const std::string svg = readText(dir / "accuracy.svg");
-    EXPECT_EQ(svg.rfind("<?xml", 0), 0u);
-    EXPECT_NE(svg.find("</svg>"), std::string::npos);
-    if (std::system("command -v rsvg-convert >/dev/null 2>&1") == 0) {
-        const auto png = dir / "accuracy.png";
-        const auto c =
-            test::runProcess({"rsvg-convert", (dir / "accuracy.svg").string(), "-o", png.string()});
-        EXPECT_EQ(c.exitCode, 0) << c.err;
-        EXPECT_GT(std::filesystem::file_size(png), 1000u);
-    }
+    expectPlot(dir, r.err);
 }
 
 TEST_F(BenchHarness, TinySpeedRunGivesEveryTimeAsAMultipleOfTheFloor) {
@@ -193,7 +213,9 @@ TEST_F(BenchHarness, RefusesBadOptionsBeforeRendering) {
     const auto dir = test::testOutputDir();
     const std::vector<BadOption> cases = {
         {"segments", {"accuracy", "--segments", "2"}, 1, "--segments"},
-        {"resolution", {"accuracy", "--resolutions", "0x5"}, 1, "--resolutions"},
+        {"width", {"accuracy", "--width", "0", "--height", "5"}, 1, "--width"},
+        {"sizes", {"accuracy", "--width", "64,128,256", "--height", "48,96"}, 1, "--width/--height"},
+        {"old spelling", {"accuracy", "--resolutions", "64x48"}, 2, "--resolution"},
         {"scene", {"accuracy", "--scenes", "cube"}, 1, "--scenes"},
         {"shading", {"accuracy", "--shading", "toon"}, 1, "--shading"},
         {"shininess", {"accuracy", "--shininess", "-1"}, 1, "--shininess"},

@@ -90,6 +90,9 @@ TEST(CameraCli, CameraUsageMistakesExitWith2) {
         {"--layout", "triple"},
         {"--perspective", "60,1,1,2", "--frustum", "-1,1,-1,1,1,2"},
         {"--viewport", "0,0,16,16", "--camera", "0", "--camera", "0"},
+        {"--view", "diagonal"},
+        {"--view", "top", "--camera", "0"},
+        {"--view", "top", "--default-camera"},
     };
     for (const auto& args : rows) {
         const auto r = runLantern(spheres(args));
@@ -179,6 +182,24 @@ TEST_F(CameraCliRender, DefaultCameraIsTheGlUnitCube) {
     EXPECT_EQ(largestDifference(image, {0, 0, 64, 64}, api(o)), 0.0f);
     // The unit sphere at the origin exactly fills the 2 x 2 view: pi/4 of the pixels.
     EXPECT_NEAR(double(test::countCovered(image)) / image.pixelCount(), 3.14159265 / 4, 0.02);
+}
+
+// --view frames from the named side whatever camera the scene has (builtin:spheres has one):
+// the same image as the API's CameraSpec::framed, and a different one for each view.
+TEST_F(CameraCliRender, ViewNamesTheSideTheFramingLooksFrom) {
+    std::vector<Image> images;
+    for (ViewDirection v : kViewDirections) {
+        const Image image = cli(std::string("view-") + toString(v), {"--view", toString(v)}, 32, 32);
+        RenderOptions o;
+        o.width = o.height = 32;
+        o.camera = CameraSpec::framed(v);
+        EXPECT_EQ(largestDifference(image, {0, 0, 32, 32}, api(o)), 0.0f) << toString(v);
+        EXPECT_GT(test::countCovered(image), 0u) << toString(v);
+        for (const Image& other : images) EXPECT_NE(image.rgba, other.rgba) << toString(v);
+        images.push_back(image);
+    }
+    EXPECT_NE(images[0].rgba, cli("scene-camera", {}, 32, 32).rgba)
+        << "without --view the scene's own camera wins";
 }
 
 TEST_F(CameraCliRender, ViewportsEachWithItsOwnCamera) {

@@ -104,7 +104,7 @@ std::string ReferenceComparison::describe(const std::string& name) const {
 
 Result<render::RenderedFrame> renderWithIds(gpu::Device& device, const Scene& scene,
                                             const RenderOptions& options,
-                                            const render::FrameEdits& edits) {
+                                            const render::FrameEdits& edits, double time) {
     RenderOptions o = options;
     o.aovs.depth = o.aovs.normal = true;
     LANTERN_TRY(render::checkOptions(device, o));
@@ -113,14 +113,14 @@ Result<render::RenderedFrame> renderWithIds(gpu::Device& device, const Scene& sc
     auto buffers = device.upload(std::shared_ptr<const Scene>(std::shared_ptr<const Scene>(), &scene));
     if (!buffers) return std::move(buffers).error();
     FrameStats stats;
-    return render::renderFrame(device, *buffers, scene, o, 0.0, stats, edits);
+    return render::renderFrame(device, *buffers, scene, o, time, stats, edits);
 }
 
 ReferenceComparison compareWithReference(gpu::Device& device, const Scene& scene,
                                          const RenderOptions& options, const PixelCheck& check,
-                                         const render::FrameEdits& edits) {
+                                         const render::FrameEdits& edits, double time) {
     ReferenceComparison c;
-    auto f = renderWithIds(device, scene, options, edits);
+    auto f = renderWithIds(device, scene, options, edits, time);
     if (!f) {
         ADD_FAILURE() << f.error().describe();
         return c;

@@ -81,12 +81,14 @@ struct ReferenceComparison {
 /// change the frame or the draw list before submission.
 Result<render::RenderedFrame> renderWithIds(gpu::Device& device, const Scene& scene,
                                             const RenderOptions& options,
-                                            const render::FrameEdits& edits = {});
+                                            const render::FrameEdits& edits = {},
+                                            double time = 0.0);
 
 ReferenceComparison compareWithReference(gpu::Device& device, const Scene& scene,
                                          const RenderOptions& options,
                                          const PixelCheck& check = {},
-                                         const render::FrameEdits& edits = {});
+                                         const render::FrameEdits& edits = {},
+                                         double time = 0.0);
 
 /// RenderOptions of the given size and shading mode.
 RenderOptions optionsFor(int width, int height, ShadingMode mode);

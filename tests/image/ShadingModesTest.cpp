@@ -163,6 +163,21 @@ Scene twoSidedBackMaterial() {
     return s.build();
 }
 
+// glTF's doubleSided with no lighting model stated: a plane seen from behind, lit from the
+// camera's side, its back face lit with the reversed normal and its back material.
+Scene gltfDoubleSidedBack() {
+    LitScene s;
+    Material m = plastic({0.9, 0.5, 0.2});
+    m.doubleSided = true;
+    m.back = m.front;
+    m.back->diffuse = {0.2, 0.5, 0.9, 1.0};
+    s.objects.push_back({makePlane(2.5, 6), m,
+                         glm::rotate(glm::dmat4(1.0), 3.14159265358979323846 - 0.3, glm::dvec3(0, 1, 0))});
+    s.lights.push_back({test::makeLight(LightType::Point), test::translation({0.3, 0.4, 2.5})});
+    s.lighting.reset();
+    return s.build();
+}
+
 // A mirroring transform flips which faces are front faces.
 Scene mirroredTwoSided() {
     LitScene s;
@@ -235,6 +250,8 @@ const SceneRow kScenes[] = {
     {"three_hundred_lights", threeHundredLights, SpecularModel::Phong, 1.0 / 255, "one 8-bit step"},
     {"two_sided_back_material", twoSidedBackMaterial, SpecularModel::Blinn, 1.0 / 255,
      "one 8-bit step"},
+    {"gltf_double_sided_back", gltfDoubleSidedBack, SpecularModel::Blinn, 1.0 / 255,
+     "one 8-bit step"},
     {"mirrored_two_sided", mirroredTwoSided, SpecularModel::Blinn, 1.0 / 255, "one 8-bit step"},
     {"vertex_colors", vertexColors, SpecularModel::Blinn, 1.0 / 255, "one 8-bit step"},
     {"unlit_vertex_colors", unlitVertexColors, SpecularModel::Blinn, 1.0 / 255, "one 8-bit step"},
@@ -263,6 +280,42 @@ TEST_P(ShadingModes, EveryPixelMatchesTheReferenceUnderTheSameInterpolationRule)
     EXPECT_LE(c.worst, row.tolerance) << row.why << "; " << c.describe(name);
     if (std::getenv("LANTERN_TEST_VERBOSE")) std::cerr << name << ": " << c.describe(name) << "\n";
 }
+
+// glTF: "when a material is double-sided, back-face normals are reversed before lighting".
+// Without a lighting model the back of a double-sided plane lit from its own side is lit
+// (n.l > 0 everywhere) with the back material; a stated one-sided model (GL's) keeps the front
+// normal, so the same back is unlit (n.l < 0), in every mode.
+class DoubleSided : public GpuTest, public ::testing::WithParamInterface<ShadingMode> {};
+
+TEST_P(DoubleSided, BackFacesAreLitWithTheReversedNormal) {
+    const ShadingMode mode = GetParam();
+    for (const bool statedOneSided : {false, true}) {
+        RenderOptions o = test::optionsFor(64, 64, mode);
+        if (statedOneSided) o.twoSided = false;
+        test::PixelCheck check;
+        check.perLight = true;
+        const test::ReferenceComparison c =
+            test::compareWithReference(device(), gltfDoubleSidedBack(), o, check);
+        const std::string name = std::string("double_sided_") + (statedOneSided ? "gl_" : "") + toString(mode);
+        EXPECT_LE(c.worst, 1.0 / 255) << c.describe(name);
+        std::size_t lit = 0, unlit = 0, hits = 0;
+        for (int y = 0; y < 64; ++y)
+            for (int x = 0; x < 64; ++x) {
+                const ProbeReport& r = c.at(x, y);
+                if (!r.hit) continue;
+                ++hits;
+                EXPECT_TRUE(r.backFacing);
+                EXPECT_EQ(r.backMaterial, !statedOneSided);
+                for (const ProbeEvaluation& e : r.evaluations) (e.lights[0].nDotL > 0.0 ? lit : unlit)++;
+            }
+        EXPECT_GT(hits, 600u) << name;
+        EXPECT_EQ(statedOneSided ? lit : unlit, 0u) << name;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Modes, DoubleSided,
+                         ::testing::Values(ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong),
+                         [](const auto& p) { return std::string(toString(p.param)); });
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ShadingModes,
                          ::testing::Combine(::testing::ValuesIn(kScenes),

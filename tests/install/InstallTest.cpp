@@ -1,8 +1,9 @@
 // The installed package, as a host uses it (issue 10): `cmake --install` of this build into a
 // temporary prefix (then moved elsewhere), and, against that prefix only, the two example
 // projects configured with find_package, built and run (the headless one writes an EXR that
-// is read back; the GLFW one presents frames in a window under Xvfb), and a program compiled
-// and linked with nothing but `pkg-config --cflags --libs lantern`.
+// is read back; the GLFW one presents frames in a window under Xvfb), a program compiled and
+// linked with nothing but `pkg-config --cflags --libs lantern`, and the Python module imported
+// from the prefix's Python path.
 #include "InstallSupport.h"
 
 #if LANTERN_INSTALL_HAS_GLFW
@@ -130,6 +131,40 @@ TEST_F(Installed, PkgConfigAloneCompilesAndLinksAHost) {
     failure = runStep({exe.string(), exr.string()}, {}, 300.0);
     ASSERT_TRUE(failure.empty()) << failure;
     expectHeadlessPicture(exr);
+}
+
+TEST_F(Installed, PythonModuleImportsAndRendersFromThePrefix) {
+#if !LANTERN_INSTALL_HAS_PYTHON
+    GTEST_SKIP() << "this build has no Python module (LANTERN_BUILD_PYTHON is OFF: python3-dev or "
+                    "pybind11-dev missing, or a sanitizer build)";
+#else
+    const fs::path packages = m_prefix / LANTERN_INSTALL_PYTHONDIR;
+    ASSERT_TRUE(fs::exists(packages / "lantern" / "__init__.py")) << packages;
+    const char* script = R"(
+import lantern, sys
+print(lantern.__file__)
+print(lantern.build_info()["version"])
+try:
+    renderer = lantern.Renderer()
+except lantern.Error as e:
+    print("no device:", e)
+    sys.exit(0)
+rgba = renderer.render(lantern.load("builtin:teapot"), width=32, height=24)
+print(rgba.shape, rgba.dtype)
+)";
+    ProcessResult run;
+    const auto ran = runStep({LANTERN_INSTALL_PYTHON, "-c", script},
+                             {"PYTHONPATH=" + packages.string(), "PYTHONDONTWRITEBYTECODE=1"},
+                             300.0, &run);
+    ASSERT_TRUE(ran.empty()) << ran;
+    EXPECT_EQ(run.out.rfind((packages / "lantern" / "__init__.py").string() + "\n", 0), 0u)
+        << "not the installed module: " << run.out;
+    EXPECT_NE(run.out.find(std::string("\n") + versionString() + "\n"), std::string::npos)
+        << run.out;
+    if (run.out.find("no device:") == std::string::npos) {
+        EXPECT_NE(run.out.find("(24, 32, 4) float32"), std::string::npos) << run.out;
+    }
+#endif
 }
 
 } // namespace

@@ -96,7 +96,10 @@ TEST(GltfLoader, SizesAreBoundedByMaxSize) {
     EXPECT_NE(file.scene.error().message.find("more than --max-size"), std::string::npos)
         << file.scene.error().describe();
     EXPECT_TRUE(refusedWith(loadCapturing(external, 4000), "buffers[0].uri", "more than --max-size"));
-    EXPECT_TRUE(loadCapturing(external, 20000).scene);
+    // --max-size is also the load's total budget: the 12 KB buffer plus what its accessors
+    // decode to (another 12 KB of floats) fit 40000 bytes, not 20000.
+    EXPECT_TRUE(refusedWith(loadCapturing(external, 20000), "accessors[1]", "budget"));
+    EXPECT_TRUE(loadCapturing(external, 40000).scene);
 
     // An accessor without a buffer view is zeros the loader would allocate: bounded too.
     GltfBuilder big;
@@ -237,7 +240,7 @@ TEST(GltfLoader, BoundsIndexAndCountViolationsAreRefusedWithTheObjectPath) {
              b.addTriangle();
              b.doc["accessors"][0]["byteOffset"] = 18446744073709551612ull;
          },
-         "accessors[0]", "run past the end"},
+         "accessors[0].byteOffset", "more than the largest size"},
         {"stride smaller than the element",
          [](GltfBuilder& b) {
              b.addTriangle();
@@ -408,20 +411,121 @@ TEST(GltfLoader, MissingNormalsAreAngleWeightedOverSharedVertices) {
     for (int i = 3; i < 6; ++i) EXPECT_LT(glm::length(glm::dvec3(f.normals[std::size_t(i)]) - nB), 1e-6);
 }
 
-TEST(GltfLoader, UnsupportedPartsWarnAndAreSkipped) {
+TEST(GltfLoader, SkinsAndMorphTargetsLoad) {
     const auto dir = testOutputDir();
     GltfBuilder b;
     const int n = b.addTriangle();
+    // A morph target (the positions themselves as displacements), default weight 0.5, a node
+    // weight overriding it, and a skin of one joint with normalized UNSIGNED_BYTE weights.
     b.doc["meshes"][0]["primitives"][0]["targets"] = json::array({{{"POSITION", 0}}});
     b.doc["meshes"][0]["weights"] = {0.5};
-    b.doc["skins"] = json::array({{{"joints", {n}}}});
+    b.doc["nodes"][n]["weights"] = {0.75};
+    const int joints = b.addAccessor(std::vector<std::uint8_t>{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}, "VEC4", 5121);
+    const int weights = b.addAccessor(std::vector<std::uint8_t>{255, 0, 0, 0, 51, 204, 0, 0, 102, 0, 153, 0}, "VEC4", 5121, true);
+    b.doc["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"] = joints;
+    b.doc["meshes"][0]["primitives"][0]["attributes"]["WEIGHTS_0"] = weights;
+    const int joint = b.addNode({{"translation", {0, 0, 2}}});
+    const int ibm = b.addFloats({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -2, 1}, "MAT4");
+    b.doc["skins"] = json::array({{{"joints", {joint}}, {"inverseBindMatrices", ibm}, {"skeleton", joint}}});
     b.doc["nodes"][n]["skin"] = 0;
-    auto o = loadCapturing(b.write(dir, "unsupported"));
+    auto o = loadCapturing(b.write(dir, "skin_morph"));
     ASSERT_TRUE(o.scene) << o.scene.error().describe();
-    EXPECT_TRUE(o.warned("morph targets are not supported")) << o.allWarnings();
-    EXPECT_TRUE(o.warned("skinning is not supported")) << o.allWarnings();
-    // Every warning names the file and the object.
+    EXPECT_FALSE(o.warned("not supported")) << o.allWarnings();
+    const Scene& s = *o.scene;
+    const Primitive& p = firstPrimitive(s);
+    ASSERT_EQ(p.targets.size(), 1u);
+    EXPECT_EQ(p.targets[0].positions[1], glm::vec3(1, 0, 0));
+    EXPECT_EQ(s.meshes[0].weights, std::vector<double>{0.5});
+    EXPECT_EQ(s.nodes[std::size_t(n)].weights, std::vector<double>{0.75});
+    ASSERT_EQ(p.joints0.size(), 3u);
+    EXPECT_FLOAT_EQ(p.weights0[1].x, 51.0f / 255.0f);
+    EXPECT_FLOAT_EQ(p.weights0[2].z, 153.0f / 255.0f);
+    ASSERT_EQ(s.skins.size(), 1u);
+    EXPECT_EQ(s.skins[0].joints, std::vector<int>{joint});
+    EXPECT_EQ(s.skins[0].skeleton, joint);
+    EXPECT_DOUBLE_EQ(s.skins[0].inverseBind[0][3][2], -2.0);
+    EXPECT_EQ(s.nodes[std::size_t(n)].skin, 0);
+    // The joint at z = 2 with inverse bind z - 2 leaves the weighted vertices in place (scaled
+    // by their weight sums): vertex 1 (1, 0, 0) with weights 0.2 + 0.8 = 1 plus the morph
+    // displacement 0.75 * (1, 0, 0).
+    const DeformedPrimitive d = deformPrimitive(s, evaluatePose(s, -1, 0.0), n, p);
+    EXPECT_NEAR(d.positions[1].x, 1.75, 1e-6);
+    EXPECT_NEAR(d.positions[1].z, 0.0, 1e-6);
     for (const std::string& w : *o.warnings) EXPECT_EQ(w.find(o.scene->sourcePath + ": "), 0u) << w;
+}
+
+TEST(GltfLoader, MorphWeightChannelsAndSecondInfluenceSetsLoad) {
+    const auto dir = testOutputDir();
+    GltfBuilder b;
+    const int n = b.addTriangle();
+    b.doc["meshes"][0]["primitives"][0]["targets"] =
+        json::array({{{"POSITION", 0}}, {{"POSITION", 0}}});
+    const int j0 = b.addAccessor(std::vector<std::uint16_t>(12, 0), "VEC4", 5123);
+    const int j1 = b.addAccessor(std::vector<std::uint16_t>(12, 1), "VEC4", 5123);
+    const int w0 = b.addFloats({0.5, 0, 0, 0, 0.5, 0, 0, 0, 0.5, 0, 0, 0}, "VEC4");
+    const int w1 = b.addFloats({0.5, 0, 0, 0, 0.5, 0, 0, 0, 0.5, 0, 0, 0}, "VEC4");
+    auto& attrs = b.doc["meshes"][0]["primitives"][0]["attributes"];
+    attrs["JOINTS_0"] = j0;
+    attrs["JOINTS_1"] = j1;
+    attrs["WEIGHTS_0"] = w0;
+    attrs["WEIGHTS_1"] = w1;
+    const int a = b.addNode(json::object()), c = b.addNode(json::object());
+    b.doc["skins"] = json::array({{{"joints", {a, c}}}});
+    b.doc["nodes"][n]["skin"] = 0;
+    // CUBICSPLINE weights: 2 keys x 3 groups x 2 targets.
+    const int times = b.addFloats({0, 1}, "SCALAR");
+    const int values = b.addFloats({0, 0, 0, 1, 2, 0, /* key 1 */ 0, 0, 1, 0, 0, 0}, "SCALAR");
+    b.doc["animations"] = json::array({{{"samplers", json::array({{{"input", times}, {"output", values}, {"interpolation", "CUBICSPLINE"}}})},
+                                        {"channels", json::array({{{"sampler", 0}, {"target", {{"node", n}, {"path", "weights"}}}}})}}});
+    auto o = loadCapturing(b.write(dir, "weights_channel"));
+    ASSERT_TRUE(o.scene) << o.scene.error().describe();
+    const Primitive& p = firstPrimitive(*o.scene);
+    ASSERT_EQ(p.joints1.size(), 3u);
+    EXPECT_EQ(p.joints1[0], glm::uvec4(1));
+    ASSERT_EQ(o.scene->animations.size(), 1u);
+    const Animation& an = o.scene->animations[0];
+    ASSERT_EQ(an.channels.size(), 1u);
+    EXPECT_EQ(an.channels[0].path, AnimationPath::Weights);
+    EXPECT_EQ(an.samplers[0].weightCount, 2u);
+    // Key 0: in-tangents (0, 0), values (0, 1), out-tangents (2, 0); key 1: in (0, 0), values
+    // (1, 0). At s = 1/2 (h00 = h01 = 1/2, h10 = 1/8): target 0 = 1/8 * 2 + 1/2 * 1 = 0.75;
+    // target 1 = 1/2 * 1 = 0.5.
+    const Pose pose = evaluatePose(*o.scene, -1, 0.5);
+    ASSERT_EQ(pose.morphWeights[std::size_t(n)].size(), 2u);
+    EXPECT_NEAR(pose.morphWeights[std::size_t(n)][0], 0.75, 1e-12);
+    EXPECT_NEAR(pose.morphWeights[std::size_t(n)][1], 0.5, 1e-12);
+}
+
+TEST(GltfLoader, BadSkinsAreRefusedWithTheObject) {
+    const auto dir = testOutputDir();
+    {
+        GltfBuilder b;
+        const int n = b.addTriangle();
+        b.doc["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"] =
+            b.addAccessor(std::vector<std::uint8_t>{0, 3, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}, "VEC4", 5121);
+        b.doc["meshes"][0]["primitives"][0]["attributes"]["WEIGHTS_0"] =
+            b.addFloats({0.5, 0.5, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4");
+        b.doc["skins"] = json::array({{{"joints", {n}}}});
+        b.doc["nodes"][n]["skin"] = 0;
+        auto o = loadCapturing(b.write(dir, "joint_oob"));
+        EXPECT_TRUE(refusedWith(o, "meshes[0].primitives[0].joints", "joint 3 is out of range"));
+    }
+    {
+        GltfBuilder b;
+        const int n = b.addTriangle();
+        b.doc["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"] =
+            b.addAccessor(std::vector<std::uint8_t>(12, 0), "VEC4", 5121);
+        b.doc["skins"] = json::array({{{"joints", {n}}}});
+        auto o = loadCapturing(b.write(dir, "joints_no_weights"));
+        EXPECT_TRUE(refusedWith(o, "meshes[0].primitives[0].attributes.JOINTS_0", "has no matching WEIGHTS_0"));
+    }
+    {
+        GltfBuilder b;
+        b.addTriangle();
+        b.doc["skins"] = json::array({{{"joints", {7}}}});
+        auto o = loadCapturing(b.write(dir, "skin_joint_missing"));
+        EXPECT_TRUE(refusedWith(o, "skins[0].joints[0]", "node 7 does not exist"));
+    }
 }
 
 TEST(GltfLoader, EverySampleModelLoadsWithTheFilesCounts) {

@@ -460,7 +460,7 @@ TEST(GltfScene, LightingScenesAndNodeTransforms) {
     const LightingModel& l = *s.roots[1].lighting;
     EXPECT_EQ(l.globalAmbient, glm::dvec3(0, 0.1, 0.2));
     EXPECT_TRUE(l.localViewer);
-    EXPECT_TRUE(l.twoSided);
+    EXPECT_EQ(l.twoSided, true);
     EXPECT_EQ(l.shading, ShadingMode::Gouraud);
     EXPECT_EQ(l.specular, SpecularModel::Phong);
     ASSERT_TRUE(s.nodes[0].matrix);

@@ -85,6 +85,14 @@ TEST(GpuLayouts, MirrorsMatchTheShippedSpirv) {
         LANTERN_ROW(MaterialData, params),       LANTERN_ROW(DrawBlock, viewFromModel),
         LANTERN_ROW(DrawBlock, normalMatrix),    LANTERN_ROW(DrawBlock, materialIndex),
         LANTERN_ROW(DrawBlock, drawIndex),       LANTERN_ROW(DrawBlock, flags),
+        LANTERN_ROW(DeformJob, count),           LANTERN_ROW(DeformJob, flatMode),
+        LANTERN_ROW(DeformJob, vertexCount),     LANTERN_ROW(DeformJob, position),
+        LANTERN_ROW(DeformJob, normal),          LANTERN_ROW(DeformJob, joints),
+        LANTERN_ROW(DeformJob, weights),         LANTERN_ROW(DeformJob, influences),
+        LANTERN_ROW(DeformJob, targets),         LANTERN_ROW(DeformJob, targetCount),
+        LANTERN_ROW(DeformJob, indices),         LANTERN_ROW(DeformJob, matrices),
+        LANTERN_ROW(DeformJob, morphWeights),    LANTERN_ROW(DeformJob, outPosition),
+        LANTERN_ROW(DeformJob, outNormal),       LANTERN_ROW(DeformJob, outCentroid),
     };
     for (const Row& r : rows) {
         SCOPED_TRACE(std::string(r.type) + "." + r.member);
@@ -99,7 +107,8 @@ TEST(GpuLayouts, MirrorsMatchTheShippedSpirv) {
 TEST(GpuLayouts, EveryShaderMemberIsMirrored) {
     // A member added to a shader block but not to the C++ mirror is caught here.
     const std::map<std::string, std::size_t> expectedCounts = {
-        {"FrameBlock", 6}, {"LightData", 8}, {"MaterialSideData", 4}, {"MaterialData", 3}, {"DrawBlock", 5}};
+        {"FrameBlock", 6}, {"LightData", 8}, {"MaterialSideData", 4}, {"MaterialData", 3}, {"DrawBlock", 5},
+        {"DeformJob", 16}};
     const Layouts layouts = allLayouts();
     for (const auto& [type, count] : expectedCounts) {
         auto it = layouts.find(type);
@@ -110,6 +119,7 @@ TEST(GpuLayouts, EveryShaderMemberIsMirrored) {
 
 TEST(GpuLayouts, PushConstantsFitTheGuaranteedMinimum) {
     EXPECT_LE(sizeof(lantern::gpu::DrawBlock), 128u);
+    EXPECT_LE(sizeof(lantern::gpu::DeformJob), 128u);
 }
 
 } // namespace

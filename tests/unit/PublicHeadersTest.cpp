@@ -188,31 +188,34 @@ TEST(PublicHeaders, MarkWhatTheLibraryExports) {
     }
 }
 
-// Issue 10: the `lantern` command and the viewer use the public API only. A quoted include
-// names one of the app's own headers from apps/lantern ("common/CliSupport.h").
+// Issue 10: the `lantern` command and the viewer use the public API only, and so does the Python
+// module (issue 19). A quoted include names one of the app's own headers from its folder
+// ("common/CliSupport.h", "PythonScene.h").
 TEST(AppsUsePublicApiOnly, NothingFromEngineSrc) {
-    const fs::path apps = sourceDir() / "apps" / "lantern";
     const fs::path engineSrc = sourceDir() / "engine" / "src";
-    std::size_t files = 0;
-    for (const auto& entry : fs::recursive_directory_iterator(apps)) {
-        const fs::path p = entry.path();
-        if (p.extension() != ".cpp" && p.extension() != ".h") continue;
-        ++files;
-        const fs::path name = p.lexically_relative(apps);
-        for (const std::string& inc : includesOf(readFile(p))) {
-            const std::string target = inc.substr(1, inc.size() - 2);
-            EXPECT_EQ(inc.find("engine/src"), std::string::npos) << name << " includes " << inc;
-            if (inc[0] == '"') { // a quoted include must be the app's own header
-                EXPECT_TRUE(fs::exists(apps / target) && !fs::exists(engineSrc / target))
-                    << name << " includes " << inc
-                    << ", which is not one of apps/lantern's own headers named from apps/lantern";
-            } else {
-                EXPECT_FALSE(fs::exists(engineSrc / target))
-                    << name << " includes " << inc << " from engine/src";
+    for (const auto& [folder, least] : {std::pair{"lantern", 10u}, std::pair{"python", 2u}}) {
+        const fs::path apps = sourceDir() / "apps" / folder;
+        std::size_t files = 0;
+        for (const auto& entry : fs::recursive_directory_iterator(apps)) {
+            const fs::path p = entry.path();
+            if (p.extension() != ".cpp" && p.extension() != ".h") continue;
+            ++files;
+            const fs::path name = p.lexically_relative(apps);
+            for (const std::string& inc : includesOf(readFile(p))) {
+                const std::string target = inc.substr(1, inc.size() - 2);
+                EXPECT_EQ(inc.find("engine/src"), std::string::npos) << name << " includes " << inc;
+                if (inc[0] == '"') { // a quoted include must be the app's own header
+                    EXPECT_TRUE(fs::exists(apps / target) && !fs::exists(engineSrc / target))
+                        << name << " includes " << inc << ", which is not one of apps/" << folder
+                        << "'s own headers named from apps/" << folder;
+                } else {
+                    EXPECT_FALSE(fs::exists(engineSrc / target))
+                        << name << " includes " << inc << " from engine/src";
+                }
             }
         }
+        EXPECT_GE(files, least) << "apps/" << folder << " moved?";
     }
-    EXPECT_GE(files, 10u) << "apps/lantern moved?";
 }
 
 // Issue 15: apps/lantern has one folder per subcommand and common/ for what several share. A

@@ -38,6 +38,7 @@ RenderOptions size(int w, int h) {
     RenderOptions o;
     o.width = w;
     o.height = h;
+    o.background = {0.0f, 0.0f, 0.0f, 0.0f}; // alpha is coverage (the default is opaque black)
     return o;
 }
 

@@ -140,6 +140,23 @@ TEST(ViewerCamera, FrameAllContainsTheBounds) {
         }
 }
 
+// The keypad views turn the free camera to look as `--view` does (straight up and down stop at
+// the orbit's 89.5 degrees), then frame all.
+TEST(ViewerCamera, NamedViewsLookAsTheCommandLineViewsDo) {
+    for (ViewDirection v : kViewDirections) {
+        ViewerCamera cam = takenOver({{3, 1, 4}, {0, 0, 0}, {0, 1, 0}},
+                                     Projection::makePerspective(0.7, 0.0, 0.1, kInfinity));
+        cam.lookFrom(v, 1.0);
+        const glm::dvec3 want = glm::normalize(framingDirection(v));
+        const bool vertical = std::abs(want.y) > 0.999;
+        EXPECT_LT(glm::length(cam.forward() - want), vertical ? 0.01 : 1e-12) << toString(v);
+        EXPECT_LT(glm::length(cam.target()), 1e-12) << toString(v) << ": the pivot is the centre";
+        if (vertical) {
+            EXPECT_LT(cam.forward().z, 0.0) << toString(v) << ": -Z is up on screen";
+        }
+    }
+}
+
 TEST(ViewerCamera, FlyTurnsAboutTheEyeAndMoves) {
     ViewerCamera cam = takenOver({{0, 0, 5}, {0, 0, 0}, {0, 1, 0}},
                                  Projection::makePerspective(0.7, 0.0, 0.1, kInfinity));

@@ -135,6 +135,9 @@ int main(int argc, char** argv) {
     options.camera.sceneCamera = 0;
     options.specular = lantern::SpecularModel::Blinn;
     options.aovs.depth = true;  // a Z plane in the image and in the EXR
+    // Transparent instead of the default opaque black: the EXR's alpha is then the coverage, for
+    // compositing the ball and floor over another picture.
+    options.background = {0.0f, 0.0f, 0.0f, 0.0f};
 
     // Step the animation: four frames across its range, each rendered into memory.
     const lantern::TimeRange range = lantern::animationRange(*scene);

@@ -2,8 +2,8 @@
 // mode x tessellation x MSAA x resolution (x shininess) on the analytic scenes S1 and S2, each
 // configuration timed interleaved with the others and compared with a double-precision ray
 // cast of the exact surfaces. Writes a CSV (one row per configuration) and a markdown summary
-// naming, per error budget, the fastest setting that meets it (BenchAccuracyReport.cpp), and an
-// SVG plot (error against ms per frame, Pareto fronts marked; BenchAccuracyPlot.cpp).
+// naming, per error budget, the fastest setting that meets it (BenchAccuracyReport.cpp), and the
+// plot (error against ms per frame, Pareto fronts marked) drawn by benchmarks/plot_accuracy.py.
 #include "bench/BenchAccuracy.h"
 
 #include "bench/BenchHarness.h"
@@ -57,19 +57,19 @@ struct AccuracyArgs {
     std::vector<std::string> shading{"flat", "gouraud", "phong"};
     std::vector<int> segments{8, 16, 32, 64, 128, 256, 512};
     std::vector<int> msaa{1, 4};
-    std::vector<std::string> resolutions{"960x540", "1920x1080"};
+    std::vector<int> widths{960, 1920}, heights{540, 1080};
     TimingOptions timing;
     int referenceSamples = 8;
     bool noFloor = false;
     DeviceOptions device;
-    CLI::Option *segmentsOption = nullptr, *resolutionsOption = nullptr;
+    CLI::Option *segmentsOption = nullptr, *widthOption = nullptr, *heightOption = nullptr;
 };
 
 // The reduced sweep of --quick: every mode and scene, a few tessellations, small images.
 void applyQuick(AccuracyArgs& a) {
     if (!a.timing.quick) return;
     if (!a.segmentsOption->count()) a.segments = {8, 16, 32, 64, 128, 256};
-    if (!a.resolutionsOption->count()) a.resolutions = {"480x270"};
+    if (!a.widthOption->count() && !a.heightOption->count()) a.widths = {480}, a.heights = {270};
     a.timing.applyQuick(a.timing.plan.rounds, 3);
 }
 
@@ -89,18 +89,6 @@ Result<void> checkScenes(const AccuracyArgs& a) {
     if (a.shininess.empty())
         return makeError(ErrorCode::InvalidInput, "the list is empty", "--shininess");
     return {};
-}
-
-Result<std::vector<std::pair<int, int>>> parseSizes(const AccuracyArgs& a) {
-    std::vector<std::pair<int, int>> sizes;
-    for (const std::string& text : a.resolutions) {
-        auto size = parseResolution(text, "--resolutions");
-        if (!size) return std::move(size).error();
-        sizes.push_back(*size);
-    }
-    if (sizes.empty())
-        return makeError(ErrorCode::InvalidInput, "the list is empty", "--resolutions");
-    return sizes;
 }
 
 // The sample counts of the list the device supports (the others left out with a warning).
@@ -274,7 +262,8 @@ void collectTimes(Sweep& sweep) {
     markParetoFronts(sweep.rows);
 }
 
-// accuracy.csv, accuracy.md and accuracy.svg in the output folder; the summary on stdout.
+// accuracy.csv and accuracy.md in the output folder, then the plot (accuracy.svg, accuracy.png)
+// when matplotlib is there; the summary on stdout.
 int writeResults(const AccuracyArgs& a, const Renderer& renderer, const Sweep& sweep, bool gpuClock,
                  double referenceSeconds) {
     const std::string csv = accuracyCsv(sweep.rows);
@@ -290,12 +279,16 @@ int writeResults(const AccuracyArgs& a, const Renderer& renderer, const Sweep& s
     how.spread = spreadSentence(spreads);
     const std::string md = accuracySummaryMarkdown(sweep.rows, how);
     const std::filesystem::path dir(a.timing.output);
-    for (auto [name, text] : {std::pair{"accuracy.csv", csv}, std::pair{"accuracy.md", md},
-                              std::pair{"accuracy.svg", accuracyPlotSvg(sweep.rows)}})
+    for (auto [name, text] : {std::pair{"accuracy.csv", csv}, std::pair{"accuracy.md", md}})
         if (auto w = writeTextFile((dir / name).string(), text); !w) return report(w.error());
     if (!a.timing.quiet) std::fputs(md.c_str(), stdout);
-    std::printf("wrote %s, %s and %s\n", (dir / "accuracy.csv").c_str(),
-                (dir / "accuracy.svg").c_str(), (dir / "accuracy.md").c_str());
+    std::printf("wrote %s and %s\n", (dir / "accuracy.csv").c_str(), (dir / "accuracy.md").c_str());
+    std::fflush(stdout);
+    // The plot is a view of the CSV: without matplotlib the run still succeeds and says how to
+    // draw it later.
+    const PlotOutcome plot = plotAccuracy(
+        (dir / "accuracy.csv").string(), {(dir / "accuracy.svg").string(), (dir / "accuracy.png").string()});
+    if (!plot.drawn) std::fprintf(stderr, "lantern: warning: %s\n", plot.message.c_str());
     return kOk;
 }
 
@@ -306,7 +299,7 @@ int run(AccuracyArgs& a) {
     if (!modes) return report(modes.error());
     if (auto r = checkRange(a.segments, 3, 2048, "--segments"); !r) return report(r.error());
     if (auto r = checkRange(a.msaa, 1, 8, "--msaa"); !r) return report(r.error());
-    auto sizes = parseSizes(a);
+    auto sizes = pairSizes(a.widths, a.heights);
     if (!sizes) return report(sizes.error());
     if (auto f = makeOutputFolder(a.timing.output); !f) return report(f.error());
 
@@ -342,24 +335,27 @@ Runner addAccuracyBench(CLI::App& bench) {
     auto a = std::make_shared<AccuracyArgs>();
     CLI::App* cmd = bench.add_subcommand(
         "accuracy", "Sweep shading mode x tessellation x MSAA x resolution: ms per frame against "
-                    "the error from an exact ray-cast reference (CSV, SVG plot, markdown summary)");
+                    "the error from an exact ray-cast reference (CSV, markdown summary, plot)");
     cmd->add_option("--scenes", a->scenes, "Analytic scenes: sphere (S1), spot (S2)")
         ->delimiter(',')
         ->capture_default_str();
     cmd->add_option("--shininess", a->shininess, "Material shininess values")
         ->delimiter(',')
         ->capture_default_str();
-    cmd->add_option("--shading", a->shading, "Shading modes")
+    cmd->add_option("--shading", a->shading, help::kShadingList)
         ->delimiter(',')
         ->capture_default_str();
     a->segmentsOption = cmd->add_option("--segments", a->segments,
                                         "Tessellations: sphere segments around, plane subdivisions")
                             ->delimiter(',')
                             ->capture_default_str();
-    cmd->add_option("--msaa", a->msaa, "Samples per pixel")->delimiter(',')->capture_default_str();
-    a->resolutionsOption = cmd->add_option("--resolutions", a->resolutions, "Image sizes WxH")
-                               ->delimiter(',')
-                               ->capture_default_str();
+    cmd->add_option("--msaa", a->msaa, help::kMsaaList)->delimiter(',')->capture_default_str();
+    a->widthOption = cmd->add_option("--width", a->widths, help::kWidthList)
+                         ->delimiter(',')
+                         ->capture_default_str();
+    a->heightOption = cmd->add_option("--height", a->heights, help::kHeightList)
+                          ->delimiter(',')
+                          ->capture_default_str();
     cmd->add_option("--reference-samples", a->referenceSamples,
                     "Reference box filter: N x N rays per pixel")
         ->capture_default_str()
@@ -367,7 +363,7 @@ Runner addAccuracyBench(CLI::App& bench) {
     cmd->add_flag("--no-floor", a->noFloor, "Do not time the trivial-shader floor");
     a->timing.output = "bench-accuracy";
     a->timing.add(*cmd, "Reduced sweep: segments 8 to 256, 480x270, 3 frames per round",
-                  "Folder for accuracy.csv, accuracy.svg, accuracy.md");
+                  "Folder for accuracy.csv, accuracy.md and the plot (accuracy.svg, .png)");
     a->device.add(*cmd);
     return [a, cmd]() { return cmd->parsed() ? run(*a) : -1; };
 }

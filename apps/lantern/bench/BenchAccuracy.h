@@ -1,6 +1,6 @@
 // BenchAccuracy.h: the pieces of `lantern bench accuracy`: the analytic benchmark scenes
 // (numerics.md section 7.1, S1 and S2), one result row per configuration, the Pareto fronts, the
-// CSV and markdown report and the SVG plot.
+// CSV and markdown report and the plot (drawn by benchmarks/plot_accuracy.py).
 #pragma once
 
 #include "bench/BenchHarness.h"
@@ -80,9 +80,17 @@ struct AccuracyMethod {
 std::string accuracySummaryMarkdown(const std::vector<AccuracyRow>& rows,
                                     const AccuracyMethod& how);
 
-/// An SVG document: per group, error against ms per frame on log axes (interior RMSE on the
-/// left, whole-image RMSE on the right), one curve per shading mode and sample count, the
-/// Pareto front drawn over them and the 1e-3 acceptance line.
-std::string accuracyPlotSvg(const std::vector<AccuracyRow>& rows);
+/// Where benchmarks/plot_accuracy.py is: installed beside the command (share/lantern), else the
+/// source tree's; the bare name when neither exists.
+std::string plotScriptPath();
+
+/// What became of the plot: drawn, or why not and the command that draws it.
+struct PlotOutcome {
+    bool drawn = false;
+    std::string message; ///< the command run, or why it was not (with the command to run)
+};
+
+/// Draws `csv` into `outputs` (.svg, .png) with plot_accuracy.py when python3 has matplotlib.
+PlotOutcome plotAccuracy(const std::string& csv, const std::vector<std::string>& outputs);
 
 } // namespace lantern::cli

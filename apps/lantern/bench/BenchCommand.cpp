@@ -54,6 +54,7 @@ int runFrame(const FrameArgs& a) {
     if (!scene) return report(scene.error());
     auto renderer = Renderer::create(a.device.desc());
     if (!renderer) return report(renderer.error());
+    if (auto r = a.shading.checkDevice(renderer->device()); !r) return report(r.error());
     auto prepared = renderer->prepare(std::make_shared<const Scene>(std::move(*scene)));
     if (!prepared) return report(prepared.error());
 
@@ -104,8 +105,7 @@ Runner addBenchCommand(CLI::App& app) {
     auto args = std::make_shared<FrameArgs>();
     CLI::App* frame = bench->add_subcommand("frame", "Time the frames of one scene");
     frame->add_option("scene", args->scene, "glTF/GLB file or builtin:NAME")->capture_default_str();
-    frame->add_option("--width", args->width)->capture_default_str();
-    frame->add_option("--height", args->height)->capture_default_str();
+    addSizeOptions(*frame, args->width, args->height);
     frame->add_option("--runs", args->runs, "Timed frames")
         ->capture_default_str()
         ->check(CLI::Range(1, 100000));

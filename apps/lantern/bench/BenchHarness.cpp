@@ -162,16 +162,6 @@ std::string commandLine() {
     return out;
 }
 
-Result<std::pair<int, int>> parseResolution(const std::string& text, const std::string& option) {
-    int w = 0, h = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 1 ||
-        h < 1 || w > 16384 || h > 16384)
-        return makeError(ErrorCode::InvalidInput,
-                         "\"" + text + "\" is not WxH with sides from 1 to 16384", option);
-    return std::pair{w, h};
-}
-
 Result<void> checkRange(const std::vector<int>& values, int lo, int hi, const std::string& option) {
     if (values.empty()) return makeError(ErrorCode::InvalidInput, "the list is empty", option);
     for (int v : values)

@@ -100,9 +100,6 @@ std::string machineDescription(const Renderer& renderer);
 /// This process's command line, arguments joined by spaces (for "reproduced with").
 std::string commandLine();
 
-/// "WxH" -> width, height (both >= 1); the error names `option`.
-Result<std::pair<int, int>> parseResolution(const std::string& text, const std::string& option);
-
 /// Refuses a list that is empty or has a value outside [lo, hi]; the error names `option`.
 Result<void> checkRange(const std::vector<int>& values, int lo, int hi, const std::string& option);
 

@@ -28,7 +28,7 @@ struct SequenceArgs {
     std::string scene = "builtin:spheres-animated";
     std::string frames = "0-119";
     double fps = 24.0;
-    std::vector<std::string> sizes = {"1280x720", "1920x1080"};
+    std::vector<int> widths = {1280, 1920}, heights = {720, 1080};
     std::vector<std::string> compressions = {"none", "rle",   "zips", "zip",
                                              "piz",  "pxr24", "b44",  "dwaa"};
     std::string pipelineCompression = "zip";
@@ -41,15 +41,6 @@ struct SequenceArgs {
 struct Size {
     int width = 0, height = 0;
 };
-
-Result<Size> parseSize(const std::string& text) {
-    Size s;
-    char x = 0;
-    std::istringstream in(text);
-    if (!(in >> s.width >> x >> s.height) || x != 'x' || s.width < 1 || s.height < 1)
-        return makeError(ErrorCode::InvalidInput, "\"" + text + "\" is not WxH", "--sizes");
-    return s;
-}
 
 // Stage 1, render only: every frame, synchronously (plan, record, render, read back), keeping
 // a few frames for the encode timings.
@@ -197,19 +188,20 @@ int run(const SequenceArgs& a) {
     md << "Scene " << a.scene << ", frames " << a.frames << " at " << a.fps << " fps, device "
        << renderer->device().name << ", " << cores << " cores.\n\n";
 
-    for (const std::string& sizeText : a.sizes) {
-        auto size = parseSize(sizeText);
-        if (!size) return report(size.error());
+    auto sizes = pairSizes(a.widths, a.heights);
+    if (!sizes) return report(sizes.error());
+    for (const auto& [width, height] : *sizes) {
+        const Size size{width, height};
         RenderOptions options;
-        options.width = size->width;
-        options.height = size->height;
+        options.width = size.width;
+        options.height = size.height;
         auto render = timeRender(*renderer, *prepared, options, *range, a);
         if (!render) return report(render.error());
         auto encode = timeEncode(render->samples, a);
         if (!encode) return report(encode.error());
         auto full = timePipeline(*renderer, *prepared, options, *range, a);
         if (!full) return report(full.error());
-        sizeMarkdown(md, a, *size, cores, range->count(), *render, *encode, *full);
+        sizeMarkdown(md, a, size, cores, range->count(), *render, *encode, *full);
         std::fputs(md.str().c_str(), stdout);
         std::fflush(stdout);
         md.str("");
@@ -228,9 +220,7 @@ Runner addSequenceBench(CLI::App& bench) {
     cmd->add_option("scene", args->scene, "An animated scene")->capture_default_str();
     cmd->add_option("--frames", args->frames)->capture_default_str();
     cmd->add_option("--fps", args->fps)->capture_default_str();
-    cmd->add_option("--sizes", args->sizes, "Image sizes WxH")
-        ->delimiter(',')
-        ->capture_default_str();
+    addSizeListOptions(*cmd, args->widths, args->heights);
     cmd->add_option("--compressions", args->compressions, "EXR compressions to time")
         ->delimiter(',')
         ->capture_default_str();

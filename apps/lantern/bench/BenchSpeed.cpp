@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <memory>
 #include <sstream>
+#include <tuple>
 
 namespace lantern::cli {
 namespace {
@@ -319,6 +320,7 @@ int run(SpeedArgs& a) {
     const ColdShaderCache coldCache; // before the device: first frames pay the whole JIT
     auto renderer = Renderer::create(a.device.desc());
     if (!renderer) return report(renderer.error());
+    if (auto r = checkMsaa(a.msaa, renderer->device()); !r) return report(r.error());
 
     SpeedBench bench(a, *renderer, *modes);
     std::ostringstream md;
@@ -384,15 +386,14 @@ Runner addSpeedBench(CLI::App& bench) {
         "all-features), 1 to 256 lights, 1e3 to 1e7 triangles");
     cmd->add_option("scene", a->scene, "Scene of the modes and lights sections")
         ->capture_default_str();
-    a->widthOption = cmd->add_option("--width", a->width)->capture_default_str();
-    a->heightOption = cmd->add_option("--height", a->height)->capture_default_str();
-    cmd->add_option("--msaa", a->msaa, "Samples per pixel")
+    std::tie(a->widthOption, a->heightOption) = addSizeOptions(*cmd, a->width, a->height);
+    cmd->add_option("--msaa", a->msaa, help::kMsaa)
         ->capture_default_str()
         ->check(CLI::IsMember({1, 2, 4, 8}));
     cmd->add_option("--sections", a->sections, "modes, lights, triangles")
         ->delimiter(',')
         ->capture_default_str();
-    cmd->add_option("--shading", a->shading, "Shading modes")
+    cmd->add_option("--shading", a->shading, help::kShadingList)
         ->delimiter(',')
         ->capture_default_str();
     a->lightsOption = cmd->add_option("--lights", a->lights, "Light counts")

@@ -86,6 +86,13 @@ void CameraOptions::add(CLI::App& app) {
                    "Use the scene's camera N (glTF index); repeat once per --viewport");
     app.add_flag("--default-camera", defaultCamera,
                  "The GL default camera: origin, looking down -Z, orthographic 2x2x2 cube");
+    std::vector<std::string> views;
+    for (ViewDirection v : kViewDirections) views.emplace_back(toString(v));
+    app.add_option("--view", view,
+                   "Frame the scene from a named view instead of the scene's camera: "
+                   "three-quarter (the automatic default: front right, 30 degrees above), front, "
+                   "back, left, right, top, bottom, iso")
+        ->check(CLI::IsMember(views));
     app.add_option("--look-at", lookAt,
                    "Place the camera as gluLookAt: EX,EY,EZ,TX,TY,TZ,UX,UY,UZ");
     app.add_option("--perspective", perspective,
@@ -112,8 +119,14 @@ Result<void> CameraOptions::apply(RenderOptions& o) const {
     if (defaultCamera && !cameras.empty())
         return makeError(ErrorCode::Usage, "give either --camera or --default-camera", "--camera");
     if (!depth.empty()) o.depth = *parseDepthMode(depth); // CLI11 checked the spelling
+    if (!view.empty() && (defaultCamera || !cameras.empty()))
+        return makeError(ErrorCode::Usage,
+                         "--view frames the scene automatically: it cannot be combined with " +
+                             std::string(defaultCamera ? "--default-camera" : "--camera"),
+                         "--view");
     CameraSpec spec;
     if (defaultCamera) spec.source = CameraSpec::Source::GlDefault;
+    if (!view.empty()) spec = CameraSpec::framed(*parseViewDirection(view)); // CLI11 checked it
     if (!lookAt.empty()) {
         auto v = parseNumbers(lookAt, 9, "--look-at");
         if (!v) return std::move(v).error();
@@ -185,25 +198,19 @@ std::vector<View> quadLayout(int width, int height, const CameraSpec& perspectiv
     // A classic modeller's four views (GL origin bottom-left): top view top-left, front
     // top-right, side bottom-left, the perspective camera bottom-right.
     const int w = width / 2, h = height / 2;
-    auto orthoView = [](glm::dvec3 direction) {
-        CameraSpec s;
-        s.source = CameraSpec::Source::Framing;
-        s.framingDirection = direction;
-        s.framingOrthographic = true;
-        return s;
-    };
+    auto orthoView = [](ViewDirection view) { return CameraSpec::framed(view, true); };
     return {
-        View{0, height - h, w, h, orthoView({0, -1, 0})},
-        View{w, height - h, width - w, h, orthoView({0, 0, -1})},
-        View{0, 0, w, height - h, orthoView({-1, 0, 0})},
+        View{0, height - h, w, h, orthoView(ViewDirection::Top)},
+        View{w, height - h, width - w, h, orthoView(ViewDirection::Front)},
+        View{0, 0, w, height - h, orthoView(ViewDirection::Right)},
         View{w, 0, width - w, height - h, perspective},
     };
 }
 
 void ShadingOptions::add(CLI::App& app) {
-    app.add_option("--shading", shading, "Where lighting is evaluated: flat, gouraud or phong")
+    app.add_option("--shading", shading, help::kShading)
         ->check(CLI::IsMember({"flat", "gouraud", "phong"}));
-    app.add_option("--specular", specular, "Specular term: blinn or phong")
+    app.add_option("--specular", specular, help::kSpecular)
         ->check(CLI::IsMember({"blinn", "phong"}));
     app.add_flag("--local-viewer", localViewer,
                  "View vector towards the eye (GL_LIGHT_MODEL_LOCAL_VIEWER)");
@@ -213,8 +220,7 @@ void ShadingOptions::add(CLI::App& app) {
     app.add_flag("--gl-compat", glCompat,
                  "Reproduce OpenGL's fixed-function pipeline (provoking-vertex flat, per-vertex "
                  "clamp, limits)");
-    app.add_option("--msaa", msaa, "Samples per pixel: 1, 2, 4 or 8")
-        ->check(CLI::IsMember({1, 2, 4, 8}));
+    app.add_option("--msaa", msaa, help::kMsaa)->capture_default_str()->check(CLI::IsMember({1, 2, 4, 8}));
 }
 
 Result<void> ShadingOptions::apply(RenderOptions& o) const {
@@ -225,6 +231,70 @@ Result<void> ShadingOptions::apply(RenderOptions& o) const {
     o.clamp = clamp;
     o.glCompat = glCompat;
     o.msaa = msaa;
+    return {};
+}
+
+Result<void> ShadingOptions::checkDevice(const DeviceInfo& device) const {
+    return checkMsaa(msaa, device);
+}
+
+Result<void> checkMsaa(int msaa, const DeviceInfo& device) {
+    const auto& counts = device.msaaSampleCounts;
+    if (std::find(counts.begin(), counts.end(), msaa) != counts.end()) return {};
+    std::string supported;
+    for (int c : counts)
+        supported += (supported.empty() ? "" : ", ") + std::to_string(c);
+    return makeError(ErrorCode::Usage,
+                     std::to_string(msaa) + " samples per pixel: " + device.name + " supports " +
+                         supported,
+                     "--msaa");
+}
+
+std::pair<CLI::Option*, CLI::Option*> addSizeOptions(CLI::App& app, int& width, int& height) {
+    return {app.add_option("--width", width, help::kWidth)->capture_default_str()->check(CLI::Range(1, 16384)),
+            app.add_option("--height", height, help::kHeight)->capture_default_str()->check(CLI::Range(1, 16384))};
+}
+
+void addSizeListOptions(CLI::App& app, std::vector<int>& widths, std::vector<int>& heights) {
+    app.add_option("--width", widths, help::kWidthList)->delimiter(',')->capture_default_str()->check(CLI::Range(1, 16384));
+    app.add_option("--height", heights, help::kHeightList)->delimiter(',')->capture_default_str()->check(CLI::Range(1, 16384));
+}
+
+Result<std::vector<std::pair<int, int>>> pairSizes(const std::vector<int>& widths,
+                                                   const std::vector<int>& heights) {
+    for (const auto& [list, option] : {std::pair{&widths, "--width"}, {&heights, "--height"}}) {
+        if (list->empty()) return makeError(ErrorCode::InvalidInput, "the list is empty", option);
+        for (int v : *list)
+            if (v < 1 || v > 16384)
+                return makeError(ErrorCode::InvalidInput,
+                                 std::to_string(v) + " is outside 1..16384", option);
+    }
+    if (widths.size() != heights.size() && widths.size() != 1 && heights.size() != 1)
+        return makeError(ErrorCode::InvalidInput,
+                         std::to_string(widths.size()) + " widths and " +
+                             std::to_string(heights.size()) +
+                             " heights: give as many of each, or one of either",
+                         "--width/--height");
+    std::vector<std::pair<int, int>> sizes;
+    for (std::size_t i = 0; i < std::max(widths.size(), heights.size()); ++i)
+        sizes.emplace_back(widths[widths.size() == 1 ? 0 : i],
+                           heights[heights.size() == 1 ? 0 : i]);
+    return sizes;
+}
+
+Result<void> makeParentFolders(const std::vector<std::string>& paths, int frame,
+                               const std::string& option) {
+    for (const std::string& path : paths) {
+        const std::filesystem::path parent =
+            std::filesystem::path(expandFramePattern(path, frame)).parent_path();
+        if (parent.empty()) continue;
+        std::error_code ec;
+        std::filesystem::create_directories(parent, ec);
+        if (ec && !std::filesystem::is_directory(parent))
+            return makeError(ErrorCode::IoError,
+                             "cannot create the folder " + parent.string() + ": " + ec.message(),
+                             option, path);
+    }
     return {};
 }
 
@@ -241,6 +311,14 @@ RendererDesc DeviceOptions::desc() const {
     d.validation = validation || (env && std::string(env) != "0" && std::string(env) != "");
     d.log = stderrSink(verbose);
     return d;
+}
+
+void addMaxSizeOption(CLI::App& app, std::uint64_t& maxSize) {
+    app.add_option("--max-size", maxSize,
+                   "Largest file, buffer or image accepted, and the most one scene may decode in "
+                   "all (accessors, images), in bytes (1 to " + std::to_string(kMaxMaxSize) + ")")
+        ->capture_default_str()
+        ->check(CLI::Range(std::uint64_t(1), kMaxMaxSize));
 }
 
 } // namespace lantern::cli

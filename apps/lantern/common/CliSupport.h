@@ -11,8 +11,45 @@
 
 namespace lantern::cli {
 
-/// Exit statuses of the command line (spec/cli.md).
+/// Exit statuses of the command line (docs/cli.md).
 enum Exit : int { kOk = 0, kRefused = 1, kUsage = 2, kFailed = 3 };
+
+/// The descriptions of the options several subcommands share, so that the same name means the
+/// same thing everywhere (CliNames.* in tests/robustness/CliReferenceTest.cpp checks it).
+namespace help {
+inline constexpr const char* kWidth = "Width in pixels (1 to 16384)";
+inline constexpr const char* kHeight = "Height in pixels (1 to 16384)";
+inline constexpr const char* kWidthList =
+    "Widths in pixels, comma-separated (paired with --height by position; 1 to 16384)";
+inline constexpr const char* kHeightList =
+    "Heights in pixels, comma-separated (paired with --width by position; 1 to 16384)";
+inline constexpr const char* kShading = "Where lighting is evaluated: flat, gouraud or phong";
+inline constexpr const char* kShadingList = "Shading modes, comma-separated: flat, gouraud, phong";
+inline constexpr const char* kSpecular = "Specular term: blinn or phong";
+inline constexpr const char* kMsaa =
+    "Samples per pixel: 1, 2, 4 or 8, as the device supports (lantern info --devices)";
+inline constexpr const char* kMsaaList =
+    "Samples per pixel, comma-separated: 1, 2, 4, 8 (those the device lacks are left out)";
+inline constexpr const char* kBackground =
+    "Background colour R,G,B (opaque) or R,G,B,A, linear (default 0,0,0: opaque black; "
+    "0,0,0,0 for a transparent background)";
+} // namespace help
+
+/// Adds --width and --height (one size) with the shared descriptions; returns both options
+/// for the caller's checks.
+std::pair<CLI::Option*, CLI::Option*> addSizeOptions(CLI::App& app, int& width, int& height);
+/// Adds --width and --height as comma-separated lists, paired by position.
+void addSizeListOptions(CLI::App& app, std::vector<int>& widths, std::vector<int>& heights);
+/// Pairs the --width and --height lists by position (a single value on one side goes with every
+/// value of the other); InvalidInput naming the option for an empty list, a size outside
+/// 1..16384 or lists of different lengths.
+Result<std::vector<std::pair<int, int>>> pairSizes(const std::vector<int>& widths,
+                                                   const std::vector<int>& heights);
+
+/// Creates the folders the output files will go to (the frame number `frame` fills the '#'
+/// runs of their names): IoError naming `option` when one cannot be made.
+Result<void> makeParentFolders(const std::vector<std::string>& paths, int frame,
+                               const std::string& option);
 
 /// Prints an error as "lantern: error: <file>: <object>: <message>" and returns its exit code.
 int report(const Error& error);
@@ -31,6 +68,14 @@ Result<void> checkImagePaths(const std::vector<std::string>& paths, const std::s
 /// Parses --background: "R,G,B" (opaque) or "R,G,B,A", linear, into a premultiplied colour.
 Result<glm::vec4> parseBackground(const std::string& text);
 
+/// The largest --max-size (64 GiB): the bound is a number of bytes, and -1 must not wrap around
+/// to 2^64 - 1.
+inline constexpr std::uint64_t kMaxMaxSize = std::uint64_t(1) << 36;
+
+/// --max-size BYTES (1 to kMaxMaxSize): the largest file, buffer or image accepted and the most
+/// one scene may make Lantern decode (accessors, images) in all.
+void addMaxSizeOption(CLI::App& app, std::uint64_t& maxSize);
+
 /// The camera and view options shared by render and view.
 struct CameraOptions {
     std::vector<int> cameras; ///< --camera N (repeatable: one per --viewport)
@@ -39,6 +84,7 @@ struct CameraOptions {
     std::vector<std::string> viewports;
     std::string layout;
     std::string depth; ///< --depth reversed|standard (default: reversed)
+    std::string view;  ///< --view NAME: automatic framing from a named view
 
     void add(CLI::App& app);
     /// Fills options.camera / options.views; refuses bad values with the option named.
@@ -57,7 +103,13 @@ struct ShadingOptions {
 
     void add(CLI::App& app);
     Result<void> apply(RenderOptions& options) const;
+    /// Refuses (Usage, exit 2) a --msaa value the device does not support, naming the values it
+    /// does; checked before anything is rendered.
+    Result<void> checkDevice(const DeviceInfo& device) const;
 };
+
+/// Refuses (Usage) a sample count the device lacks: "--msaa 8: DEVICE supports 1, 4".
+Result<void> checkMsaa(int msaa, const DeviceInfo& device);
 
 /// The device options shared by every subcommand that renders.
 struct DeviceOptions {

@@ -1,36 +1,17 @@
 // The Kubernetes back end of `lantern farm`: an Indexed Job manifest whose pod I renders
-// shard JOB_COMPLETION_INDEX/N. Written only: nothing here talks to a cluster, and it has not
-// been run on one (docs/farm.md says so).
+// shard JOB_COMPLETION_INDEX/N, emitted with yaml-cpp (quoting and escaping are its job).
+// Written only: nothing here talks to a cluster, and it has not been run on one (docs/farm.md
+// says so).
 #include "farm/Farm.h"
 
 #include <algorithm>
 #include <cctype>
 #include <charconv>
-#include <cstdio>
 #include <sstream>
+#include <yaml-cpp/yaml.h>
 
 namespace lantern::cli::farm {
 namespace {
-
-// A YAML double-quoted scalar (JSON escapes are valid YAML).
-std::string q(const std::string& s) {
-    std::string out = "\"";
-    for (char c : s) {
-        if (c == '"' || c == '\\') {
-            out += '\\';
-            out += c;
-        } else if (c == '\n') {
-            out += "\\n";
-        } else if (static_cast<unsigned char>(c) < 0x20) {
-            char b[8];
-            std::snprintf(b, sizeof b, "\\x%02x", c);
-            out += b;
-        } else {
-            out += c;
-        }
-    }
-    return out + "\"";
-}
 
 // Slurm's --time forms: M, M:S, H:M:S, D-H, D-H:M, D-H:M:S.
 Result<long> slurmTimeSeconds(const std::string& text) {
@@ -146,52 +127,22 @@ void manifestHeader(std::ostringstream& o, const Submission& s, const JobWork& w
       << "   (on a machine that mounts the claim)\n";
 }
 
-// The Job itself down to the container's command.
-Result<void> jobSpec(std::ostringstream& o, const Submission& s, const JobWork& work) {
-    const std::string n = std::to_string(work.tasks);
-    o << "apiVersion: batch/v1\n"
-      << "kind: Job\n"
-      << "metadata:\n"
-      << "  name: " << q(dnsLabel(s.jobName)) << "\n";
-    if (!s.k8sNamespace.empty()) o << "  namespace: " << q(s.k8sNamespace) << "\n";
-    o << "  labels:\n"
-      << "    app.kubernetes.io/name: lantern\n"
-      << "spec:\n"
-      << "  completionMode: Indexed\n"
-      << "  completions: " << n << "\n"
-      << "  parallelism: " << n << "\n"
-      << "  # A failed pod is retried with the same index; this many retries over the whole job.\n"
-      << "  backoffLimit: " << std::max(3, work.tasks) << "\n";
-    if (!s.time.empty()) {
-        auto seconds = slurmTimeSeconds(s.time);
-        if (!seconds) return std::move(seconds).error();
-        o << "  activeDeadlineSeconds: " << *seconds << "\n";
-    }
-    o << "  template:\n"
-      << "    metadata:\n"
-      << "      labels:\n"
-      << "        app.kubernetes.io/name: lantern\n"
-      << "    spec:\n"
-      << "      restartPolicy: Never\n"
-      << "      containers:\n"
-      << "        - name: lantern\n"
-      << "          image: " << q(s.image) << "\n"
-      << "          env:\n"
-      << "            # Set by the control plane since Kubernetes 1.22; spelled out for older "
-         "ones.\n"
-      << "            - name: JOB_COMPLETION_INDEX\n"
-      << "              valueFrom:\n"
-      << "                fieldRef:\n"
-      << "                  fieldPath: "
-      << q("metadata.annotations['batch.kubernetes.io/job-completion-index']") << "\n"
-      << "          command: [\"/bin/sh\", \"-c\"]\n"
-      << "          args:\n"
-      << "            - " << q(podScript(s, work)) << "\n";
-    return {};
-}
-
-// The container's resources (memory, CPUs, GPUs) and the claim the frames go to.
-Result<void> resourcesAndVolumes(std::ostringstream& o, const Submission& s) {
+// The pod's one container: image, the completion index, the command and its resources.
+Result<void> container(YAML::Emitter& y, const Submission& s, const JobWork& work) {
+    y << YAML::BeginMap << YAML::Key << "name" << YAML::Value << "lantern";
+    y << YAML::Key << "image" << YAML::Value << s.image;
+    y << YAML::Key << "env" << YAML::Value << YAML::BeginSeq << YAML::BeginMap;
+    y << YAML::Comment("set by the control plane since Kubernetes 1.22; spelled out for older ones");
+    y << YAML::Key << "name" << YAML::Value << "JOB_COMPLETION_INDEX";
+    y << YAML::Key << "valueFrom" << YAML::Value << YAML::BeginMap << YAML::Key << "fieldRef"
+      << YAML::Value << YAML::BeginMap << YAML::Key << "fieldPath" << YAML::Value
+      << "metadata.annotations['batch.kubernetes.io/job-completion-index']" << YAML::EndMap
+      << YAML::EndMap;
+    y << YAML::EndMap << YAML::EndSeq;
+    y << YAML::Key << "command" << YAML::Value << YAML::Flow << YAML::BeginSeq << "/bin/sh"
+      << "-c" << YAML::EndSeq;
+    y << YAML::Key << "args" << YAML::Value << YAML::BeginSeq << YAML::Literal
+      << podScript(s, work) << YAML::EndSeq;
     if (!s.mem.empty() || s.cpusPerTask > 0 || s.gpus > 0) {
         std::string mem;
         if (!s.mem.empty()) {
@@ -199,25 +150,65 @@ Result<void> resourcesAndVolumes(std::ostringstream& o, const Submission& s) {
             if (!m) return std::move(m).error();
             mem = *m;
         }
-        o << "          resources:\n";
+        y << YAML::Key << "resources" << YAML::Value << YAML::BeginMap;
         for (const char* kind : {"requests", "limits"}) {
-            o << "            " << kind << ":\n";
-            if (!mem.empty()) o << "              memory: " << q(mem) << "\n";
+            y << YAML::Key << kind << YAML::Value << YAML::BeginMap;
+            if (!mem.empty()) y << YAML::Key << "memory" << YAML::Value << mem;
+            // A quantity: a string for CPUs, an integer for the extended GPU resource.
             if (s.cpusPerTask > 0)
-                o << "              cpu: " << q(std::to_string(s.cpusPerTask)) << "\n";
-            if (s.gpus > 0) o << "              nvidia.com/gpu: " << s.gpus << "\n";
+                y << YAML::Key << "cpu" << YAML::Value << YAML::DoubleQuoted
+                  << std::to_string(s.cpusPerTask);
+            if (s.gpus > 0) y << YAML::Key << "nvidia.com/gpu" << YAML::Value << s.gpus;
+            y << YAML::EndMap;
         }
+        y << YAML::EndMap;
     }
-    if (!s.pvc.empty()) {
-        o << "          volumeMounts:\n"
-          << "            - name: frames\n"
-          << "              mountPath: "
-          << q(std::filesystem::path(s.outputs.front()).parent_path().string()) << "\n"
-          << "      volumes:\n"
-          << "        - name: frames\n"
-          << "          persistentVolumeClaim:\n"
-          << "            claimName: " << q(s.pvc) << "\n";
+    if (!s.pvc.empty())
+        y << YAML::Key << "volumeMounts" << YAML::Value << YAML::BeginSeq << YAML::BeginMap
+          << YAML::Key << "name" << YAML::Value << "frames" << YAML::Key << "mountPath"
+          << YAML::Value << std::filesystem::path(s.outputs.front()).parent_path().string()
+          << YAML::EndMap << YAML::EndSeq;
+    y << YAML::EndMap;
+    return {};
+}
+
+// The Job: its name and labels, the indexed completions, the time limit and the pod template.
+Result<void> jobSpec(YAML::Emitter& y, const Submission& s, const JobWork& work) {
+    y << YAML::BeginMap;
+    y << YAML::Key << "apiVersion" << YAML::Value << "batch/v1";
+    y << YAML::Key << "kind" << YAML::Value << "Job";
+    y << YAML::Key << "metadata" << YAML::Value << YAML::BeginMap;
+    y << YAML::Key << "name" << YAML::Value << dnsLabel(s.jobName);
+    if (!s.k8sNamespace.empty()) y << YAML::Key << "namespace" << YAML::Value << s.k8sNamespace;
+    y << YAML::Key << "labels" << YAML::Value << YAML::BeginMap << YAML::Key
+      << "app.kubernetes.io/name" << YAML::Value << "lantern" << YAML::EndMap;
+    y << YAML::EndMap;
+    y << YAML::Key << "spec" << YAML::Value << YAML::BeginMap;
+    y << YAML::Key << "completionMode" << YAML::Value << "Indexed";
+    y << YAML::Key << "completions" << YAML::Value << work.tasks;
+    y << YAML::Key << "parallelism" << YAML::Value << work.tasks;
+    y << YAML::Key << "backoffLimit" << YAML::Value << std::max(3, work.tasks);
+    y << YAML::Comment("a failed pod is retried with the same index; this many retries in all");
+    if (!s.time.empty()) {
+        auto seconds = slurmTimeSeconds(s.time);
+        if (!seconds) return std::move(seconds).error();
+        y << YAML::Key << "activeDeadlineSeconds" << YAML::Value << *seconds;
     }
+    y << YAML::Key << "template" << YAML::Value << YAML::BeginMap;
+    y << YAML::Key << "metadata" << YAML::Value << YAML::BeginMap << YAML::Key << "labels"
+      << YAML::Value << YAML::BeginMap << YAML::Key << "app.kubernetes.io/name" << YAML::Value
+      << "lantern" << YAML::EndMap << YAML::EndMap;
+    y << YAML::Key << "spec" << YAML::Value << YAML::BeginMap;
+    y << YAML::Key << "restartPolicy" << YAML::Value << "Never";
+    y << YAML::Key << "containers" << YAML::Value << YAML::BeginSeq;
+    LANTERN_TRY(container(y, s, work));
+    y << YAML::EndSeq;
+    if (!s.pvc.empty())
+        y << YAML::Key << "volumes" << YAML::Value << YAML::BeginSeq << YAML::BeginMap << YAML::Key
+          << "name" << YAML::Value << "frames" << YAML::Key << "persistentVolumeClaim"
+          << YAML::Value << YAML::BeginMap << YAML::Key << "claimName" << YAML::Value << s.pvc
+          << YAML::EndMap << YAML::EndMap << YAML::EndSeq;
+    y << YAML::EndMap << YAML::EndMap << YAML::EndMap << YAML::EndMap;
     return {};
 }
 
@@ -226,8 +217,13 @@ Result<void> resourcesAndVolumes(std::ostringstream& o, const Submission& s) {
 Result<std::string> k8sManifest(const Submission& s, const JobWork& work) {
     std::ostringstream o;
     manifestHeader(o, s, work);
-    LANTERN_TRY(jobSpec(o, s, work));
-    LANTERN_TRY(resourcesAndVolumes(o, s));
+    YAML::Emitter y;
+    y.SetIndent(2);
+    LANTERN_TRY(jobSpec(y, s, work));
+    if (!y.good())
+        return makeError(ErrorCode::Internal, "yaml-cpp could not emit the manifest: " +
+                                                  y.GetLastError());
+    o << y.c_str() << "\n";
     return o.str();
 }
 

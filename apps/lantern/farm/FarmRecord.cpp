@@ -1,15 +1,22 @@
 // The farm's files: where a submission's record, scripts and logs go, the record itself (a
-// line-per-value text file beside the outputs), and which frames exist and can be read.
+// JSON document beside the outputs, through nlohmann_json), and which frames exist and can be
+// read.
 #include "farm/Farm.h"
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <charconv>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
+#include <fcntl.h>
+#include <random>
+#include <sys/random.h>
 #include <unistd.h>
 
 namespace lantern::cli::farm {
@@ -31,9 +38,9 @@ fs::path baseOf(const std::string& pattern) {
     return p.parent_path() / stem;
 }
 
-constexpr const char* kRecordHeader =
-    "# Submission record of `lantern farm submit`: what `lantern farm check` and\n"
-    "# `lantern farm submit --resume` read. One value per line: KEY VALUE.\n";
+constexpr const char* kRecordAbout = "Submission record of `lantern farm submit`: what `lantern "
+                                     "farm check` and `lantern farm submit --resume` read";
+constexpr int kRecordVersion = 2; // 1 was a line-per-value text file (lantern 0.1)
 
 // A PNG is complete when it starts with the signature and ends with the IEND chunk (the
 // writer renames a finished file into place, so anything else is damage).
@@ -76,21 +83,34 @@ std::string shellQuote(const std::string& word) {
 }
 
 Result<void> writeTextFile(const fs::path& path, const std::string& text) {
-    const fs::path tmp = path.string() + ".tmp-" + std::to_string(::getpid());
-    {
-        std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-        f << text;
-        f.flush();
-        if (!f) {
-            std::error_code ec;
-            fs::remove(tmp, ec);
-            return makeError(ErrorCode::IoError, "cannot write " + tmp.string(), {}, path.string());
-        }
+    // The temporary is created exclusively under a random name, never through a symlink
+    // planted beside the file (a predictable name let one redirect the write).
+    std::uint64_t random = 0;
+    if (::getrandom(&random, sizeof random, 0) != ssize_t(sizeof random))
+        random = std::uint64_t(std::random_device{}()) << 32 ^ std::random_device{}();
+    char suffix[40];
+    std::snprintf(suffix, sizeof suffix, ".tmp-%ld-%016llx", long(::getpid()),
+                  static_cast<unsigned long long>(random));
+    const fs::path tmp = path.string() + suffix;
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd < 0)
+        return makeError(ErrorCode::IoError, "cannot create " + tmp.string() + ": " +
+                                                 std::strerror(errno), {}, path.string());
+    std::size_t done = 0;
+    bool ok = true;
+    while (ok && done < text.size()) {
+        const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        ok = n > 0;
+        if (ok) done += std::size_t(n);
     }
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
+    ok = ::close(fd) == 0 && ok;
+    if (!ok) {
+        ::unlink(tmp.c_str());
+        return makeError(ErrorCode::IoError, "cannot write " + tmp.string(), {}, path.string());
+    }
+    if (::rename(tmp.c_str(), path.c_str()) != 0) {
+        ::unlink(tmp.c_str());
         return makeError(ErrorCode::IoError, "cannot rename the temporary file into place", {},
                          path.string());
     }
@@ -99,8 +119,9 @@ Result<void> writeTextFile(const fs::path& path, const std::string& text) {
 
 namespace {
 
-// The record's plain fields, in the order they are written: text (written when not empty),
-// lists (one line per entry) and counts (written when positive).
+using Json = nlohmann::ordered_json;
+
+// The record's plain fields, in the order they are written: text, lists and counts.
 struct TextField {
     const char* key;
     std::string Submission::*member;
@@ -123,30 +144,50 @@ constexpr TextField kTextFields[] = {{"scheduler", &Submission::scheduler},
                                      {"image", &Submission::image},
                                      {"namespace", &Submission::k8sNamespace},
                                      {"pvc", &Submission::pvc}};
-constexpr ListField kListFields[] = {{"output", &Submission::outputs},
-                                     {"render-arg", &Submission::renderArgs},
+constexpr ListField kListFields[] = {{"outputs", &Submission::outputs},
+                                     {"render-args", &Submission::renderArgs},
                                      {"setup", &Submission::setup},
-                                     {"sbatch-arg", &Submission::sbatchArgs}};
+                                     {"sbatch-args", &Submission::sbatchArgs}};
 constexpr CountField kCountFields[] = {{"tasks", &Submission::tasks},
                                        {"cpus-per-task", &Submission::cpusPerTask},
                                        {"gpus", &Submission::gpus}};
 
+// The record's fields from its JSON (nlohmann's type errors name what was expected).
+Submission fromJson(const Json& j) {
+    Submission s;
+    for (const auto& f : kTextFields)
+        s.*f.member = j.value(f.key, std::string());
+    for (const auto& f : kListFields)
+        s.*f.member = j.value(f.key, std::vector<std::string>());
+    for (const auto& f : kCountFields)
+        s.*f.member = j.value(f.key, f.member == &Submission::tasks ? 1 : 0);
+    const Json& frames = j.at("frames");
+    s.range = FrameRange{frames.at("first").get<int>(), frames.at("last").get<int>()};
+    for (const Json& job : j.value("jobs", Json::array()))
+        s.jobs.push_back({job.at("id").is_null() ? "" : job.at("id").get<std::string>(),
+                          job.at("frames").get<std::string>(), job.at("script").get<std::string>()});
+    return s;
+}
+
 } // namespace
 
 Result<void> writeRecord(const Submission& s) {
-    std::ostringstream o;
-    o << kRecordHeader << "lantern-farm 1\n";
-    o << "frames " << s.range.first << "-" << s.range.last << "\n";
+    Json j;
+    j["about"] = kRecordAbout;
+    j["lantern-farm"] = kRecordVersion;
+    j["frames"] = {{"first", s.range.first}, {"last", s.range.last}};
     for (const auto& f : kTextFields)
-        if (!(s.*f.member).empty()) o << f.key << " " << s.*f.member << "\n";
+        j[f.key] = s.*f.member;
     for (const auto& f : kCountFields)
-        if (s.*f.member > 0) o << f.key << " " << s.*f.member << "\n";
+        j[f.key] = s.*f.member;
     for (const auto& f : kListFields)
-        for (const std::string& v : s.*f.member)
-            o << f.key << " " << v << "\n";
-    for (const auto& j : s.jobs)
-        o << "job " << (j.id.empty() ? "-" : j.id) << " " << j.frames << " " << j.script << "\n";
-    return writeTextFile(recordPath(s.outputs.front()), o.str());
+        j[f.key] = s.*f.member;
+    j["jobs"] = Json::array();
+    for (const auto& job : s.jobs)
+        j["jobs"].push_back({{"id", job.id.empty() ? Json() : Json(job.id)},
+                             {"frames", job.frames},
+                             {"script", job.script}});
+    return writeTextFile(recordPath(s.outputs.front()), j.dump(2) + "\n");
 }
 
 Result<Submission> readRecord(const fs::path& path) {
@@ -156,58 +197,29 @@ Result<Submission> readRecord(const fs::path& path) {
                          "no submission record here (was the sequence submitted with `lantern farm "
                          "submit` and this -o?)",
                          {}, path.string());
-    Submission s;
-    std::string text;
-    int number = 0;
-    bool versioned = false;
     auto bad = [&](const std::string& why) {
-        return makeError(ErrorCode::InvalidInput, why, "line " + std::to_string(number),
-                         path.string());
+        return makeError(ErrorCode::InvalidInput, why, {}, path.string());
     };
-    while (std::getline(f, text)) {
-        ++number;
-        if (text.empty() || text[0] == '#') continue;
-        const auto space = text.find(' ');
-        const std::string key = text.substr(0, space);
-        const std::string value = space == std::string::npos ? "" : text.substr(space + 1);
-        auto is = [&](const auto& field) { return key == field.key; };
-        if (const auto* t = std::find_if(std::begin(kTextFields), std::end(kTextFields), is);
-            t != std::end(kTextFields)) {
-            s.*t->member = value;
-        } else if (const auto* l = std::find_if(std::begin(kListFields), std::end(kListFields), is);
-                   l != std::end(kListFields)) {
-            (s.*l->member).push_back(value);
-        } else if (const auto* c =
-                       std::find_if(std::begin(kCountFields), std::end(kCountFields), is);
-                   c != std::end(kCountFields)) {
-            int& out = s.*c->member;
-            const auto r = std::from_chars(value.data(), value.data() + value.size(), out);
-            if (r.ec != std::errc() || r.ptr != value.data() + value.size() || out < 0)
-                return bad(key + " is not a number");
-        } else if (key == "lantern-farm") {
-            if (value != "1")
-                return bad("record version " + value + " is not one this lantern reads (1)");
-            versioned = true;
-        } else if (key == "frames") {
-            auto r = parseFrameRange(value);
-            if (!r) return bad(r.error().message);
-            s.range = *r;
-        } else if (key == "job") {
-            std::istringstream in(value);
-            Submission::Job j;
-            in >> j.id >> j.frames;
-            std::getline(in >> std::ws, j.script);
-            if (j.frames.empty()) return bad("a job line needs: ID FRAMES SCRIPT");
-            if (j.id == "-") j.id.clear();
-            s.jobs.push_back(j);
-        } else {
-            return bad("unknown key \"" + key + "\"");
-        }
+    const Json j = Json::parse(f, nullptr, false);
+    if (j.is_discarded() || !j.is_object())
+        return bad("not a lantern farm record (not a JSON object; a record of the older text "
+                   "format, version 1, is not read: submit again with --no-submit)");
+    if (j.value("lantern-farm", 0) != kRecordVersion)
+        return bad("record version " + j.value("lantern-farm", Json()).dump() +
+                   " is not one this lantern reads (" + std::to_string(kRecordVersion) + ")");
+    Submission s;
+    try {
+        s = fromJson(j);
+    } catch (const Json::exception& e) {
+        return bad(std::string("malformed record: ") + e.what());
     }
+    if (s.range.first < 0 || s.range.last < s.range.first)
+        return bad("frames must be a range A-B with 0 <= A <= B");
     if (s.tasks < 1) return bad("tasks must be at least 1");
-    if (!versioned) return bad("not a lantern farm record (no \"lantern-farm 1\" line)");
     if (s.outputs.empty() || s.scene.empty() || s.lantern.empty())
-        return bad("incomplete record: it needs lantern, scene and output lines");
+        return bad("incomplete record: it needs lantern, scene and outputs");
+    for (const auto& job : s.jobs)
+        if (job.frames.empty()) return bad("a job needs its frames");
     return s;
 }
 

@@ -1,10 +1,15 @@
 // `lantern info SCENE`: what a scene holds (nodes, meshes, triangles, materials, lights,
-// cameras, animations, bounds) and the renderer features it needs. No GPU needed.
+// cameras, animations, bounds) and the renderer features it needs; no GPU needed.
+// `lantern info --devices`: the Vulkan devices, the one Lantern would choose and why, where
+// pipelines are cached, and whether `lantern view` has a display.
 #include "common/CliSupport.h"
 #include "common/Commands.h"
 
+#include <GLFW/glfw3.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -14,6 +19,8 @@ namespace {
 
 struct InfoArgs {
     std::string scene;
+    bool devices = false;
+    std::string deviceName;
     int sceneIndex = -1;
     double time = 0.0;
     std::uint64_t maxSize = std::uint64_t(1) << 30;
@@ -147,7 +154,58 @@ int printBoundsAndFeatures(const InfoArgs& a, const Scene& scene, int root) {
     return kOk;
 }
 
+std::string joined(const std::vector<int>& values) {
+    std::string out;
+    for (int v : values)
+        out += (out.empty() ? "" : ", ") + std::to_string(v);
+    return out;
+}
+
+// Whether `lantern view` can open a window here: a display named in the environment that GLFW
+// can connect to.
+std::string displayStatus() {
+    const char* x11 = std::getenv("DISPLAY");
+    const char* wayland = std::getenv("WAYLAND_DISPLAY");
+    if ((!x11 || !*x11) && (!wayland || !*wayland))
+        return "none (DISPLAY and WAYLAND_DISPLAY are unset; `lantern view` needs one, e.g. "
+               "xvfb-run)";
+    const std::string named = x11 && *x11 ? std::string("DISPLAY=") + x11
+                                          : std::string("WAYLAND_DISPLAY=") + wayland;
+    if (!glfwInit()) return named + ", but GLFW cannot connect to it";
+    const bool vulkan = glfwVulkanSupported() == GLFW_TRUE;
+    glfwTerminate();
+    return named + (vulkan ? ", GLFW connects and offers Vulkan surfaces"
+                           : ", GLFW connects but offers no Vulkan surface");
+}
+
+int runDevices(const InfoArgs& a) {
+    const BuildInfo build = buildInfo();
+    std::cout << "Vulkan loader: " << build.vulkanLoader << "\n";
+    auto list = listDevices(a.deviceName);
+    if (!list) return report(list.error());
+    std::cout << "devices: " << list->devices.size() << "\n";
+    const DeviceListing* chosen = nullptr;
+    for (const DeviceListing& d : list->devices) {
+        std::cout << (d.chosen ? "  * " : "    ") << d.name << "\n"
+                  << "      type " << d.type << ", Vulkan " << d.apiVersion
+                  << (d.driver.empty() ? "" : ", driver " + d.driver) << "\n"
+                  << "      " << (d.usable ? "usable" : "not usable: " + d.whyNot)
+                  << "; --msaa " << joined(d.msaaSampleCounts) << "; windows (VK_KHR_swapchain) "
+                  << (d.presentation ? "yes" : "no") << "\n";
+        if (d.chosen) chosen = &d;
+    }
+    std::cout << "chosen: " << (chosen ? chosen->name + ": " : "") << list->choice << "\n"
+              << "pipeline cache: in memory only (pipelines are compiled again by each run)\n"
+              << "display for `lantern view`: " << displayStatus() << "\n";
+    return chosen ? kOk : kFailed;
+}
+
 int run(const InfoArgs& a) {
+    if (a.devices && a.scene.empty()) return runDevices(a);
+    if (a.scene.empty())
+        return report(makeError(ErrorCode::Usage, "give a SCENE, or --devices", "scene"));
+    if (a.devices)
+        if (int code = runDevices(a); code != kOk) return code;
     LoadOptions load;
     load.maxBytes = a.maxSize;
     load.log = stderrSink(false);
@@ -174,14 +232,18 @@ int run(const InfoArgs& a) {
 
 Runner addInfoCommand(CLI::App& app) {
     auto args = std::make_shared<InfoArgs>();
-    CLI::App* cmd =
-        app.add_subcommand("info", "Print what a scene holds and the features it needs");
-    cmd->add_option("scene", args->scene, "glTF/GLB file, or builtin:NAME")->required();
+    CLI::App* cmd = app.add_subcommand(
+        "info", "Print what a scene holds and the features it needs, or the Vulkan devices");
+    cmd->add_option("scene", args->scene, "glTF/GLB file, or builtin:NAME");
+    cmd->add_flag("--devices", args->devices,
+                  "List the Vulkan devices, the one Lantern would choose and why, the sample "
+                  "counts each supports, the pipeline cache and whether a display is available");
+    cmd->add_option("--device", args->deviceName,
+                    "With --devices: choose as --device NAME would in render and view");
     cmd->add_option("--scene", args->sceneIndex, "glTF scene index (default: the file's default)");
     cmd->add_option("--time", args->time, "Animation time in seconds for bounds and features")
         ->capture_default_str();
-    cmd->add_option("--max-size", args->maxSize, "Largest file, buffer or image accepted, in bytes")
-        ->capture_default_str();
+    addMaxSizeOption(*cmd, args->maxSize);
     return [args, cmd]() { return cmd->parsed() ? run(*args) : -1; };
 }
 

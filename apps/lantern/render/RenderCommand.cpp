@@ -1,4 +1,4 @@
-// `lantern render SCENE`: headless rendering to EXR/PNG (spec/cli.md).
+// `lantern render SCENE`: headless rendering to EXR/PNG (docs/cli.md).
 #include "common/CliSupport.h"
 #include "common/Commands.h"
 
@@ -80,6 +80,12 @@ void printProbe(std::ostream& out, const ProbeReport& r) {
         << "\n";
 }
 
+// The instant one frame is rendered at and its frame number (for the '#' runs of its outputs).
+struct SingleFrame {
+    double time = 0.0;
+    int number = 0;
+};
+
 struct RenderArgs {
     std::string scene;
     std::vector<std::string> outputs;
@@ -87,7 +93,9 @@ struct RenderArgs {
     int sceneIndex = -1;
     double time = 0.0;
     bool timeGiven = false;
-    std::string aov;
+    int frame = 0;           // --frame N: the frame at time N / fps
+    bool frameGiven = false;
+    std::vector<std::string> aovs;
     bool half = false;
     bool explain = false;
     std::string probe;
@@ -221,27 +229,23 @@ Result<RenderOptions> renderOptions(const RenderArgs& a) {
         if (!background) return std::move(background).error();
         options.background = *background;
     }
-    if (!a.aov.empty()) {
-        std::stringstream ss(a.aov);
-        std::string item;
-        while (std::getline(ss, item, ',')) {
-            if (item == "depth")
-                options.aovs.depth = true;
-            else if (item == "normal")
-                options.aovs.normal = true;
-            else
-                return makeError(ErrorCode::InvalidInput,
-                                 "unknown AOV \"" + item + "\" (depth, normal)", "--aov");
-        }
+    for (const std::string& item : a.aovs) {
+        if (item == "depth")
+            options.aovs.depth = true;
+        else if (item == "normal")
+            options.aovs.normal = true;
+        else
+            return makeError(ErrorCode::InvalidInput,
+                             "unknown AOV \"" + item + "\" (depth, normal)", "--aov");
     }
     return options;
 }
 
 // --explain and --probe: what the renderer will do, and the lighting equation at one pixel.
 Result<void> explainAndProbe(const RenderArgs& a, Renderer& renderer, const Scene& scene,
-                             const RenderOptions& options) {
+                             const RenderOptions& options, double time) {
     if (a.explain) {
-        auto explained = renderer.explain(scene, options, a.time);
+        auto explained = renderer.explain(scene, options, time);
         if (!explained) return std::move(explained).error();
         std::cout << "features:\n";
         for (const auto& f : explained->features)
@@ -261,22 +265,22 @@ Result<void> explainAndProbe(const RenderArgs& a, Renderer& renderer, const Scen
                                  std::to_string(a.width) + "x" + std::to_string(a.height) +
                                  " image",
                              "--probe");
-        auto probed = renderer.probe(scene, options, a.time, int(x), int(y));
+        auto probed = renderer.probe(scene, options, time, int(x), int(y));
         if (!probed) return std::move(probed).error();
         printProbe(std::cout, *probed);
     }
     return {};
 }
 
-// One frame, written to every output (the paths on stdout).
-int renderFrame(const RenderArgs& a, Renderer& renderer, const PreparedScene& prepared,
+// One frame, written to every output with its '#' runs replaced by the frame number (the
+// paths on stdout).
+int renderFrame(const SingleFrame& frame, Renderer& renderer, const PreparedScene& prepared,
                 const RenderOptions& options, ExrOptions exr,
-                const std::vector<std::string>& outputs) {
-    if (!a.shard.empty())
-        return report(makeError(ErrorCode::Usage, "--shard needs --frames", "--shard"));
-    auto image = renderer.render(prepared, options, a.time);
+                const std::vector<std::string>& patterns) {
+    auto image = renderer.render(prepared, options, frame.time);
     if (!image) return report(image.error());
-    for (const std::string& out : outputs) {
+    for (const std::string& pattern : patterns) {
+        const std::string out = expandFramePattern(pattern, frame.number);
         std::uint64_t clamped = 0;
         exr.clampedCount = &clamped;
         if (auto w = writeImage(out, *image, exr); !w) return report(w.error());
@@ -286,6 +290,30 @@ int renderFrame(const RenderArgs& a, Renderer& renderer, const PreparedScene& pr
         std::cout << out << "\n";
     }
     return kOk;
+}
+
+// The first frame of a sequence (0 when the range or list does not parse: runSequence says why).
+int firstFrame(const RenderArgs& a) {
+    if (!a.frameList.empty()) {
+        auto list = parseFrameList(a.frameList);
+        return list && !list->empty() ? list->front() : 0;
+    }
+    auto range = parseFrameRange(a.frames);
+    return range ? range->first : 0;
+}
+
+// The instant of a single-frame render and the number its '#' runs are replaced by: --frame N
+// (time N / fps), or --time T (frame round(T * fps)), or frame 0 at time 0.
+Result<SingleFrame> singleFrame(const RenderArgs& a) {
+    if (!a.shard.empty()) return makeError(ErrorCode::Usage, "--shard needs --frames", "--shard");
+    if (a.frameGiven && a.timeGiven)
+        return makeError(ErrorCode::Usage, "give either --frame or --time", "--frame");
+    if (a.frameGiven) return SingleFrame{double(a.frame) / a.fps, a.frame};
+    const double number = std::round(a.time * a.fps);
+    if (!std::isfinite(a.time) || std::abs(number) > 1e9)
+        return makeError(ErrorCode::InvalidInput, "time must be a finite number of seconds",
+                         "--time");
+    return SingleFrame{a.time, int(number)};
 }
 
 int run(const RenderArgs& a) {
@@ -304,10 +332,29 @@ int run(const RenderArgs& a) {
                                 "--frame-list"));
     std::vector<std::string> outputs = a.outputs;
     if (outputs.empty()) outputs.push_back(sequence ? "out/frame_####.exr" : "out/render.exr");
-    if (sequence && a.timeGiven)
-        return report(
-            makeError(ErrorCode::Usage, "--time and --frames cannot be combined", "--time"));
+    if (sequence && (a.timeGiven || a.frameGiven))
+        return report(makeError(ErrorCode::Usage,
+                                std::string(a.timeGiven ? "--time" : "--frame") +
+                                    " and --frames/--frame-list cannot be combined",
+                                a.timeGiven ? "--time" : "--frame"));
     if (auto r = checkImagePaths(outputs, "--output"); !r) return report(r.error());
+    // CLI11's range check lets NaN through (every comparison with it is false).
+    if (!(a.time >= 0.0 && a.time <= 1e9))
+        return report(makeError(ErrorCode::InvalidInput,
+                                "must be a number of seconds from 0 to 1e9", "--time"));
+    SingleFrame frame;
+    if (!sequence) {
+        auto f = singleFrame(a);
+        if (!f) return report(f.error());
+        frame = *f;
+        if (frame.number < 0 && std::any_of(outputs.begin(), outputs.end(), [](const auto& o) {
+                return hasFramePattern(o);
+            }))
+            return report(makeError(ErrorCode::Usage,
+                                    "the frame number of --time " + std::to_string(a.time) +
+                                        " is negative; '#' runs need a frame >= 0",
+                                    "--output"));
+    }
 
     LoadOptions load;
     load.maxBytes = a.maxSize;
@@ -325,11 +372,16 @@ int run(const RenderArgs& a) {
     if (a.device.verbose)
         std::cerr << "lantern: device: " << renderer->device().name << " ("
                   << renderer->device().driver << ")\n";
-    if (auto r = explainAndProbe(a, *renderer, *shared, *options); !r) return report(r.error());
+    if (auto r = a.shading.checkDevice(renderer->device()); !r) return report(r.error());
+    if (auto r = explainAndProbe(a, *renderer, *shared, *options, frame.time); !r)
+        return report(r.error());
     auto prepared = renderer->prepare(shared);
     if (!prepared) return report(prepared.error());
+    if (auto r = makeParentFolders(outputs, sequence ? firstFrame(a) : frame.number, "--output");
+        !r)
+        return report(r.error());
     if (sequence) return runSequence(a, *renderer, *prepared, *options, exr, outputs);
-    return renderFrame(a, *renderer, *prepared, *options, exr, outputs);
+    return renderFrame(frame, *renderer, *prepared, *options, exr, outputs);
 }
 
 } // namespace
@@ -338,30 +390,37 @@ Runner addRenderCommand(CLI::App& app) {
     auto args = std::make_shared<RenderArgs>();
     CLI::App* cmd = app.add_subcommand("render", "Render a scene headless to EXR/PNG");
     cmd->add_option("scene", args->scene, "glTF/GLB file, or builtin:NAME")->required();
-    cmd->add_option(
-        "-o,--output", args->outputs,
-        "Output file(s): .exr or .png; repeat to write several (default out/render.exr)");
-    cmd->add_option("--width", args->width, "Image width in pixels")->capture_default_str();
-    cmd->add_option("--height", args->height, "Image height in pixels")->capture_default_str();
-    cmd->add_option("--scene", args->sceneIndex, "glTF scene index (default: the file's default)");
-    cmd->add_option("--time", args->time, "Animation time in seconds (one frame)")
-        ->capture_default_str();
-    cmd->add_option("--background", args->background,
-                    "Background colour R,G,B (opaque) or R,G,B,A, linear (default: transparent)");
+    cmd->add_option("-o,--output", args->outputs,
+                    "Output file(s): .exr or .png, repeat to write several; '#' runs are the "
+                    "frame number; missing folders are created (default out/render.exr, "
+                    "out/frame_####.exr for a sequence)");
+    addSizeOptions(*cmd, args->width, args->height);
+    cmd->add_option("--scene", args->sceneIndex,
+                    "glTF scene index (default: the file's default; 0 to the file's last)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--time", args->time,
+                    "Animation time in seconds of the one frame (its number: round(time x fps); "
+                    "finite, 0 to 1e9)")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 1e9)); // and not NaN: run() checks
+    cmd->add_option("--frame", args->frame, "Render frame N alone, at time N / fps")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--background", args->background, help::kBackground);
     cmd->add_option("--frames", args->frames,
                     "Render the sequence of frames A-B inclusive (frame k at time k/fps)");
     cmd->add_option(
         "--frame-list", args->frameList,
         "Render these frames, not a range: N,A-B,... (--shard splits the list by position)");
-    cmd->add_option("--fps", args->fps, "Frames per second of the sequence")
+    cmd->add_option("--fps", args->fps, "Frames per second: frame k is at time k / fps")
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
     cmd->add_option("--shard", args->shard, "Render only frames k with k mod N == I (I/N)");
     cmd->add_option("--encoder-threads", args->encoderThreads,
-                    "Threads encoding frames (0: one per core)")
+                    "Threads encoding frames (0: one per core; 0 to 256)")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--aov", args->aov, "Extra EXR channels: depth,normal");
+        ->check(CLI::Range(0, kMaxEncoderThreads));
+    cmd->add_option("--aov", args->aovs, "Extra EXR channels, comma-separated: depth, normal")
+        ->delimiter(',');
     cmd->add_flag("--half", args->half, "Write 16-bit half channels instead of 32-bit float");
     cmd->add_option("--compression", args->compression,
                     "EXR compression: none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab")
@@ -371,14 +430,14 @@ Runner addRenderCommand(CLI::App& app) {
     cmd->add_option("--probe", args->probe,
                     "X,Y: print the lighting equation term by term at pixel X,Y (x from the left, "
                     "y from the top)");
-    cmd->add_option("--max-size", args->maxSize, "Largest file, buffer or image accepted, in bytes")
-        ->capture_default_str();
+    addMaxSizeOption(*cmd, args->maxSize);
     args->camera.add(*cmd);
     args->shading.add(*cmd);
     args->device.add(*cmd);
     return [args, cmd]() {
         if (!cmd->parsed()) return -1;
         args->timeGiven = cmd->count("--time") > 0;
+        args->frameGiven = cmd->count("--frame") > 0;
         return run(*args);
     };
 }

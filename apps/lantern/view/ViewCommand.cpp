@@ -1,4 +1,4 @@
-// `lantern view SCENE`: the interactive viewer (spec/cli.md, docs/viewer.md): its options, the
+// `lantern view SCENE`: the interactive viewer (docs/cli.md, docs/viewer.md): its options, the
 // checks made before a window opens, the renderer and the window (a GLFW window on a Vulkan
 // swapchain, lantern::glfw::Window); the Viewer runs the rest. Public API only.
 #include "common/CliSupport.h"
@@ -62,6 +62,8 @@ int runView(const ViewArgs& a) {
     if (a.device.verbose)
         std::cerr << "lantern: device: " << renderer->device().name << " ("
                   << renderer->device().driver << ")\n";
+    if (auto r = a.shading.checkDevice(renderer->device()); !r) return report(r.error());
+    if (auto r = makeParentFolders(a.screenshots, 0, "--screenshot"); !r) return report(r.error());
     glfw::WindowDesc wd;
     wd.width = a.width;
     wd.height = a.height;
@@ -88,12 +90,9 @@ Runner addViewCommand(CLI::App& app) {
         "view", "Open a window and play the scene: orbit/pan/zoom/fly, shading keys, a side panel "
                 "editing lights and materials (F1 lists the keys)");
     cmd->add_option("scene", args->scene, "glTF/GLB file, or builtin:NAME")->required();
-    cmd->add_option("--width", args->width, "Window width")
-        ->capture_default_str()
-        ->check(CLI::Range(1, 16384));
-    cmd->add_option("--height", args->height, "Window height")
-        ->capture_default_str()
-        ->check(CLI::Range(1, 16384));
+    const auto [width, height] = addSizeOptions(*cmd, args->width, args->height);
+    width->check(CLI::Range(1, 16384));
+    height->check(CLI::Range(1, 16384));
     cmd->add_option("--scene", args->sceneIndex, "glTF scene index (default: the file's default)");
     cmd->add_option("--time", args->time, "Animation time to start at, in seconds")
         ->capture_default_str();
@@ -119,16 +118,14 @@ Runner addViewCommand(CLI::App& app) {
     cmd->add_option("--screenshot-dir", args->screenshotDir,
                     "Folder for F12 screenshots (lantern-view-NNNN.exr and .png)")
         ->capture_default_str();
-    cmd->add_option("--background", args->background,
-                    "Background colour R,G,B or R,G,B,A, linear (default: opaque black)");
+    cmd->add_option("--background", args->background, help::kBackground);
     cmd->add_flag("--no-panel", args->noPanel, "Start with the side panel hidden (F2 shows it)");
     cmd->add_flag("--show-help", args->showHelp, "Start with the key help shown (F1)");
     cmd->add_flag("--headlight", args->headlight, "Start with the lights following the camera (H)");
     cmd->add_flag("--wireframe", args->wireframe, "Start with the wireframe overlay on (Z)");
     cmd->add_flag("--normals", args->normals, "Start with the normals displayed (N)");
     cmd->add_flag("--stats", args->stats, "Print frame-time statistics when the viewer exits");
-    cmd->add_option("--max-size", args->maxSize, "Largest file, buffer or image accepted, in bytes")
-        ->capture_default_str();
+    addMaxSizeOption(*cmd, args->maxSize);
     args->camera.add(*cmd);
     args->shading.add(*cmd);
     args->device.add(*cmd);

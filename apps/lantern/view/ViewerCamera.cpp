@@ -126,6 +126,15 @@ void ViewerCamera::frameAll(double aspect) {
     }
 }
 
+void ViewerCamera::lookFrom(ViewDirection view, double aspect) {
+    const glm::dvec3 f = glm::normalize(framingDirection(view));
+    m_pitch = std::clamp(std::asin(std::clamp(f.y, -1.0, 1.0)), -kMaxPitch, kMaxPitch);
+    // Straight down or up: keep -Z up on screen (yaw 0), as the top view of `--view` does.
+    const bool vertical = std::abs(f.x) < 1e-12 && std::abs(f.z) < 1e-12;
+    m_yaw = vertical ? 0.0 : std::atan2(f.x, -f.z);
+    frameAll(aspect);
+}
+
 void ViewerCamera::setOrthographic(bool orthographic) {
     const double t = std::tan(m_yfovDeg * kPi / 360.0);
     if (orthographic && !m_orthographic) m_halfHeight = m_distance * t;

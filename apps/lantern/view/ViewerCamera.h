@@ -37,6 +37,9 @@ public:
     void move(const glm::dvec3& rightUpForward);
     /// Frames the bounds (`aspect`: width / height of the view).
     void frameAll(double aspect);
+    /// Turns to look along the named view's direction (as `--view`; straight up and down
+    /// stop 0.5 degrees short, as orbiting does) and frames all.
+    void lookFrom(ViewDirection view, double aspect);
     void setOrthographic(bool orthographic);
     bool orthographic() const { return m_orthographic; }
 

@@ -53,8 +53,24 @@ void ViewerInput::onKey(int key, int action, int mods) {
         return;
     }
     if (action == GLFW_REPEAT) return;
-    if (!playbackKey(key) && !shadingKey(key)) cameraKey(key);
-    (void)mods;
+    if (!playbackKey(key) && !shadingKey(key) && !viewKey(key, mods)) cameraKey(key);
+}
+
+// Blender's numeric keypad: 1 front, 3 right, 7 top, with Ctrl the opposite side; 9 the
+// isometric corner, 0 the automatic three-quarter view.
+bool ViewerInput::viewKey(int key, int mods) {
+    const bool opposite = mods & GLFW_MOD_CONTROL;
+    std::optional<ViewDirection> v;
+    switch (key) {
+    case GLFW_KEY_KP_1: v = opposite ? ViewDirection::Back : ViewDirection::Front; break;
+    case GLFW_KEY_KP_3: v = opposite ? ViewDirection::Left : ViewDirection::Right; break;
+    case GLFW_KEY_KP_7: v = opposite ? ViewDirection::Bottom : ViewDirection::Top; break;
+    case GLFW_KEY_KP_9: v = ViewDirection::Iso; break;
+    case GLFW_KEY_KP_0: v = ViewDirection::ThreeQuarter; break;
+    default: return false;
+    }
+    m_st.viewRequested = v;
+    return true;
 }
 
 bool ViewerInput::playbackKey(int key) {

@@ -36,6 +36,7 @@ private:
     bool playbackKey(int key);
     bool shadingKey(int key);
     bool cameraKey(int key);
+    bool viewKey(int key, int mods);
     double perspectiveAspect() const;
 
     ViewerState& m_st;

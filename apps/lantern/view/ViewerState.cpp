@@ -58,6 +58,12 @@ void ViewerState::applyRequests(double aspect) {
             sceneCamera = -1;
         }
     }
+    if (viewRequested) {
+        ensureFree(aspect);
+        if (camera.isFree()) camera.lookFrom(*viewRequested, aspect);
+        viewRequested.reset();
+        frameAllRequested = false;
+    }
     if (frameAllRequested) {
         frameAllRequested = false;
         ensureFree(aspect);
@@ -110,6 +116,9 @@ const std::vector<KeyHelp>& viewerKeys() {
         {"right drag, ctrl + left drag, wheel", "zoom"},
         {"Tab", "fly mode on/off (W A S D move, Q E down/up, shift faster)"},
         {"F", "frame all"},
+        {"keypad 1, 3, 7 (Ctrl: the opposite side), 9, 0",
+         "view from the front, right, top (back, left, bottom), the isometric corner, the "
+         "automatic three-quarter view (as --view), framing all"},
         {"C", "next scene camera (the panel picks any)"},
         {"Space", "play / pause the animation"},
         {"Left, Right", "step one frame back / forward (pauses)"},

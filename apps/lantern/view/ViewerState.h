@@ -39,6 +39,7 @@ struct ViewerState {
 
     // Requests the panel makes; the loop carries them out before the next frame.
     bool frameAllRequested = false;
+    std::optional<ViewDirection> viewRequested; ///< look from a named view, framing all
     bool screenshotRequested = false;
     bool cameraPicked = false;
 

@@ -289,6 +289,13 @@ void cameraSection(ViewerState& st) {
     }
     if (ImGui::Button("frame all")) st.frameAllRequested = true;
     ImGui::SameLine();
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+    if (ImGui::BeginCombo("##view", "view from")) {
+        for (ViewDirection v : kViewDirections)
+            if (ImGui::Selectable(toString(v))) st.viewRequested = v;
+        ImGui::EndCombo();
+    }
+    ImGui::SameLine();
     ImGui::Checkbox("fly", &st.fly);
     ImGui::SameLine();
     ImGui::Checkbox("headlight", &st.headlight);

@@ -14,7 +14,7 @@ namespace lantern {
 
 /// Which extra planes (arbitrary output values) a render produces.
 struct AovSet {
-    bool depth = false;   ///< Z: eye-space distance from the eye to the surface (+inf: nothing)
+    bool depth = false;   ///< Z: eye-space distance from the eye to the surface (FLT_MAX: nothing)
     bool normal = false;  ///< N.X, N.Y, N.Z: unit eye-space normal of the visible side (0: nothing)
     bool any() const { return depth || normal; }
 };

@@ -32,6 +32,9 @@ enum class ViewDirection {
     Bottom,        ///< from -Y
     Iso,           ///< from (+1, +1, +1): the isometric corner
 };
+inline constexpr ViewDirection kViewDirections[] = {
+    ViewDirection::ThreeQuarter, ViewDirection::Front, ViewDirection::Back,   ViewDirection::Left,
+    ViewDirection::Right,        ViewDirection::Top,   ViewDirection::Bottom, ViewDirection::Iso};
 /// "three-quarter", "front", "back", "left", "right", "top", "bottom", "iso".
 LANTERN_API const char* toString(ViewDirection view) noexcept;
 LANTERN_API std::optional<ViewDirection> parseViewDirection(std::string_view text) noexcept;
@@ -56,6 +59,15 @@ struct CameraSpec {
     /// The framing fits the bounding sphere, near and far planes around it.
     glm::dvec3 framingDirection{-0.6123724356957945, -0.5, -0.6123724356957945};
     bool framingOrthographic = false;  ///< frame with an orthographic projection
+
+    /// Automatic framing from a named view, whatever cameras the scene has.
+    static CameraSpec framed(ViewDirection view, bool orthographic = false) noexcept {
+        CameraSpec s;
+        s.source = Source::Framing;
+        s.framingDirection = lantern::framingDirection(view);
+        s.framingOrthographic = orthographic;
+        return s;
+    }
 };
 
 /// A pixel rectangle in GL's convention (origin at the bottom-left of the image, as
@@ -89,7 +101,10 @@ struct RenderOptions {
     std::vector<View> views; ///< several views in one image; empty: one full-image view
     AovSet aovs;
     FeatureMode features = FeatureMode::Specialised;
-    glm::vec4 background{0.0f, 0.0f, 0.0f, 0.0f};  ///< linear, premultiplied
+    /// Linear, premultiplied. Opaque black by default, as `lantern render` and `lantern view`
+    /// (one rule, docs/cli.md); {0, 0, 0, 0} for a transparent background, whose alpha is then
+    /// each pixel's coverage (for compositing).
+    glm::vec4 background{0.0f, 0.0f, 0.0f, 1.0f};
     /// Lights that follow the camera (a headlight rig): when set, every scene light is placed
     /// in eye space through this viewFromWorld instead of each view's own, so the lights keep
     /// their place relative to the camera however it moves. The viewer sets it to the camera

@@ -84,6 +84,35 @@ struct DeviceInfo {
     std::vector<int> msaaSampleCounts;  ///< supported for float colour + depth
 };
 
+/// One Vulkan device of this machine, as listDevices() sees it.
+struct DeviceListing {
+    std::string name;    ///< e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+    std::string type;    ///< "cpu", "discrete-gpu", "integrated-gpu", "virtual-gpu", "other"
+    std::string driver;  ///< e.g. "llvmpipe Mesa 22.3.6 (LLVM 15.0.6)"; empty before Vulkan 1.2
+    std::string apiVersion;  ///< the Vulkan version the device supports, e.g. "1.3.230"
+    bool usable = false;     ///< has what Lantern needs to render headless
+    std::string whyNot;      ///< when not usable: what it lacks ("supports Vulkan 1.2, ...")
+    bool presentation = false;  ///< has VK_KHR_swapchain (a window, `lantern view`, can use it)
+    std::vector<int> msaaSampleCounts;  ///< supported for float colour + depth
+    bool chosen = false;  ///< the device Renderer::create would take with the same deviceName
+};
+
+/// The devices of this machine and the one Lantern would choose.
+struct DeviceList {
+    std::vector<DeviceListing> devices;
+    /// Why the chosen device (or why none): the ranking applied, e.g. "the best usable device
+    /// (discrete GPUs first, then integrated, virtual, CPU)".
+    std::string choice;
+};
+
+/// Lists the Vulkan devices (on an instance of its own, created and destroyed here) with what
+/// each lacks and the one Renderer::create(desc with this deviceName) would choose. NoDevice
+/// when no Vulkan driver can be loaded; an empty list is not an error.
+LANTERN_API Result<DeviceList> listDevices(const std::string& deviceName = {});
+
+/// The Vulkan loader's version ("1.3.239"), or an empty string when no loader can be queried.
+LANTERN_API std::string vulkanLoaderVersion();
+
 /// What a render needs (the features the scene uses) and the pipelines chosen for it.
 struct FeatureReport {
     std::vector<std::string> features;  ///< e.g. "light:directional", "specular:blinn"

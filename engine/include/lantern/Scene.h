@@ -45,7 +45,9 @@ LANTERN_API std::optional<SpecularModel> parseSpecularModel(std::string_view tex
 struct LightingModel {
     glm::dvec3 globalAmbient{0.2, 0.2, 0.2};  ///< GL_LIGHT_MODEL_AMBIENT, linear RGB
     bool localViewer = false;  ///< true: v points to the eye; false: v = (0,0,1) (GL's default)
-    bool twoSided = false;     ///< back faces use the back material and the negated normal
+    /// Back faces lit with the negated normal and the back material (GL_LIGHT_MODEL_TWO_SIDE),
+    /// for every draw when stated; absent: glTF's rule, two-sided for double-sided materials.
+    std::optional<bool> twoSided;
     ShadingMode shading = ShadingMode::Phong;
     SpecularModel specular = SpecularModel::Blinn;
 };
@@ -110,6 +112,12 @@ struct Light {
 
 // --- Meshes ---------------------------------------------------------------------------------
 
+/// A morph target: displacements added to the base mesh, weighted (glTF `targets`).
+struct MorphTarget {
+    std::vector<glm::vec3> positions;  ///< empty, or one displacement per vertex
+    std::vector<glm::vec3> normals;    ///< empty, or one displacement per vertex
+};
+
 /// A triangle list. Attributes are per vertex and object-local. Loaders convert strips and
 /// fans to lists, and fill in missing normals (angle-weighted vertex normals).
 struct Primitive {
@@ -117,6 +125,14 @@ struct Primitive {
     std::vector<glm::vec3> normals;    ///< same count as positions (may contain zero vectors)
     std::vector<glm::vec4> colors;     ///< empty, or COLOR_0 per vertex (linear RGBA)
     std::vector<glm::vec2> texcoords;  ///< empty, or TEXCOORD_0 per vertex
+    /// Skinning (JOINTS_0/1, WEIGHTS_0/1): up to 8 influences per vertex, indices into the
+    /// joints of the skin of the node that draws the mesh. Empty, or one per vertex; set 1
+    /// only with set 0. Weights are used as given (a vertex whose weights are all 0 is not
+    /// moved by the skin).
+    std::vector<glm::uvec4> joints0, joints1;
+    std::vector<glm::vec4> weights0, weights1;
+    /// Morph targets; every primitive of a mesh has the same number (glTF).
+    std::vector<MorphTarget> targets;
     std::vector<std::uint32_t> indices;  ///< triangle list; empty: vertices taken in threes
     int material = -1;  ///< index into Scene::materials; -1: the default material
 
@@ -128,6 +144,18 @@ struct Primitive {
 struct Mesh {
     std::string name;
     std::vector<Primitive> primitives;
+    std::vector<double> weights;  ///< default morph-target weights (empty: all 0)
+};
+
+/// A skin (glTF `skins`): the joints that deform the vertices of the meshes drawn with it.
+/// The vertex of a skinned primitive lands at sum_i w_i * worldFromNode[joints[j_i]] *
+/// inverseBind[j_i] * p: in world space, so the transform of the node that draws the mesh is
+/// not applied (glTF: it only places the skeleton through the joints).
+struct Skin {
+    std::string name;
+    std::vector<int> joints;              ///< node indices
+    std::vector<glm::dmat4> inverseBind;  ///< one per joint (identity when the file has none)
+    int skeleton = -1;                    ///< the skeleton's root node (a hint only), or -1
 };
 
 /// An RGBA8 texture in sRGB encoding (the glTF base-colour convention), top row first.
@@ -152,20 +180,26 @@ struct LANTERN_API Node {
     int mesh = -1;
     int camera = -1;
     int light = -1;
+    int skin = -1;                ///< index into Scene::skins; -1: none
+    std::vector<double> weights;  ///< morph weights overriding the mesh's (empty: the mesh's)
 
     /// parentFromNode: `matrix`, or T * R * S.
     glm::dmat4 localTransform() const;
 };
 
 enum class Interpolation { Step, Linear, CubicSpline };
-enum class AnimationPath { Translation, Rotation, Scale };
+enum class AnimationPath { Translation, Rotation, Scale, Weights };
 
 /// Keyframes. `values` holds one entry per key (xyz, or a quaternion as x,y,z,w), or for
-/// CubicSpline three per key: in-tangent, value, out-tangent.
+/// CubicSpline three per key: in-tangent, value, out-tangent. A Weights sampler keeps its
+/// keys in `weights` instead: `weightCount` numbers per key (three such groups per key for
+/// CubicSpline: in-tangents, values, out-tangents).
 struct AnimationSampler {
     Interpolation interpolation = Interpolation::Linear;
     std::vector<double> times;  ///< seconds, strictly increasing, >= 0
     std::vector<glm::dvec4> values;
+    std::vector<double> weights;   ///< AnimationPath::Weights only
+    std::size_t weightCount = 0;   ///< morph targets per key (Weights only)
 };
 
 struct AnimationChannel {
@@ -187,6 +221,9 @@ struct LANTERN_API Animation {
 /// clamp; rotations use shortest-arc slerp (Linear) and are normalised (CubicSpline).
 LANTERN_API glm::dvec4 sampleAnimation(const AnimationSampler& sampler, AnimationPath path,
                                        double time);
+/// Samples a Weights sampler at `time`: weightCount numbers, interpolated component-wise
+/// (Step, Linear or Hermite), clamped outside the key range.
+LANTERN_API std::vector<double> sampleWeights(const AnimationSampler& sampler, double time);
 
 /// A glTF scene: the root nodes to draw and the scene's lighting model (LANTERN_lighting).
 struct SceneRoot {
@@ -206,6 +243,7 @@ struct LANTERN_API Scene {
     std::vector<Light> lights;
     std::vector<Camera> cameras;
     std::vector<Node> nodes;
+    std::vector<Skin> skins;
     std::vector<Animation> animations;
     std::vector<SceneRoot> roots;  ///< glTF scenes; may be empty (nothing is drawn)
     int defaultRoot = 0;           ///< the root drawn unless another is chosen (0 when none)
@@ -231,6 +269,11 @@ struct Pose {
     double time = 0.0;
     std::vector<glm::dmat4> worldFromNode;  ///< one per Scene::nodes entry
     std::vector<bool> visible;              ///< true for nodes reachable from the root
+    /// Per node: the morph weights its mesh is drawn with (animated, else the node's, else the
+    /// mesh's, else zeros); empty for a node whose mesh has no morph targets.
+    std::vector<std::vector<double>> morphWeights;
+    /// Per skin: worldFromNode[joint] * inverseBind, one per joint (world from bind space).
+    std::vector<std::vector<glm::dmat4>> jointMatrices;
 };
 
 /// Evaluates every animation of the scene at `time` (seconds) and composes node transforms.
@@ -253,6 +296,31 @@ LANTERN_API TimeRange animationRange(const Scene& scene, int animation = -1);
 /// `time` wrapped into `range` for looping playback: range.start + (time - range.start) modulo
 /// the duration, in [start, end); range.start for an empty range or a non-finite time.
 LANTERN_API double loopTime(double time, const TimeRange& range);
+
+/// True when node `node` draws `prim` skinned: the node has a skin and the primitive has
+/// joints. Its deformed vertices are then in world space (see Skin).
+LANTERN_API bool isSkinned(const Scene& scene, int node, const Primitive& prim);
+/// True when node `node` draws `prim` deformed: skinned, or with morph targets.
+LANTERN_API bool isDeformed(const Scene& scene, int node, const Primitive& prim);
+
+/// A primitive's vertices as a pose deforms them, in double precision.
+struct DeformedPrimitive {
+    std::vector<glm::dvec3> positions;
+    std::vector<glm::dvec3> normals;  ///< unit length, or zero where the normal vanishes
+};
+
+/// The vertices node `node` draws `prim` with in `pose`: the morph targets blended with the
+/// node's weights (p + sum w_t dp_t, n + sum w_t dn_t), then, when skinned, each vertex
+/// transformed by the weighted sum S of its joints' matrices (normals by S's cofactor
+/// matrix, sign-corrected for mirroring), normals normalised. Skinned results are in world
+/// space, others in the node's space (worldFromDrawn() says which). The one CPU
+/// implementation: bounds, framing and the reference use it; shaders/deform.comp is its twin.
+LANTERN_API DeformedPrimitive deformPrimitive(const Scene& scene, const Pose& pose, int node,
+                                              const Primitive& prim);
+/// worldFromModel for node `node` drawing `prim`: identity when skinned (the vertices are
+/// already in world space), else pose.worldFromNode[node].
+LANTERN_API glm::dmat4 worldFromDrawn(const Scene& scene, const Pose& pose, int node,
+                                      const Primitive& prim);
 
 /// World-space bounds of everything drawn in a pose.
 LANTERN_API Bounds computeBounds(const Scene& scene, const Pose& pose);

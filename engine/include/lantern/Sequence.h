@@ -22,7 +22,13 @@ struct FrameRange {
     int count() const { return last - first + 1; }
 };
 
-/// Parses "A-B" (or a single "A"); frames are >= 0 and first <= last.
+/// The most encoder threads a sequence may ask for (SequenceOptions::encoderThreads).
+inline constexpr int kMaxEncoderThreads = 256;
+
+/// The most frames one range or list may hold (2^24; longer ones are refused as typos).
+inline constexpr int kMaxSequenceFrames = 1 << 24;
+
+/// Parses "A-B" (or a single "A"); frames are >= 0, first <= last, at most kMaxSequenceFrames.
 LANTERN_API Result<FrameRange> parseFrameRange(std::string_view text);
 
 /// A shard: frames k with k mod count == index.
@@ -35,7 +41,7 @@ struct Shard {
 /// Parses "I/N" with 0 <= I < N.
 LANTERN_API Result<Shard> parseShard(std::string_view text);
 
-/// The frames of `range` that `shard` renders, in order.
+/// The frames of `range` that `shard` renders, in order (of its first kMaxSequenceFrames).
 LANTERN_API std::vector<int> shardFrames(const FrameRange& range, const Shard& shard);
 
 /// Parses a frame list "A,B,C-D" (ranges inclusive, frames >= 0, at least one frame). The
@@ -75,7 +81,8 @@ struct SequenceOptions {
     /// written to each.
     std::vector<std::string> outputs;
     ExrOptions exr;
-    /// Encoder threads (0: one per core). Encoding is the expensive stage on a CPU renderer.
+    /// Encoder threads (0: one per core; at most kMaxEncoderThreads). Encoding is the expensive
+    /// stage on a CPU renderer.
     int encoderThreads = 0;
     /// Polled between frames: return true to stop (frames already being written finish,
     /// nothing half-written remains). Called on the rendering thread.

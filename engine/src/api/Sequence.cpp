@@ -34,6 +34,19 @@ Result<void> checkSequence(const SequenceOptions& s, const std::vector<int>& fra
     if (!(s.fps > 0.0) || !std::isfinite(s.fps))
         return makeError(ErrorCode::InvalidInput, "frames per second must be a positive number", "--fps");
     if (s.outputs.empty()) return makeError(ErrorCode::Usage, "a sequence needs an output", "--output");
+    if (s.frameList.empty() &&
+        (s.frames.first < 0 || s.frames.last < s.frames.first ||
+         std::int64_t(s.frames.last) - s.frames.first + 1 > kMaxSequenceFrames))
+        return makeError(ErrorCode::InvalidInput,
+                         "frames " + std::to_string(s.frames.first) + "-" +
+                             std::to_string(s.frames.last) + " are not a range A-B with 0 <= A <= B "
+                             "of at most " + std::to_string(kMaxSequenceFrames) + " frames",
+                         "--frames");
+    if (s.encoderThreads < 0 || s.encoderThreads > kMaxEncoderThreads)
+        return makeError(ErrorCode::InvalidInput,
+                         std::to_string(s.encoderThreads) + " encoder threads: use 0 (one per core) "
+                         "to " + std::to_string(kMaxEncoderThreads),
+                         "--encoder-threads");
     for (const std::string& out : s.outputs) {
         const std::string ext = std::filesystem::path(out).extension().string();
         if (ext != ".exr" && ext != ".png")

@@ -226,9 +226,7 @@ const char* toString(ViewDirection view) noexcept {
 }
 
 std::optional<ViewDirection> parseViewDirection(std::string_view text) noexcept {
-    for (ViewDirection v : {ViewDirection::ThreeQuarter, ViewDirection::Front, ViewDirection::Back,
-                            ViewDirection::Left, ViewDirection::Right, ViewDirection::Top,
-                            ViewDirection::Bottom, ViewDirection::Iso})
+    for (ViewDirection v : kViewDirections)
         if (text == toString(v)) return v;
     return std::nullopt;
 }

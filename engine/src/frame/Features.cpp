@@ -16,6 +16,10 @@ const char* toString(Program p) noexcept {
     return "?";
 }
 
+bool twoSidedLighting(const Lighting& lighting, const Material& material) noexcept {
+    return lighting.model.twoSided.value_or(material.doubleSided);
+}
+
 Lighting resolveLighting(const Scene& scene, int root, const RenderOptions& o) {
     Lighting r;
     const int ri = root < 0 ? scene.defaultRoot : root;
@@ -77,7 +81,7 @@ std::vector<std::string> describeFeatures(const Frame& frame, const RenderOption
     f.push_back(std::string("shading:") + toString(lit.model.shading) +
                 (lit.program == Program::GlFlat ? " (provoking vertex)" : ""));
     if (lit.model.localViewer) f.push_back("local-viewer");
-    if (lit.model.twoSided) f.push_back("two-sided");
+    if (lit.model.twoSided.value_or(false)) f.push_back("two-sided");
     if (lit.clamp == Clamp::Gl) f.push_back("clamp:gl (per vertex)");
     if (lit.clamp == Clamp::Fragment) f.push_back("clamp");
     if (o.aovs.any()) f.push_back("aov");
@@ -93,6 +97,10 @@ std::vector<std::string> describeFeatures(const Frame& frame, const RenderOption
     if (any.alphaMask) f.push_back("alpha-mask");
     if (any.blend) f.push_back("alpha-blend");
     if (any.unlit) f.push_back("unlit");
+    std::size_t deformed = 0;
+    for (const View& v : frame.views)
+        for (const Draw& d : v.draws) deformed += d.deformed ? 1 : 0;
+    if (deformed > 0) f.push_back("deform:skin/morph x" + std::to_string(deformed));
     return f;
 }
 

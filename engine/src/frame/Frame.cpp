@@ -41,8 +41,10 @@ std::vector<Material> frameMaterials(const Scene& scene, bool glCompat) {
     return out;
 }
 
-DrawFeatures drawFeatures(const Material& mat, const Draw& d, const LightFeatures& lights) {
+DrawFeatures drawFeatures(const Material& mat, const Draw& d, const LightFeatures& lights,
+                          const Lighting& lighting) {
     DrawFeatures f;
+    f.twoSided = twoSidedLighting(lighting, mat);
     const bool materialSpecular =
         nonZero(mat.front.specular) || (mat.back && nonZero(mat.back->specular));
     f.specular = lights.specular && materialSpecular && !mat.unlit;
@@ -60,16 +62,22 @@ void addNodeDraws(const Scene& scene, const Frame& frame, std::size_t ni,
                   const glm::dmat4& viewFromWorld, std::vector<Draw>& opaque,
                   std::vector<Draw>& blended) {
     const Node& node = scene.nodes[ni];
-    const glm::dmat4 viewFromModel = viewFromWorld * frame.pose.worldFromNode[ni];
-    const glm::dmat3 normals = normalMatrix(viewFromModel);
+    const glm::dmat4 nodeViewFromModel = viewFromWorld * frame.pose.worldFromNode[ni];
+    const glm::dmat3 nodeNormals = normalMatrix(nodeViewFromModel);
     // Accurate: glm::determinant gets the sign wrong for scales 1e-6 and 1e6 under a
     // rotation, which would cull the visible faces.
-    const bool mirrored = math::accurateDeterminant(glm::dmat3(viewFromModel)) < 0.0;
+    const bool nodeMirrored = math::accurateDeterminant(glm::dmat3(nodeViewFromModel)) < 0.0;
     const Mesh& mesh = scene.meshes[std::size_t(node.mesh)];
     const std::uint32_t defaultMaterial = std::uint32_t(scene.materials.size());
     for (std::size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
         const Primitive& prim = mesh.primitives[pi];
         if (prim.triangleCount() == 0) continue;
+        // Skinned vertices are in world space: the node's own transform is not applied.
+        const bool skinned = isSkinned(scene, int(ni), prim);
+        const glm::dmat4 viewFromModel = skinned ? viewFromWorld : nodeViewFromModel;
+        const glm::dmat3 normals = skinned ? normalMatrix(viewFromWorld) : nodeNormals;
+        const bool mirrored =
+            skinned ? math::accurateDeterminant(glm::dmat3(viewFromWorld)) < 0.0 : nodeMirrored;
         Draw d;
         d.node = std::uint32_t(ni);
         d.mesh = std::uint32_t(node.mesh);
@@ -82,12 +90,17 @@ void addNodeDraws(const Scene& scene, const Frame& frame, std::size_t ni,
         d.cullBack = !mat.doubleSided;
         d.hasColors = !prim.colors.empty();
         d.hasTexcoords = !prim.texcoords.empty();
+        d.deformed = isDeformed(scene, int(ni), prim);
         d.texture = (mat.baseColorTexture >= 0 && d.hasTexcoords) ? mat.baseColorTexture : -1;
-        d.features = drawFeatures(mat, d, frame.lightFeatures);
+        d.features = drawFeatures(mat, d, frame.lightFeatures, frame.lighting);
         if (d.features.blend) {
             // Sort key: the eye-space depth of the primitive's bounds centre.
             Bounds local;
-            for (const glm::vec3& p : prim.positions) local.extend(glm::dvec3(p));
+            if (d.deformed)
+                for (const glm::dvec3& p : deformPrimitive(scene, frame.pose, int(ni), prim).positions)
+                    local.extend(p);
+            else
+                for (const glm::vec3& p : prim.positions) local.extend(glm::dvec3(p));
             d.sortDepth = (viewFromModel * glm::dvec4(local.center(), 1.0)).z;
             blended.push_back(std::move(d));
         } else {

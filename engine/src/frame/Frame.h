@@ -48,6 +48,12 @@ struct Lighting {
 /// Combines the scene root's lighting model with the options' overrides.
 Lighting resolveLighting(const Scene& scene, int root, const RenderOptions& options);
 
+/// Whether back faces of `material` are lit with the reversed normal and the back material:
+/// the scene's or the options' two-sided model when stated (GL's GL_LIGHT_MODEL_TWO_SIDE, for
+/// every draw), else whether the material is double-sided (glTF: "back-face normals are
+/// reversed").
+bool twoSidedLighting(const Lighting& lighting, const Material& material) noexcept;
+
 /// A camera resolved for one view, in double precision.
 struct ViewCamera {
     glm::dmat4 viewFromWorld{1.0};
@@ -108,6 +114,9 @@ struct DrawFeatures {
     bool blend = false;
     bool unlit = false;
     bool ambientFollowsDiffuse = false;
+    /// Back faces lit with the reversed normal and the back material: the scene's two-sided
+    /// lighting model (GL_LIGHT_MODEL_TWO_SIDE), or a double-sided material (glTF's rule).
+    bool twoSided = false;
 };
 
 /// One draw: a primitive of a node's mesh seen from a view.
@@ -120,6 +129,9 @@ struct Draw {
     bool mirrored = false;  ///< det(viewFromModel) < 0: clockwise triangles face the viewer
     bool cullBack = true;   ///< false for double-sided materials
     bool hasColors = false, hasTexcoords = false;
+    /// Drawn with the pose's deformation (skin, morph targets: deformPrimitive()). Skinned
+    /// draws are in world space: viewFromModel is then the view's viewFromWorld.
+    bool deformed = false;
     int texture = -1;       ///< Scene::textures index of the base colour; -1: none (white)
     DrawFeatures features;
     double sortDepth = 0.0; ///< eye-space z of the primitive's bounds centre (blended draws)

@@ -1,7 +1,10 @@
 // Which physical device Lantern renders on: the choice among an instance's devices for
-// Context::create (with the reason each one was passed over), and the checks on a host's device
-// for Context::adopt.
+// Context::create (with the reason each one was passed over), the same choice described for
+// lantern::listDevices (`lantern info --devices`), and the checks on a host's device for
+// Context::adopt.
 #include "gpu/DeviceSelection.h"
+
+#include <lantern/Renderer.h>
 
 #include <algorithm>
 #include <cctype>
@@ -284,3 +287,86 @@ bool extensionEnabled(const ExternalDevice& e, const char* name) {
 }
 
 } // namespace lantern::gpu
+
+namespace lantern {
+namespace {
+
+std::string fullVersionText(std::uint32_t v) {
+    return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) +
+           "." + std::to_string(VK_API_VERSION_PATCH(v));
+}
+
+// What listDevices says of one candidate: its driver, sample counts and swapchain support.
+DeviceListing describe(const gpu::Candidate& c) {
+    DeviceListing d;
+    d.name = c.props.deviceName;
+    d.type = gpu::deviceTypeName(c.props.deviceType);
+    d.apiVersion = fullVersionText(c.props.apiVersion);
+    d.usable = c.rejection.empty();
+    d.whyNot = c.rejection;
+    if (c.props.apiVersion >= VK_API_VERSION_1_2) {
+        VkPhysicalDeviceVulkan12Properties p12{
+            VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_PROPERTIES};
+        VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &p12, {}};
+        vkGetPhysicalDeviceProperties2(c.device, &props2);
+        d.driver = std::string(p12.driverName) + " " + p12.driverInfo;
+    }
+    d.presentation =
+        gpu::hasExtension(gpu::deviceExtensions(c.device), VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+    const auto& lim = c.props.limits;
+    const VkSampleCountFlags counts =
+        lim.framebufferColorSampleCounts & lim.framebufferDepthSampleCounts;
+    for (int s = 1; s <= 64; s *= 2)
+        if (counts & VkSampleCountFlags(s)) d.msaaSampleCounts.push_back(s);
+    return d;
+}
+
+} // namespace
+
+std::string vulkanLoaderVersion() {
+    std::uint32_t version = 0;
+    if (vkEnumerateInstanceVersion(&version) != VK_SUCCESS) return {};
+    return fullVersionText(version);
+}
+
+Result<DeviceList> listDevices(const std::string& deviceName) {
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.pApplicationName = "lantern";
+    app.apiVersion = VK_API_VERSION_1_3;
+    VkInstanceCreateInfo ici{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    ici.pApplicationInfo = &app;
+    VkInstance instance = VK_NULL_HANDLE;
+    const VkResult r = vkCreateInstance(&ici, nullptr, &instance);
+    if (r != VK_SUCCESS)
+        return makeError(ErrorCode::NoDevice,
+                         std::string("no Vulkan driver could be loaded (") + gpu::vkResultName(r) +
+                             "); install mesa-vulkan-drivers for the lavapipe CPU device");
+    std::uint32_t n = 0;
+    vkEnumeratePhysicalDevices(instance, &n, nullptr);
+    std::vector<VkPhysicalDevice> devices(n);
+    vkEnumeratePhysicalDevices(instance, &n, devices.data());
+    devices.resize(n);
+    std::vector<gpu::Candidate> candidates;
+    for (VkPhysicalDevice pd : devices)
+        candidates.push_back(gpu::examine(pd, false));
+    const std::string wanted = gpu::lower(deviceName);
+    const gpu::Candidate* best = gpu::bestCandidate(candidates, wanted);
+    DeviceList list;
+    for (const gpu::Candidate& c : candidates) {
+        list.devices.push_back(describe(c));
+        list.devices.back().chosen = &c == best;
+    }
+    vkDestroyInstance(instance, nullptr);
+    const std::string ranking = "discrete GPUs first, then integrated, virtual, CPU";
+    if (best)
+        list.choice = wanted.empty() ? "the best-ranked usable device (" + ranking + ")"
+                                     : "the best-ranked usable device whose name contains \"" +
+                                           deviceName + "\" (" + ranking + ")";
+    else
+        list.choice = wanted.empty() ? "none: no device has what Lantern needs"
+                                     : "none: no usable device's name contains \"" + deviceName +
+                                           "\"";
+    return list;
+}
+
+} // namespace lantern

@@ -41,6 +41,16 @@ struct DrawCommand {
     bool cullBack = true;
     bool frontClockwise = false;  ///< a mirroring transform: clockwise triangles are front
     DrawBlock block{};            ///< push constants
+    int deform = -1;  ///< DrawList::deforms index whose output it draws; -1: its own streams
+};
+
+/// One deformation the pre-pass computes before the draws (shaders/deform.comp): a primitive
+/// as a pose skins and morphs it, read by the draws that name it.
+struct DeformCommand {
+    std::uint32_t mesh = 0, primitive = 0;
+    bool flat = false;          ///< the flat-shading streams (per triangle corner) instead
+    std::vector<Mat4> joints;   ///< world from bind space, per joint; empty: not skinned
+    std::vector<float> weights; ///< morph weights, per target; empty: no morph targets
 };
 
 /// One viewport's share of the frame.
@@ -72,6 +82,7 @@ struct DrawList {
     TargetDesc target;
     std::vector<MaterialData> materials;  ///< at least one
     std::vector<ViewCommands> views;
+    std::vector<DeformCommand> deforms;  ///< skinned and morphing primitives (usually none)
     Overlays overlays;
 
     std::size_t drawCount() const {

@@ -212,6 +212,18 @@ Result<std::uint32_t> FrameRing::submit(const DrawList& list,
         if (!overlays) return std::move(overlays).error();
         slot.overlays = *overlays;
     }
+    slot.deforming = !list.deforms.empty();
+    if (slot.deforming) {
+        if (!scene->deformInput())
+            return makeError(ErrorCode::Internal,
+                             "a draw list deforms a scene uploaded without deformation inputs");
+        if (!m_deformer) {
+            auto deformer = Deformer::create(m_ctx, m_pipelines);
+            if (!deformer) return std::move(deformer).error();
+            m_deformer = std::move(*deformer);
+        }
+        LANTERN_TRY(m_deformer->prepare(slot.deform, list, *scene));
+    }
     auto arena = fillArena(slot, list);
     if (!arena) return std::move(arena).error();
 
@@ -219,7 +231,7 @@ Result<std::uint32_t> FrameRing::submit(const DrawList& list,
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     LANTERN_VK_TRY(vkBeginCommandBuffer(slot.cmd, &bi));
-    recordFrame(m_pipelines.layout(), m_overlays.get(), slot, *scene, list, *arena,
+    recordFrame(m_pipelines.layout(), m_overlays.get(), m_deformer.get(), slot, *scene, list, *arena,
                 pipelines, aovPipelines, hooks);
     LANTERN_VK_TRY(vkEndCommandBuffer(slot.cmd));
     LANTERN_TRY(queueSubmit(slot, hooks));

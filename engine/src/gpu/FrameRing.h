@@ -7,6 +7,7 @@
 #pragma once
 
 #include "gpu/Context.h"
+#include "gpu/Deform.h"
 #include "gpu/Device.h"
 #include "gpu/DrawList.h"
 #include "gpu/Overlays.h"
@@ -63,6 +64,8 @@ public:
         bool readback = true;
         std::size_t draws = 0;
         OverlayFrame overlays;  ///< this frame's display overlays
+        DeformSlot deform;      ///< skinned and morphing streams (frames with deforms only)
+        bool deforming = false; ///< this frame records the deformation pre-pass
     };
 
     /// Where each view's FrameBlock and lights sit in a slot's arena.
@@ -82,15 +85,17 @@ private:
     Context& m_ctx;
     Pipelines& m_pipelines;
     std::unique_ptr<OverlayPipelines> m_overlays;  ///< made on first use
+    std::unique_ptr<Deformer> m_deformer;          ///< made on first use
     std::vector<Slot> m_slots;
     std::uint32_t m_next = 0;
     bool m_timestamps = false;
 };
 
-/// Records a frame into `slot.cmd` (begun): barriers, the render pass(es) with every view's
+/// Records a frame into `slot.cmd` (begun): the deformation pre-pass (when the slot deforms),
+/// barriers, the render pass(es) with every view's
 /// draws and overlays, the copies into the readback buffers, then `hooks.afterRender`.
 void recordFrame(VkPipelineLayout layout, const OverlayPipelines* overlays,
-                 FrameRing::Slot& slot, const SceneBuffers& scene, const DrawList& list,
+                 const Deformer* deformer, FrameRing::Slot& slot, const SceneBuffers& scene, const DrawList& list,
                  const FrameRing::ArenaLayout& arena, const std::vector<VkPipeline>& pipelines,
                  const std::vector<VkPipeline>& aovPipelines, const SubmitHooks& hooks);
 

@@ -88,4 +88,15 @@ static_assert(offsetof(DrawBlock, flags) == 120);
 
 inline constexpr std::uint32_t kDrawFlagVertexColor = 1u;
 
+// Push constants of shaders/deform.comp: one deformation job (offsets in 32-bit words).
+struct DeformJob {
+    std::uint32_t count = 0, flatMode = 0, vertexCount = 0;
+    std::uint32_t position = 0, normal = 0, joints = 0, weights = 0, influences = 0;
+    std::uint32_t targets = 0, targetCount = 0, indices = LANTERN_DEFORM_NONE;
+    std::uint32_t matrices = 0, morphWeights = 0;
+    std::uint32_t outPosition = 0, outNormal = 0, outCentroid = 0;
+};
+static_assert(sizeof(DeformJob) == 64);
+static_assert(offsetof(DeformJob, outCentroid) == 60);
+
 } // namespace lantern::gpu

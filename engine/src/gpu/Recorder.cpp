@@ -68,6 +68,11 @@ void FrameRecorder::beginAttachments() const {
 void FrameRecorder::bindStreams(const DrawCommand& d) const {
     const PrimitiveBuffers& gp = scene.primitive(d.mesh, d.primitive);
     const VkBuffer geometry = scene.geometry();
+    // A deformed draw reads its positions and normals (and flat centroids) from this frame's
+    // pre-pass output.
+    const bool deformed = d.deform >= 0 && slot.deforming;
+    const DeformStreams* ds = deformed ? &slot.deform.streams[std::size_t(d.deform)] : nullptr;
+    const VkBuffer moved = deformed ? slot.deform.output.get() : VK_NULL_HANDLE;
     if (d.pipeline.program == frame::Program::Flat) {
         const VkBuffer flat = scene.flatGeometry();
         const bool color = gp.flatColor != kNoStream, texcoord = gp.flatTexcoord != kNoStream;
@@ -76,13 +81,13 @@ void FrameRecorder::bindStreams(const DrawCommand& d) const {
         auto set = [&](int loc, VkBuffer b, VkDeviceSize o, VkDeviceSize s) {
             buffers[loc] = b, offsets[loc] = o, strides[loc] = s;
         };
-        set(LANTERN_LOC_POSITION, flat, gp.flatPosition, 12);
-        set(LANTERN_LOC_NORMAL, flat, gp.flatNormal, 12);
+        set(LANTERN_LOC_POSITION, ds ? moved : flat, ds ? ds->position : gp.flatPosition, 12);
+        set(LANTERN_LOC_NORMAL, ds ? moved : flat, ds ? ds->normal : gp.flatNormal, 12);
         set(LANTERN_LOC_COLOR, color ? flat : geometry,
             color ? gp.flatColor : scene.defaultColorOffset(), color ? 16 : 0);
         set(LANTERN_LOC_TEXCOORD, texcoord ? flat : geometry,
             texcoord ? gp.flatTexcoord : scene.defaultTexcoordOffset(), texcoord ? 8 : 0);
-        set(LANTERN_LOC_CENTROID, flat, gp.flatCentroid, 12);
+        set(LANTERN_LOC_CENTROID, ds ? moved : flat, ds ? ds->centroid : gp.flatCentroid, 12);
         vkCmdBindVertexBuffers2(cmd, 0, LANTERN_VERTEX_BINDINGS, buffers, offsets, nullptr, strides);
         vkCmdDraw(cmd, gp.flatVertexCount, 1, 0, 0);
         return;
@@ -93,6 +98,11 @@ void FrameRecorder::bindStreams(const DrawCommand& d) const {
     for (VkBuffer& b : buffers) b = geometry;
     offsets[LANTERN_LOC_POSITION] = gp.position, strides[LANTERN_LOC_POSITION] = 12;
     offsets[LANTERN_LOC_NORMAL] = gp.normal, strides[LANTERN_LOC_NORMAL] = 12;
+    if (ds) {
+        buffers[LANTERN_LOC_POSITION] = buffers[LANTERN_LOC_NORMAL] = moved;
+        offsets[LANTERN_LOC_POSITION] = ds->position;
+        offsets[LANTERN_LOC_NORMAL] = ds->normal;
+    }
     offsets[LANTERN_LOC_COLOR] = color ? gp.color : scene.defaultColorOffset();
     strides[LANTERN_LOC_COLOR] = color ? 16 : 0;
     offsets[LANTERN_LOC_TEXCOORD] = texcoord ? gp.texcoord : scene.defaultTexcoordOffset();
@@ -208,7 +218,7 @@ VkRenderingAttachmentInfo attachment(const Image& target, const Image* multisamp
 } // namespace
 
 void recordFrame(VkPipelineLayout layout, const OverlayPipelines* overlays,
-                 FrameRing::Slot& slot, const SceneBuffers& scene, const DrawList& list,
+                 const Deformer* deformer, FrameRing::Slot& slot, const SceneBuffers& scene, const DrawList& list,
                  const FrameRing::ArenaLayout& arena, const std::vector<VkPipeline>& pipelines,
                  const std::vector<VkPipeline>& aovPipelines, const SubmitHooks& hooks) {
     const FrameRecorder r{slot.cmd, layout, overlays, slot, scene, list, arena};
@@ -217,6 +227,7 @@ void recordFrame(VkPipelineLayout layout, const OverlayPipelines* overlays,
     if (slot.queries) vkCmdResetQueryPool(cmd, slot.queries, 0, 2);
     r.beginAttachments();
     if (slot.queries) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, slot.queries, 0);
+    if (slot.deforming && deformer) deformer->record(cmd, slot.deform);
 
     VkClearValue colorClear{};
     std::memcpy(colorClear.color.float32, &list.target.clear[0], 4 * sizeof(float));

@@ -37,15 +37,17 @@ Result<Filler> beginFill(Context& ctx, Buffer& target) {
     return f;
 }
 
-Result<void> endFill(Context& ctx, Buffer& target, Filler& f) {
+Result<void> endFill(Context& ctx, Buffer& target, Filler& f,
+                     VkPipelineStageFlags2 dstStage = VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT,
+                     VkAccessFlags2 dstAccess = VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT |
+                                                VK_ACCESS_2_INDEX_READ_BIT) {
     if (!f.staging.buffer) return flush(ctx, target);
     LANTERN_TRY(flush(ctx, f.staging));
     return ctx.submitAndWait([&](VkCommandBuffer cmd) {
         VkBufferCopy region{0, 0, target.size};
         vkCmdCopyBuffer(cmd, f.staging.get(), target.get(), 1, &region);
         memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                           VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT,
-                           VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_2_INDEX_READ_BIT);
+                      dstStage, dstAccess);
     });
 }
 
@@ -236,6 +238,7 @@ Result<std::shared_ptr<SceneBuffers>> SceneBuffers::create(std::shared_ptr<Conte
             if (gp.index != kNoStream) put(dst, gp.index, p.indices);
         }
     LANTERN_TRY(endFill(c, g->m_geometry, *fill));
+    LANTERN_TRY(g->uploadDeformInputs());
     LANTERN_TRY(g->uploadTextures(textureLayout));
     return g;
 }
@@ -314,6 +317,78 @@ Result<void> SceneBuffers::ensureFlatStreams() {
     LANTERN_TRY(endFill(*m_ctx, m_flatGeometry, *fill));
     m_flatReady = true;
     return {};
+}
+
+// Primitives with joints or morph targets: base positions and normals, joints and weights
+// (4 or 8 per vertex), per target position then normal displacements (zeros where a target
+// has none), the triangle list; all as 32-bit words. A scene that cannot deform has none.
+Result<void> SceneBuffers::uploadDeformInputs() {
+    const Scene& s = *m_scene;
+    std::uint64_t words = 0;
+    std::size_t k = 0;
+    for (const Mesh& mesh : s.meshes)
+        for (const Primitive& p : mesh.primitives) {
+            PrimitiveBuffers& gp = m_primitives[k++];
+            if (p.joints0.empty() && p.targets.empty()) continue;
+            const std::uint64_t n = p.positions.size();
+            gp.deformable = true;
+            gp.influences = p.joints0.empty() ? 0 : p.joints1.empty() ? 4 : 8;
+            gp.targetCount = std::uint32_t(p.targets.size());
+            gp.deformPosition = std::uint32_t(words);
+            words += 3 * n;
+            gp.deformNormal = std::uint32_t(words);
+            words += 3 * n;
+            gp.deformJoints = std::uint32_t(words);
+            words += gp.influences * n;
+            gp.deformWeights = std::uint32_t(words);
+            words += gp.influences * n;
+            gp.deformTargets = std::uint32_t(words);
+            words += 6 * n * p.targets.size();
+            if (!p.indices.empty()) {
+                gp.deformIndices = std::uint32_t(words);
+                words += p.indices.size();
+            }
+            if (words >= LANTERN_DEFORM_NONE) return tooLarge("the skinning and morph-target data");
+        }
+    if (words == 0) return {};
+    auto buffer = createBuffer(*m_ctx, words * 4,
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                               MemoryUsage::DeviceLocal, "deformation inputs");
+    if (!buffer) return std::move(buffer).error();
+    m_deformInput = std::move(*buffer);
+    auto fill = beginFill(*m_ctx, m_deformInput);
+    if (!fill) return std::move(fill).error();
+    auto* dst = reinterpret_cast<std::uint32_t*>(fill->dst);
+    auto putFloat = [&](std::uint64_t at, float f) { std::memcpy(dst + at, &f, 4); };
+    auto put3 = [&](std::uint64_t at, const std::vector<glm::vec3>& v) {
+        if (!v.empty()) std::memcpy(dst + at, v.data(), v.size() * 12);
+    };
+    k = 0;
+    for (const Mesh& mesh : s.meshes)
+        for (const Primitive& p : mesh.primitives) {
+            const PrimitiveBuffers& gp = m_primitives[k++];
+            if (!gp.deformable) continue;
+            const std::size_t n = p.positions.size();
+            put3(gp.deformPosition, p.positions);
+            put3(gp.deformNormal, p.normals);
+            for (std::size_t v = 0; v < n && gp.influences > 0; ++v)
+                for (std::uint32_t i = 0; i < gp.influences; ++i) {
+                    const glm::uvec4& j = i < 4 ? p.joints0[v] : p.joints1[v];
+                    const glm::vec4& w = i < 4 ? p.weights0[v] : p.weights1[v];
+                    dst[gp.deformJoints + v * gp.influences + i] = j[int(i % 4)];
+                    putFloat(gp.deformWeights + v * gp.influences + i, w[int(i % 4)]);
+                }
+            for (std::size_t t = 0; t < p.targets.size(); ++t) {
+                const std::uint64_t base = gp.deformTargets + t * 6 * n;
+                std::memset(dst + base, 0, 6 * n * 4);
+                put3(base, p.targets[t].positions);
+                put3(base + 3 * n, p.targets[t].normals);
+            }
+            if (!p.indices.empty())
+                std::memcpy(dst + gp.deformIndices, p.indices.data(), p.indices.size() * 4);
+        }
+    return endFill(*m_ctx, m_deformInput, *fill, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                   VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
 }
 
 Result<void> SceneBuffers::uploadTextures(VkDescriptorSetLayout layout) {

@@ -26,6 +26,12 @@ struct PrimitiveBuffers {
     VkDeviceSize flatPosition = 0, flatNormal = 0, flatColor = kNoStream,
                  flatTexcoord = kNoStream, flatCentroid = 0;
     std::uint32_t flatVertexCount = 0;
+    // Words into the deformation-input buffer (primitives with joints or morph targets).
+    bool deformable = false;
+    std::uint32_t deformPosition = 0, deformNormal = 0, deformJoints = 0, deformWeights = 0;
+    std::uint32_t influences = 0;  ///< 0, 4 or 8
+    std::uint32_t deformTargets = 0, targetCount = 0;
+    std::uint32_t deformIndices = ~0u;  ///< the triangle list; ~0u: non-indexed
 };
 
 class SceneBuffers {
@@ -45,6 +51,9 @@ public:
     }
     VkBuffer geometry() const { return m_geometry.get(); }
     VkBuffer flatGeometry() const { return m_flatGeometry.get(); }
+    /// The skinning and morph-target inputs (storage buffer); null when nothing can deform.
+    VkBuffer deformInput() const { return m_deformInput.get(); }
+    VkDeviceSize deformInputBytes() const { return m_deformInput.size; }
     VkDeviceSize defaultColorOffset() const { return m_defaultColor; }
     VkDeviceSize defaultTexcoordOffset() const { return m_defaultTexcoord; }
     /// The descriptor set of texture `index` (-1: a white 1x1 texture).
@@ -63,6 +72,7 @@ private:
     Result<void> uploadTextureImages();
     Result<void> createSamplers();
     Result<void> createTextureSets(VkDescriptorSetLayout layout);
+    Result<void> uploadDeformInputs();
 
     std::shared_ptr<Context> m_ctx;
     std::shared_ptr<const Scene> m_scene;
@@ -70,6 +80,7 @@ private:
     std::vector<std::size_t> m_meshFirst;
     Buffer m_geometry;
     Buffer m_flatGeometry;
+    Buffer m_deformInput;
     std::mutex m_flatMutex;
     bool m_flatReady = false;
     VkDeviceSize m_defaultColor = 0, m_defaultTexcoord = 0;

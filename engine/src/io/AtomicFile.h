@@ -2,6 +2,12 @@
 // destination folder; commit() flushes it to disk and renames it over the destination; a
 // writer destroyed without commit() removes its temporary file. Every byte Lantern writes to
 // an image goes through write() here, which is where the test-only I/O fault hook sits.
+//
+// The temporary file is created exclusively (O_CREAT|O_EXCL|O_NOFOLLOW, relative to a
+// descriptor of the destination folder) under a name with 64 random bits, so a file or a
+// symlink planted beside the output is never opened, followed or overwritten. Its name is
+// ".NAME.tmp-lantern-PID-RANDOM" with NAME shortened so that the whole fits the file
+// system's name limit; a destination name up to that limit works.
 #pragma once
 
 #include <lantern/Result.h>
@@ -14,7 +20,8 @@ namespace lantern::io {
 
 class AtomicFile {
 public:
-    /// Chooses a temporary name beside `destination` (".NAME.tmp-PID-N"); nothing is created.
+    /// Chooses a temporary name beside `destination` (".NAME.tmp-lantern-PID-RANDOM"); nothing
+    /// is created until open().
     explicit AtomicFile(std::filesystem::path destination);
     AtomicFile(const AtomicFile&) = delete;
     AtomicFile& operator=(const AtomicFile&) = delete;
@@ -25,7 +32,8 @@ public:
 
     /// Checks that the destination folder exists and is writable (IoError otherwise).
     Result<void> checkWritable() const;
-    /// Creates (or truncates) the temporary file; write() and seek() open it when needed.
+    /// Creates the temporary file exclusively (a new random name if one exists already);
+    /// write() and seek() open it when needed. Called again, it starts the file over.
     Result<void> open();
     /// Writes `size` bytes at the current position. A full disk is an IoError naming the
     /// destination whose message says so ("No space left on device (the disk is full)").
@@ -38,18 +46,33 @@ public:
     Result<void> commit();
 
 private:
+    Result<void> openFolder();
+    void removeTemporary();
+
     std::filesystem::path m_destination;
     std::filesystem::path m_temporary;
+    std::string m_temporaryName; ///< m_temporary's last component
+    int m_dirFd = -1;            ///< the destination folder, for openat/renameat/unlinkat
     int m_fd = -1;
+    bool m_created = false;      ///< this object created m_temporaryName (and may remove it)
     bool m_committed = false;
 };
 
-/// Removes stale temporary files a killed process left beside `destination` (same name
-/// pattern, owned by processes that no longer run). Returns how many were removed.
+/// Removes stale temporary files a killed Lantern process left beside `destination`: only
+/// regular files (never a symlink) of this user whose name is exactly Lantern's temporary
+/// pattern (".NAME.tmp-lantern-PID-" and 16 hex digits) and whose PID no longer runs. A user's
+/// own file whose name merely contains ".tmp-" is never touched. Returns how many were removed.
 std::size_t removeStaleTemporaries(const std::filesystem::path& destination);
 
-/// The same for every temporary file in `folder`, whatever its destination name.
+/// The same for every Lantern temporary file in `folder`, whatever its destination name.
 std::size_t removeStaleTemporariesIn(const std::filesystem::path& folder);
+
+/// The temporary name for a destination called `destinationName` with writer `pid` and random
+/// part `random` (exposed for tests: it is at most NAME_MAX bytes for any destination name).
+std::string temporaryName(const std::string& destinationName, long pid, std::uint64_t random);
+
+/// True when `name` is exactly the pattern temporaryName() makes; its PID in `pid`.
+bool isTemporaryName(const std::string& name, long* pid = nullptr);
 
 /// Fault injection for file output (tests only). In builds with LANTERN_TESTING_HOOKS (dev
 /// and CI; not release), the environment variable

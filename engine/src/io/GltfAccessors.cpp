@@ -239,6 +239,8 @@ Result<std::vector<T>> readNumbers(const tinygltf::Model& model, int index,
     const Layout& l = *located;
     const std::string name = at("accessors", std::size_t(index));
     const std::size_t nc = std::size_t(l.components);
+    LANTERN_TRY(diag.charge(std::uint64_t(l.count) * nc, sizeof(T), object,
+                            "reading " + name));
     std::vector<T> out(l.count * nc, T(0));
     auto readElement = [&](const unsigned char* element, std::size_t k) -> Result<void> {
         for (std::size_t c = 0; c < nc; ++c) {
@@ -421,6 +423,8 @@ Result<std::vector<std::uint32_t>> readIndices(const tinygltf::Model& model, int
                                       " must hold non-normalized UNSIGNED_BYTE, UNSIGNED_SHORT "
                                       "or UNSIGNED_INT scalars");
     // Sparse index accessors are legal: read them through the generic path.
+    LANTERN_TRY(diag.charge(l.count, sizeof(std::uint32_t), object,
+                            "reading " + at("accessors", std::size_t(index))));
     std::vector<std::uint32_t> out;
     if (model.accessors[std::size_t(index)].sparse.isSparse) {
         auto values = readNumbers<double>(model, index, object, diag);

@@ -3,10 +3,18 @@
 // the facts tinygltf discards (optional numbers' presence, primitives it would drop).
 #include "io/GltfInternal.h"
 
+#include <cerrno>
+#include <climits>
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <fcntl.h>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace lantern::gltf {
 namespace {
@@ -49,6 +57,22 @@ void Diagnostics::warn(const std::string& object, const std::string& message) co
     if (!object.empty()) line += object + ": ";
     line += message;
     m_log(LogLevel::Warning, line);
+}
+
+Result<void> Diagnostics::charge(std::uint64_t count, std::uint64_t each, const std::string& object,
+                                 const std::string& what) const {
+    Budget& b = *m_budget;
+    const std::uint64_t left = b.limit - std::min(b.used, b.limit);
+    if (each != 0 && count > left / each)
+        return error(object, what + " would need " +
+                                 (count > ~std::uint64_t(0) / each
+                                      ? std::string("more than 2^64")
+                                      : std::to_string(count * each)) +
+                                 " bytes, more than the " + std::to_string(left) +
+                                 " left of the scene's budget (--max-size, " +
+                                 std::to_string(b.limit) + " bytes in all)");
+    b.used += count * each;
+    return {};
 }
 
 std::string at(std::string_view array, std::size_t index) {
@@ -169,10 +193,116 @@ std::string percentDecode(std::string_view text) {
     return out;
 }
 
+std::string printable(std::string_view text, std::size_t limit) {
+    std::string out;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        if (out.size() >= limit) return out + "...";
+        const auto c = static_cast<unsigned char>(text[i]);
+        if (c >= 32 && c < 127) {
+            out += char(c);
+        } else {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\x%02X", unsigned(c));
+            out += buf;
+        }
+    }
+    return out;
+}
+
+namespace {
+
+const char* fileKind(mode_t mode) {
+    if (S_ISDIR(mode)) return "a folder";
+    if (S_ISFIFO(mode)) return "a FIFO";
+    if (S_ISSOCK(mode)) return "a socket";
+    if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
+    if (S_ISLNK(mode)) return "a symbolic link";
+    return "not a regular file";
+}
+
+std::string sizeProblem(std::uint64_t size, std::uint64_t maxBytes) {
+    return "is " + std::to_string(size) + " bytes, more than --max-size (" +
+           std::to_string(maxBytes) + " bytes)";
+}
+
+} // namespace
+
+Result<std::vector<unsigned char>> readRegularFile(const std::filesystem::path& path,
+                                                   std::uint64_t maxBytes, bool noFollow) {
+    const int flags = O_RDONLY | O_NONBLOCK | O_CLOEXEC | (noFollow ? O_NOFOLLOW : 0);
+    const int fd = ::open(path.c_str(), flags);
+    if (fd < 0) {
+        const int e = errno;
+        if (e == ENOENT) return makeError(ErrorCode::InvalidInput, "does not exist");
+        if (e == ELOOP && noFollow) return makeError(ErrorCode::InvalidInput, "is a symbolic link");
+        return makeError(ErrorCode::IoError, std::string("cannot be opened: ") + std::strerror(e));
+    }
+    struct stat st {};
+    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        const std::string kind = fileKind(st.st_mode);
+        ::close(fd);
+        return makeError(ErrorCode::InvalidInput, "is " + kind + ", not a regular file");
+    }
+    if (std::uint64_t(st.st_size) > maxBytes) {
+        ::close(fd);
+        return makeError(ErrorCode::InvalidInput, sizeProblem(std::uint64_t(st.st_size), maxBytes));
+    }
+    std::vector<unsigned char> bytes(static_cast<std::size_t>(st.st_size));
+    std::size_t done = 0;
+    while (done < bytes.size()) {
+        const ssize_t n = ::read(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            const int e = n < 0 ? errno : 0;
+            ::close(fd);
+            return makeError(ErrorCode::IoError,
+                             e ? std::string("cannot be read: ") + std::strerror(e)
+                               : std::string("became shorter while it was read"));
+        }
+        done += std::size_t(n);
+    }
+    ::close(fd);
+    return bytes;
+}
+
+Result<std::filesystem::path> resolveConfined(const std::filesystem::path& folder,
+                                              const std::string& relative,
+                                              std::uint64_t maxBytes) {
+    const std::string shown = "\"" + printable(relative) + "\"";
+    auto realOf = [](const std::filesystem::path& p) -> std::optional<std::filesystem::path> {
+        char buf[PATH_MAX];
+        if (!::realpath(p.c_str(), buf)) return std::nullopt;
+        return std::filesystem::path(buf);
+    };
+    const auto realFolder = realOf(folder);
+    if (!realFolder)
+        return makeError(ErrorCode::IoError, "the scene's folder cannot be resolved: " +
+                                                 std::string(std::strerror(errno)));
+    const std::filesystem::path named = folder / relative;
+    struct stat st {};
+    if (::lstat(named.c_str(), &st) != 0)
+        return makeError(ErrorCode::InvalidInput, shown + " does not exist in the scene's folder");
+    const auto real = realOf(named);
+    if (!real)
+        return makeError(ErrorCode::InvalidInput,
+                         shown + " cannot be resolved (a broken or looping symbolic link?)");
+    const std::string inside = realFolder->string() == "/" ? "/" : realFolder->string() + "/";
+    if (real->string().compare(0, inside.size(), inside) != 0)
+        return makeError(ErrorCode::InvalidInput,
+                         shown + " is a symbolic link that leads outside the scene's folder");
+    if (::stat(real->c_str(), &st) != 0 || !S_ISREG(st.st_mode))
+        return makeError(ErrorCode::InvalidInput,
+                         shown + " is " + fileKind(st.st_mode) + ", not a regular file");
+    if (std::uint64_t(st.st_size) > maxBytes)
+        return makeError(ErrorCode::InvalidInput,
+                         shown + " " + sizeProblem(std::uint64_t(st.st_size), maxBytes));
+    return *real;
+}
+
 Result<std::string> checkRelativeUri(std::string_view uri, const std::string& object,
                                      const Diagnostics& diag) {
     const std::string path = percentDecode(uri);
-    const std::string shown = "\"" + std::string(uri) + "\"";
+    const std::string shown = "\"" + printable(uri) + "\"";
     if (path.empty()) return diag.error(object, "URI is empty");
     if (path.find('\0') != std::string::npos)
         return diag.error(object, "URI " + shown + " contains a NUL character");
@@ -270,18 +400,11 @@ Result<void> checkBufferWithoutUri(const json& buffer, std::size_t i, const std:
     return {};
 }
 
-// Why the external file `relative` cannot be read (missing, or over the size bound); empty when
-// it can.
+// Why the external file `relative` cannot be read (missing, outside the folder through a
+// symlink, not a regular file, over the size bound); empty when it can.
 std::string externalFileProblem(const std::string& relative, const Source& source) {
-    const std::filesystem::path file = source.folder / relative;
-    std::error_code ec;
-    std::string problem;
-    if (!std::filesystem::is_regular_file(file, ec))
-        problem = "\"" + relative + "\" does not exist in the scene's folder";
-    else if (const auto size = std::filesystem::file_size(file, ec); !ec && size > source.maxBytes)
-        problem = "\"" + relative + "\" is " + std::to_string(size) +
-                  " bytes, more than --max-size (" + std::to_string(source.maxBytes) + " bytes)";
-    return problem;
+    auto resolved = resolveConfined(source.folder, relative, source.maxBytes);
+    return resolved ? std::string() : resolved.error().message;
 }
 
 // One buffer or image (item `i` of `kind`): its URI stays inside the folder; a buffer's file must
@@ -310,7 +433,9 @@ Result<void> checkExternalItem(const json& item, const char* kind, std::size_t i
     if (!relative) return std::move(relative).error();
     const std::string problem = externalFileProblem(*relative, source);
     if (problem.empty()) return {};
-    if (buffers || problem.find("--max-size") != std::string::npos)
+    // A missing image is an error only when a material uses it; a file that escapes the
+    // folder, is not a regular file or is too large is refused whatever uses it.
+    if (buffers || problem.find("does not exist") == std::string::npos)
         return diag.error(object + ".uri", problem);
     facts.imageProblems[int(i)] = problem; // an error only if a material uses it
     return {};
@@ -328,6 +453,105 @@ Result<void> checkExternalFiles(const json& doc, const Source& source, const Dia
             if (!item.is_object()) continue;
             LANTERN_TRY(checkExternalItem(item, kind, i, source, diag, facts));
         }
+    }
+    return {};
+}
+
+// glTF's integer properties (indices into arrays, offsets, lengths, counts, enums): tinygltf
+// reads them into int or size_t, so 4294967296 became 0, 0.5 was dropped and -4 read as 0.
+// Indices must be integers in 0..INT_MAX; offsets, lengths and counts in 0..2^53.
+enum class IntKind { None, Index, Size, IndexMap /* an object of indices: attributes */ };
+
+IntKind integerKind(std::string_view key) {
+    static const char* const indices[] = {
+        "scene", "buffer", "bufferView", "componentType", "mesh", "camera", "skin", "material",
+        "indices", "mode", "sampler", "source", "index", "texCoord", "input", "output", "node",
+        "inverseBindMatrices", "skeleton", "magFilter", "minFilter", "wrapS", "wrapT", "light",
+        "children", "nodes", "joints", "target"};
+    static const char* const sizes[] = {"byteOffset", "byteLength", "byteStride", "count"};
+    if (key == "attributes" || key == "targets") return IntKind::IndexMap;
+    for (const char* k : indices)
+        if (key == k) return IntKind::Index;
+    for (const char* k : sizes)
+        if (key == k) return IntKind::Size;
+    return IntKind::None;
+}
+
+// The largest magnitude accepted for any other number (colours, intensities, transforms,
+// camera parameters): 1e30, beyond the 1e-20..1e20 scales the image tests draw, and far below
+// where double composition overflows (1e300 in a transform put Inf into EXR headers; in a
+// light it turned the image black).
+constexpr double kMaxMagnitude = 1e30;
+
+Result<void> checkInteger(const json& v, IntKind kind, const std::string& path,
+                          const Diagnostics& diag) {
+    if (!v.is_number()) return {}; // a wrong type is reported by the structural checks
+    const double limit = kind == IntKind::Index ? 2147483647.0 : 9007199254740992.0;
+    const double d = v.get<double>();
+    const bool integral = v.is_number_integer() || (std::isfinite(d) && d == std::floor(d));
+    if (!integral)
+        return diag.error(path, "is " + printable(v.dump(), 40) + ", not an integer");
+    if (v.is_number_integer() && !v.is_number_unsigned() && v.get<std::int64_t>() < 0)
+        return diag.error(path, "is " + v.dump() + "; it must be 0 or more");
+    if (d < 0) return diag.error(path, "is " + printable(v.dump(), 40) + "; it must be 0 or more");
+    if (d > limit)
+        return diag.error(path, "is " + printable(v.dump(), 40) + ", more than the largest " +
+                                    (kind == IntKind::Index ? "index" : "size") + " (" +
+                                    std::to_string(std::uint64_t(limit)) + ")");
+    return {};
+}
+
+// Walks the document once (linear; its depth is bounded by checkJsonNesting), checking
+// integer properties and number magnitudes, skipping "extras" (the application's own data)
+// and accessors' min/max (they describe the data, which is checked when read).
+Result<void> checkNumbers(const json& v, std::string& path, IntKind kind, bool inAccessor,
+                          const Diagnostics& diag) {
+    if (v.is_object()) {
+        for (auto it = v.begin(); it != v.end(); ++it) {
+            if (it.key() == "extras") continue;
+            const std::size_t mark = path.size();
+            path += "." + printable(it.key(), 40);
+            const bool accessorBounds = inAccessor && (it.key() == "min" || it.key() == "max");
+            const IntKind child = kind == IntKind::IndexMap ? IntKind::Index : integerKind(it.key());
+            Result<void> r = accessorBounds ? Result<void>()
+                                            : checkNumbers(it.value(), path, child, inAccessor, diag);
+            path.resize(mark);
+            if (!r) return r;
+        }
+        return {};
+    }
+    if (v.is_array()) {
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            const std::size_t mark = path.size();
+            path += "[" + std::to_string(i) + "]";
+            // An array passes its kind to numbers and to index maps (targets), not to objects.
+            const IntKind element =
+                v[i].is_object() && kind != IntKind::IndexMap ? IntKind::None : kind;
+            Result<void> r = checkNumbers(v[i], path, element, inAccessor, diag);
+            path.resize(mark);
+            if (!r) return r;
+        }
+        return {};
+    }
+    if (!v.is_number()) return {};
+    if (kind == IntKind::Index || kind == IntKind::Size) return checkInteger(v, kind, path, diag);
+    const double d = v.get<double>();
+    if (!std::isfinite(d) || std::abs(d) > kMaxMagnitude)
+        return diag.error(path, "is " + printable(v.dump(), 40) +
+                                    "; numbers beyond +-1e30 would become infinite on the way to "
+                                    "an image");
+    if (path.size() >= 12 && path.compare(path.size() - 12, 12, ".aspectRatio") == 0 && !(d > 0))
+        return diag.error(path, "is " + v.dump() + "; an aspect ratio must be greater than 0");
+    return {};
+}
+
+Result<void> checkAllNumbers(const json& doc, const Diagnostics& diag) {
+    for (auto it = doc.begin(); it != doc.end(); ++it) {
+        if (it.key() == "extras") continue;
+        std::string path = printable(it.key(), 40);
+        // Top-level arrays ("nodes", "scenes") hold objects; "scene" is an index.
+        LANTERN_TRY(checkNumbers(it.value(), path, integerKind(it.key()),
+                                 it.key() == "accessors", diag));
     }
     return {};
 }
@@ -460,6 +684,7 @@ Result<RawFacts> inspectJson(std::string_view text, const Source& source, const 
     auto doc = parseJson(text, diag);
     if (!doc) return std::move(doc).error();
     RawFacts facts;
+    LANTERN_TRY(checkAllNumbers(*doc, diag));
     LANTERN_TRY(checkExternalFiles(*doc, source, diag, facts));
     LANTERN_TRY(checkCompressionIntegers(*doc, diag));
     facts.perspectiveHasZfar = perspectiveHasZfar(*doc);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/quaternion.hpp>
+#include <tuple>
 
 namespace lantern::gltf {
 
@@ -44,7 +45,9 @@ Result<Node> convertNode(const tinygltf::Node& src, std::size_t index, const Dia
     n.children = src.children;
     if (auto it = src.extensions.find("KHR_lights_punctual"); it != src.extensions.end())
         n.light = it->second.Get("light").GetNumberAsInt();
-    if (src.skin >= 0) diag.warn(obj + ".skin", "skinning is not supported; ignored");
+    n.skin = src.skin;
+    if (!allFinite(src.weights)) return diag.error(obj + ".weights", "contains a non-finite number");
+    n.weights = src.weights;
     for (auto [name, values] :
          {std::pair{"matrix", &src.matrix}, std::pair{"translation", &src.translation},
           std::pair{"rotation", &src.rotation}, std::pair{"scale", &src.scale}})
@@ -84,7 +87,7 @@ Result<std::optional<LightingModel>> convertLighting(const tinygltf::Scene& src,
     LightingModel model;
     model.globalAmbient = r.vec3("globalAmbient", model.globalAmbient);
     model.localViewer = r.boolean("localViewer", model.localViewer);
-    model.twoSided = r.boolean("twoSided", model.twoSided);
+    if (r.has("twoSided")) model.twoSided = r.boolean("twoSided", false);
     const std::string shading = r.string("shading", "phong");
     const std::string specular = r.string("specular", "blinn");
     LANTERN_TRY(r.status());
@@ -100,11 +103,74 @@ Result<std::optional<LightingModel>> convertLighting(const tinygltf::Scene& src,
     return std::optional<LightingModel>(model);
 }
 
+// --- Skins ------------------------------------------------------------------------------------
+
+Result<Skin> convertSkin(const tinygltf::Model& model, std::size_t index, const Diagnostics& diag) {
+    const tinygltf::Skin& src = model.skins[index];
+    const std::string obj = at("skins", index);
+    Skin skin;
+    skin.name = src.name;
+    skin.joints = src.joints;
+    skin.skeleton = src.skeleton;
+    skin.inverseBind.assign(src.joints.size(), glm::dmat4(1.0));
+    if (src.inverseBindMatrices >= 0) {
+        auto m = readDoubles(model, src.inverseBindMatrices, obj + ".inverseBindMatrices", diag);
+        if (!m) return std::move(m).error();
+        for (std::size_t j = 0; j < skin.joints.size(); ++j)
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 4; ++r)
+                    skin.inverseBind[j][c][r] = (*m)[j * 16 + std::size_t(c * 4 + r)];
+    }
+    // The skeleton root is a hint (glTF): it must be an ancestor of (or be) every joint.
+    if (skin.skeleton >= 0) {
+        std::vector<int> parent(model.nodes.size(), -1);
+        for (std::size_t i = 0; i < model.nodes.size(); ++i)
+            for (int c : model.nodes[i].children)
+                if (c >= 0 && std::size_t(c) < parent.size()) parent[std::size_t(c)] = int(i);
+        for (int joint : skin.joints) {
+            int n = joint;
+            for (std::size_t steps = 0; n != -1 && n != skin.skeleton && steps <= parent.size();
+                 ++steps)
+                n = parent[std::size_t(n)];
+            if (n != skin.skeleton) {
+                diag.warn(obj + ".skeleton", "node " + std::to_string(skin.skeleton) +
+                                                 " is not an ancestor of joint node " +
+                                                 std::to_string(joint) +
+                                                 "; the hint is ignored (joints are placed by "
+                                                 "their own nodes)");
+                skin.skeleton = -1;
+                break;
+            }
+        }
+    }
+    return skin;
+}
+
+// Warns where a mesh with skin attributes is drawn by a node without a skin (drawn unskinned),
+// and clears morph weights that name targets no primitive kept.
+void checkSkinUse(Scene& scene, const Diagnostics& diag) {
+    for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
+        Node& n = scene.nodes[i];
+        if (n.mesh < 0) continue;
+        const Mesh& mesh = scene.meshes[std::size_t(n.mesh)];
+        if (mesh.primitives.empty()) n.weights.clear();
+        if (n.skin >= 0) continue;
+        for (const Primitive& p : mesh.primitives)
+            if (!p.joints0.empty()) {
+                diag.warn(at("nodes", i), "draws mesh " + std::to_string(n.mesh) +
+                                              ", which has skin weights, without a skin; "
+                                              "drawn in its bind pose");
+                break;
+            }
+    }
+}
+
 // --- Animations -----------------------------------------------------------------------------
 
 Result<AnimationSampler> convertSampler(const tinygltf::Model& model,
                                         const tinygltf::AnimationSampler& src, AnimationPath path,
-                                        const std::string& obj, const Diagnostics& diag) {
+                                        std::size_t weightCount, const std::string& obj,
+                                        const Diagnostics& diag) {
     AnimationSampler s;
     s.interpolation = src.interpolation == "STEP"          ? Interpolation::Step
                       : src.interpolation == "CUBICSPLINE" ? Interpolation::CubicSpline
@@ -125,6 +191,20 @@ Result<AnimationSampler> convertSampler(const tinygltf::Model& model,
     s.times = std::move(*times);
     auto values = readDoubles(model, src.output, obj + ".output", diag);
     if (!values) return std::move(values).error();
+    if (path == AnimationPath::Weights) {
+        const std::size_t per = s.interpolation == Interpolation::CubicSpline ? 3 : 1;
+        const std::size_t keys = s.times.size() * per;
+        if (keys == 0 || values->size() % keys != 0 || values->size() / keys != weightCount)
+            return diag.error(obj + ".output",
+                              "has " + std::to_string(values->size()) + " values for " +
+                                  std::to_string(s.times.size()) + " keys of " +
+                                  std::to_string(weightCount) +
+                                  " morph weights (expected " +
+                                  std::to_string(keys * weightCount) + ")");
+        s.weights = std::move(*values);
+        s.weightCount = weightCount;
+        return s;
+    }
     const std::size_t n = path == AnimationPath::Rotation ? 4 : 3;
     s.values.resize(values->size() / n);
     for (std::size_t i = 0; i < s.values.size(); ++i)
@@ -133,15 +213,15 @@ Result<AnimationSampler> convertSampler(const tinygltf::Model& model,
     return s;
 }
 
-Result<Animation> convertAnimation(const tinygltf::Model& model, std::size_t index,
-                                   const Diagnostics& diag) {
+Result<Animation> convertAnimation(const tinygltf::Model& model, const Scene& scene,
+                                   std::size_t index, const Diagnostics& diag) {
     const tinygltf::Animation& src = model.animations[index];
     const std::string obj = at("animations", index);
     Animation a;
     a.name = src.name;
     // Samplers are converted for the channels Lantern plays, once per (sampler, path): a
     // sampler's output is read as vec3 or quaternion depending on the path it drives.
-    std::map<std::pair<int, AnimationPath>, int> converted;
+    std::map<std::tuple<int, AnimationPath, std::size_t>, int> converted;
     for (std::size_t c = 0; c < src.channels.size(); ++c) {
         const tinygltf::AnimationChannel& ch = src.channels[c];
         const std::string cobj = obj + "." + at("channels", c);
@@ -153,20 +233,31 @@ Result<Animation> convertAnimation(const tinygltf::Model& model, std::size_t ind
             path = AnimationPath::Rotation;
         else if (ch.target_path == "scale")
             path = AnimationPath::Scale;
-        else {
-            diag.warn(cobj, "morph-target weights are not animated (not supported); channel "
-                            "skipped");
-            continue;
-        }
-        if (!model.nodes[std::size_t(ch.target_node)].matrix.empty())
+        else
+            path = AnimationPath::Weights;
+        // Morph weights: one per morph target of the node's mesh (as converted).
+        std::size_t weightCount = 0;
+        if (path == AnimationPath::Weights) {
+            const int mesh = scene.nodes[std::size_t(ch.target_node)].mesh;
+            weightCount = mesh >= 0 && !scene.meshes[std::size_t(mesh)].primitives.empty()
+                              ? scene.meshes[std::size_t(mesh)].primitives[0].targets.size()
+                              : 0;
+            if (weightCount == 0) {
+                diag.warn(cobj, "animates the morph weights of node " +
+                                    std::to_string(ch.target_node) +
+                                    ", which draws no morph targets; channel skipped");
+                continue;
+            }
+        } else if (!model.nodes[std::size_t(ch.target_node)].matrix.empty())
             return diag.error(cobj + ".target.node",
                               "node " + std::to_string(ch.target_node) +
                                   " has a matrix; only translation/rotation/scale nodes can be "
                                   "animated");
-        const auto key = std::pair{ch.sampler, path};
+        const auto key = std::tuple{ch.sampler, path, weightCount};
         auto found = converted.find(key);
         if (found == converted.end()) {
             auto s = convertSampler(model, src.samplers[std::size_t(ch.sampler)], path,
+                                    weightCount,
                                     obj + "." + at("samplers", std::size_t(ch.sampler)), diag);
             if (!s) return std::move(s).error();
             a.samplers.push_back(std::move(*s));
@@ -272,9 +363,6 @@ Result<Scene> convertModel(const tinygltf::Model& model, const RawFacts& raw,
                            const Diagnostics& diag) {
     Scene scene;
     scene.sourcePath = diag.file();
-    if (!model.skins.empty())
-        diag.warn("skins", std::to_string(model.skins.size()) +
-                               " skin(s) ignored: skinning is not supported");
 
     LANTERN_TRY(convertMaterials(model, raw, images, options, diag, scene));
     for (std::size_t i = 0; i < model.meshes.size(); ++i) {
@@ -298,6 +386,12 @@ Result<Scene> convertModel(const tinygltf::Model& model, const RawFacts& raw,
         if (!n) return std::move(n).error();
         scene.nodes.push_back(std::move(*n));
     }
+    for (std::size_t i = 0; i < model.skins.size(); ++i) {
+        auto skin = convertSkin(model, i, diag);
+        if (!skin) return std::move(skin).error();
+        scene.skins.push_back(std::move(*skin));
+    }
+    checkSkinUse(scene, diag);
     for (std::size_t i = 0; i < model.scenes.size(); ++i) {
         SceneRoot root;
         root.name = model.scenes[i].name;
@@ -323,7 +417,7 @@ Result<Scene> convertModel(const tinygltf::Model& model, const RawFacts& raw,
     }
     scene.defaultRoot = model.defaultScene >= 0 ? model.defaultScene : 0;
     for (std::size_t i = 0; i < model.animations.size(); ++i) {
-        auto a = convertAnimation(model, i, diag);
+        auto a = convertAnimation(model, scene, i, diag);
         if (!a) return std::move(a).error();
         scene.animations.push_back(std::move(*a));
     }

@@ -327,7 +327,7 @@ Result<void> fill(tinygltf::Model& model, const draco::Mesh& mesh,
 }
 
 Result<void> decodePrimitive(tinygltf::Model& model, const DracoPrimitive& d, Filled& filled,
-                             DecodeBudget& budget, const Diagnostics& diag) {
+                             const Diagnostics& diag) {
     auto targets = accessorsToFill(d, filled, diag);
     if (!targets) return std::move(targets).error();
     if (targets->empty()) return {}; // another primitive decoded the same stream into them
@@ -337,7 +337,7 @@ Result<void> decodePrimitive(tinygltf::Model& model, const DracoPrimitive& d, Fi
         if (!n) return std::move(n).error();
         bytes += *n;
     }
-    LANTERN_TRY(budget.take(bytes, d.object, diag));
+    LANTERN_TRY(diag.charge(bytes, 1, d.object, "decoding the Draco stream"));
     LANTERN_TRY(checkBufferView(model, d.bufferView, diag));
     const tinygltf::BufferView& view = model.bufferViews[std::size_t(d.bufferView)];
     const unsigned char* data = model.buffers[std::size_t(view.buffer)].data.data() + view.byteOffset;
@@ -382,7 +382,7 @@ void restoreDracoIndices(tinygltf::Model& model, const RawFacts& raw) {
     }
 }
 
-Result<void> decodeDraco(tinygltf::Model& model, DecodeBudget& budget, const Diagnostics& diag) {
+Result<void> decodeDraco(tinygltf::Model& model, const Diagnostics& diag) {
     Filled filled;
     for (std::size_t m = 0; m < model.meshes.size(); ++m)
         for (std::size_t p = 0; p < model.meshes[m].primitives.size(); ++p) {
@@ -391,7 +391,7 @@ Result<void> decodeDraco(tinygltf::Model& model, DecodeBudget& budget, const Dia
             if (!ext) continue;
             auto d = readExtension(model, prim, *ext, at("meshes", m) + "." + at("primitives", p),
                                    diag);
-            auto decoded = d ? decodePrimitive(model, *d, filled, budget, diag)
+            auto decoded = d ? decodePrimitive(model, *d, filled, diag)
                              : Result<void>(std::move(d).error());
             if (decoded) continue;
             // Nothing of the model is changed by a primitive that fails (fill() comes last).

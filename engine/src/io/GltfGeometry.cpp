@@ -4,6 +4,8 @@
 // averages of the faces sharing each vertex.
 #include "io/GltfInternal.h"
 
+#include <cmath>
+
 namespace lantern::gltf {
 namespace {
 
@@ -116,6 +118,64 @@ Result<void> readAttributes(const tinygltf::Model& model, const tinygltf::Primit
     return {};
 }
 
+// JOINTS_0/1 and WEIGHTS_0/1 (up to 8 influences; further sets are ignored with a warning).
+Result<void> readSkinAttributes(const tinygltf::Model& model, const tinygltf::Primitive& prim,
+                                const std::string& obj, const Diagnostics& diag, Primitive& out) {
+    for (int set = 0; set < 2; ++set) {
+        const std::string jname = "JOINTS_" + std::to_string(set);
+        const std::string wname = "WEIGHTS_" + std::to_string(set);
+        const int ja = attributeAccessor(prim, jname), wa = attributeAccessor(prim, wname);
+        if (ja < 0 && wa < 0) break;
+        if (ja < 0 || wa < 0)
+            return diag.error(obj + ".attributes." + (ja < 0 ? wname : jname),
+                              "has no matching " + (ja < 0 ? jname : wname) +
+                                  " (skin influences come in JOINTS_n / WEIGHTS_n pairs)");
+        auto joints = readDoubles(model, ja, obj + ".attributes." + jname, diag);
+        if (!joints) return std::move(joints).error();
+        auto weights = readFloats(model, wa, obj + ".attributes." + wname, diag);
+        if (!weights) return std::move(weights).error();
+        std::vector<glm::uvec4>& j = set == 0 ? out.joints0 : out.joints1;
+        std::vector<glm::vec4>& w = set == 0 ? out.weights0 : out.weights1;
+        j.resize(joints->size() / 4);
+        for (std::size_t i = 0; i < j.size(); ++i)
+            for (int k = 0; k < 4; ++k) j[i][k] = std::uint32_t((*joints)[i * 4 + std::size_t(k)]);
+        w = toVectors<glm::vec4>(*weights, 4);
+        for (std::size_t i = 0; i < w.size(); ++i)
+            for (int k = 0; k < 4; ++k)
+                if (w[i][k] < 0.0f)
+                    return diag.error(obj + ".attributes." + wname,
+                                      "weight " + std::to_string(w[i][k]) + " of vertex " +
+                                          std::to_string(i) + " is negative");
+    }
+    for (const auto& [name, accessor] : prim.attributes)
+        if ((name.rfind("JOINTS_", 0) == 0 || name.rfind("WEIGHTS_", 0) == 0) &&
+            name != "JOINTS_0" && name != "JOINTS_1" && name != "WEIGHTS_0" && name != "WEIGHTS_1")
+            diag.warn(obj + ".attributes." + name,
+                      "only 8 influences per vertex are used (JOINTS_0/1, WEIGHTS_0/1); ignored");
+    return {};
+}
+
+// Morph targets: POSITION and NORMAL displacements (others, such as TANGENT, are ignored).
+Result<void> readTargets(const tinygltf::Model& model, const tinygltf::Primitive& prim,
+                         const std::string& obj, const Diagnostics& diag, Primitive& out) {
+    for (std::size_t t = 0; t < prim.targets.size(); ++t) {
+        MorphTarget target;
+        for (const auto& [name, accessor] : prim.targets[t]) {
+            const std::string tobj = obj + "." + at("targets", t) + "." + name;
+            if (name != "POSITION" && name != "NORMAL") {
+                diag.warn(tobj, "morph-target attribute not used (only POSITION and NORMAL)");
+                continue;
+            }
+            auto values = readFloats(model, accessor, tobj, diag);
+            if (!values) return std::move(values).error();
+            (name == "POSITION" ? target.positions : target.normals) =
+                toVectors<glm::vec3>(*values, 3);
+        }
+        out.targets.push_back(std::move(target));
+    }
+    return {};
+}
+
 // The primitive's vertex sequence: its indices, or 0..vertexCount-1 without them.
 Result<std::vector<std::uint32_t>> vertexSequence(const tinygltf::Model& model,
                                                   const tinygltf::Primitive& prim,
@@ -150,18 +210,11 @@ Result<std::optional<Primitive>> convertPrimitive(const tinygltf::Model& model,
         diag.warn(obj + ".attributes", "no POSITION; primitive skipped");
         return std::optional<Primitive>();
     }
-    if (!prim.targets.empty())
-        diag.warn(obj + ".targets", "morph targets are not supported; ignored");
-    for (const char* unused : {"JOINTS_0", "WEIGHTS_0"})
-        if (attributeAccessor(prim, unused) >= 0) {
-            diag.warn(obj + ".attributes", "skinning is not supported; the mesh is drawn "
-                                           "in its bind pose");
-            break;
-        }
-
     Primitive out;
     out.material = prim.material;
     LANTERN_TRY(readAttributes(model, prim, positionAccessor, obj, diag, out));
+    LANTERN_TRY(readSkinAttributes(model, prim, obj, diag, out));
+    LANTERN_TRY(readTargets(model, prim, obj, diag, out));
     auto sequence = vertexSequence(model, prim, out.positions.size(), obj, diag);
     if (!sequence) return std::move(sequence).error();
     const std::size_t given = sequence->size();
@@ -191,15 +244,22 @@ Result<Mesh> convertMesh(const tinygltf::Model& model, std::size_t meshIndex,
     Mesh mesh;
     mesh.name = src.name;
     if (src.primitives.empty()) diag.warn(at("meshes", meshIndex), "mesh has no primitives");
-    if (!src.weights.empty())
-        diag.warn(at("meshes", meshIndex) + ".weights",
-                  "morph targets are not supported; the base mesh is drawn");
+    for (double w : src.weights)
+        if (!std::isfinite(w))
+            return diag.error(at("meshes", meshIndex) + ".weights", "non-finite morph weight");
+    const std::size_t targets = src.primitives.empty() ? 0 : src.primitives[0].targets.size();
+    if (!src.weights.empty() && src.weights.size() != targets)
+        return diag.error(at("meshes", meshIndex) + ".weights",
+                          std::to_string(src.weights.size()) + " weights for " +
+                              std::to_string(targets) + " morph targets");
+    mesh.weights = src.weights;
     for (std::size_t p = 0; p < src.primitives.size(); ++p) {
         const std::string obj = at("meshes", meshIndex) + "." + at("primitives", p);
         auto prim = convertPrimitive(model, src.primitives[p], obj, diag);
         if (!prim) return std::move(prim).error();
         if (*prim) mesh.primitives.push_back(std::move(**prim));
     }
+    if (mesh.primitives.empty()) mesh.weights.clear();  // every primitive skipped (warned)
     return mesh;
 }
 

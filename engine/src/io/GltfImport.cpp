@@ -37,46 +37,39 @@ bool fileExists(const std::string& path, void* user) {
     auto& ctx = *static_cast<FsContext*>(user);
     // tinygltf also tries the working directory ("./uri"): never let it. (URIs that leave
     // the folder were refused with their object path before tinygltf ran.)
-    if (!insideFolder(ctx, path)) return false;
-    std::error_code ec;
-    return std::filesystem::is_regular_file(path, ec);
+    const auto rest = insideFolder(ctx, path);
+    return rest && resolveConfined(ctx.folder, *rest, ctx.maxBytes);
 }
 
 std::string expandFilePath(const std::string& path, void*) {
     return path;
 }
 
-Result<std::vector<unsigned char>> readBounded(const std::filesystem::path& path,
-                                               std::uint64_t maxBytes, const std::string& object,
-                                               const Diagnostics& diag) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec))
-        return diag.error(ErrorCode::IoError, object,
-                          "\"" + path.string() + "\" does not exist or is not a file");
-    const std::uint64_t size = std::filesystem::file_size(path, ec);
-    if (ec)
-        return diag.error(ErrorCode::IoError, object,
-                          "cannot read \"" + path.string() + "\": " + ec.message());
-    if (size > maxBytes)
-        return diag.error(object, "\"" + path.filename().string() + "\" is " +
-                                      std::to_string(size) + " bytes, more than --max-size (" +
-                                      std::to_string(maxBytes) + " bytes)");
-    std::ifstream in(path, std::ios::binary);
-    std::vector<unsigned char> bytes(static_cast<std::size_t>(size));
-    if (!in || (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size))))
-        return diag.error(ErrorCode::IoError, object, "cannot read \"" + path.string() + "\"");
+// The scene file itself (named by the user: a symlink to it is followed; a folder, FIFO or
+// device is refused without blocking).
+Result<std::vector<unsigned char>> readSceneFile(const std::filesystem::path& path,
+                                                 std::uint64_t maxBytes, const Diagnostics& diag) {
+    auto bytes = readRegularFile(path, maxBytes, false);
+    if (!bytes) {
+        const Error& e = bytes.error();
+        return diag.error(e.code, "", "the scene file " + e.message);
+    }
     return bytes;
 }
 
 bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
                    void* user) {
     auto& ctx = *static_cast<FsContext*>(user);
-    if (!insideFolder(ctx, path)) {
+    const auto rest = insideFolder(ctx, path);
+    if (!rest) {
         *err = "outside the scene's folder";
         return false;
     }
-    Diagnostics quiet("", {});
-    auto bytes = readBounded(path, ctx.maxBytes, "", quiet);
+    // Resolved to its real path inside the folder, then opened without following a link
+    // there (a link swapped in meanwhile is refused) and checked to be a regular file.
+    auto real = resolveConfined(ctx.folder, *rest, ctx.maxBytes);
+    auto bytes = real ? readRegularFile(*real, ctx.maxBytes, true)
+                      : Result<std::vector<unsigned char>>(std::move(real).error());
     if (!bytes) {
         *err = bytes.error().message;
         if (ctx.refusal.empty()) ctx.refusal = bytes.error().message;
@@ -103,7 +96,8 @@ bool keepImage(tinygltf::Image* image, const int index, std::string*, std::strin
     return true;
 }
 
-/// tinygltf's multi-line message as one line.
+/// tinygltf's multi-line message as one line, made printable and bounded (tinygltf quotes
+/// URIs and data it failed on: a message never carries a file's raw bytes).
 std::string oneLine(const std::string& text) {
     std::string out;
     std::istringstream lines(text);
@@ -114,7 +108,7 @@ std::string oneLine(const std::string& text) {
         if (line.empty()) continue;
         out += (out.empty() ? "" : "; ") + line;
     }
-    return out.empty() ? "tinygltf refused the file without a reason" : out;
+    return out.empty() ? "tinygltf refused the file without a reason" : printable(out, 240);
 }
 
 /// The file as tinygltf will read it: its JSON, and for a GLB the container (header length cut
@@ -192,7 +186,7 @@ Result<void> useRewrittenJson(const std::vector<unsigned char>& bytes, const std
 
 Result<Scene> loadBytes(std::vector<unsigned char> bytes, const std::filesystem::path& path,
                         const LoadOptions& options) {
-    const Diagnostics diag(path.string(), options.log);
+    const Diagnostics diag(path.string(), options.log, options.maxBytes);
     if (bytes.size() > options.maxBytes)
         return diag.error("", "\"" + path.filename().string() + "\" is " +
                                   std::to_string(bytes.size()) + " bytes, more than --max-size (" +
@@ -228,11 +222,15 @@ Result<Scene> loadBytes(std::vector<unsigned char> bytes, const std::filesystem:
     std::vector<unsigned char>().swap(bytes);
     std::vector<unsigned char>().swap(rebuiltGlb);
     std::string().swap(raw->jsonForTinygltf);
+    // The buffers tinygltf holds count against the load's budget (each was bounded alone).
+    for (std::size_t i = 0; i < model->buffers.size(); ++i)
+        LANTERN_TRY(
+            diag.charge(model->buffers[i].data.size(), 1, at("buffers", i), "holding the data"));
 
     restoreDracoIndices(*model, *raw);
-    DecodeBudget budget(options.maxBytes);
-    LANTERN_TRY(decodeMeshopt(*model, *raw, budget, diag));
-    LANTERN_TRY(decodeDraco(*model, budget, diag));
+    // Decoded meshopt views and Draco primitives are charged to the same budget.
+    LANTERN_TRY(decodeMeshopt(*model, *raw, diag));
+    LANTERN_TRY(decodeDraco(*model, diag));
     LANTERN_TRY(validateModel(*model, *raw, options, diag));
     auto scene = convertModel(*model, *raw, images, options, diag);
     if (!scene) return std::move(scene).error();
@@ -246,7 +244,7 @@ Result<Scene> loadBytes(std::vector<unsigned char> bytes, const std::filesystem:
 
 Result<Scene> load(const std::filesystem::path& path, const LoadOptions& options) {
     const Diagnostics diag(path.string(), options.log);
-    auto bytes = readBounded(path, options.maxBytes, "", diag);
+    auto bytes = readSceneFile(path, options.maxBytes, diag);
     if (!bytes) return std::move(bytes).error();
     return loadBytes(std::move(*bytes), path, options);
 }

@@ -68,10 +68,17 @@ inline constexpr const char* kSupportedExtensions[] = {
 inline constexpr const char* kMeshoptExtensions[] = {"EXT_meshopt_compression",
                                                      "KHR_meshopt_compression"};
 
-/// Where a load's errors and warnings come from: every message names the file.
+/// Where a load's errors and warnings come from: every message names the file. It also keeps
+/// the load's allocation budget: every allocation whose size the file decides (buffers,
+/// decoded accessors, decoded images and their decoder's working memory, converted
+/// geometry, meshopt- and Draco-decoded data) is charged with charge() before it is made, and
+/// the total may not exceed LoadOptions::maxBytes, however small the file (a count of 10^9
+/// costs 20 bytes of JSON).
 class Diagnostics {
 public:
-    Diagnostics(std::string file, LogSink log) : m_file(std::move(file)), m_log(std::move(log)) {}
+    Diagnostics(std::string file, LogSink log, std::uint64_t budget = ~std::uint64_t(0))
+        : m_file(std::move(file)), m_log(std::move(log)),
+          m_budget(std::make_shared<Budget>(Budget{budget, 0})) {}
     const std::string& file() const { return m_file; }
     /// An InvalidInput error naming the file and `object`.
     Error error(std::string object, std::string message) const {
@@ -83,10 +90,22 @@ public:
     }
     /// A warning: something skipped or repaired. "file: object: message".
     void warn(const std::string& object, const std::string& message) const;
+    /// Charges `bytes` (`count` x `each`, overflow-safe) to the load's budget for `object`'s
+    /// `what`; an InvalidInput error naming both when the total would exceed it.
+    Result<void> charge(std::uint64_t count, std::uint64_t each, const std::string& object,
+                        const std::string& what) const;
+    /// Bytes charged so far, and the budget.
+    std::uint64_t charged() const { return m_budget->used; }
+    std::uint64_t budget() const { return m_budget->limit; }
 
 private:
+    struct Budget {
+        std::uint64_t limit;
+        std::uint64_t used;
+    };
     std::string m_file;
     LogSink m_log;
+    std::shared_ptr<Budget> m_budget;
 };
 
 /// "name[i]": the glTF object path convention of every message.
@@ -120,6 +139,24 @@ std::string percentDecode(std::string_view text);
 /// the reason it is refused as the error message.
 Result<std::string> checkRelativeUri(std::string_view uri, const std::string& object,
                                      const Diagnostics& diag);
+
+/// Text from a file made safe to quote in a message: control and non-ASCII bytes as \xNN, and
+/// cut after `limit` bytes ("..."). A message never carries a file's raw bytes.
+std::string printable(std::string_view text, std::size_t limit = 80);
+
+/// An external file a URI names, resolved and confined: `relative` (a checked relative path)
+/// is resolved to its real path (every symlink followed) and refused unless that lies inside
+/// the scene's real folder and is a regular file (not a folder, FIFO, socket or device) of at
+/// most `maxBytes`. The error message names the URI and the reason, never the file's bytes.
+Result<std::filesystem::path> resolveConfined(const std::filesystem::path& folder,
+                                              const std::string& relative,
+                                              std::uint64_t maxBytes);
+
+/// Reads a regular file of at most `maxBytes`: opened with O_NONBLOCK (a FIFO or device never
+/// blocks) and, when `noFollow`, O_NOFOLLOW (the last component may not be a symlink); the
+/// opened file is checked with fstat before a byte is read. The error message names the reason.
+Result<std::vector<unsigned char>> readRegularFile(const std::filesystem::path& path,
+                                                   std::uint64_t maxBytes, bool noFollow);
 
 /// What the JSON says that tinygltf does not keep: presence of optional numbers, the number
 /// of primitives written (tinygltf silently drops malformed ones), and why an external image
@@ -163,31 +200,20 @@ Result<RawFacts> inspectJson(std::string_view json, const Source& source, const 
 
 // --- Pass 2b: compressed data (GltfMeshopt.cpp, GltfDraco.cpp) -------------------------------
 
-/// What decoding may still allocate: all the data a file's compressed views and primitives
-/// decode to counts against LoadOptions::maxBytes, taken before each allocation.
-class DecodeBudget {
-public:
-    explicit DecodeBudget(std::uint64_t maxBytes) : m_max(maxBytes), m_left(maxBytes) {}
-    /// Takes `bytes`; an error naming `object` when they do not fit.
-    Result<void> take(std::uint64_t bytes, const std::string& object, const Diagnostics& diag);
-
-private:
-    std::uint64_t m_max, m_left;
-};
-
 /// Appends a buffer holding decoded bytes to the model; returns its index.
 int addDecodedBuffer(tinygltf::Model& model, std::vector<unsigned char> data);
 
 /// Decodes every buffer view with EXT_meshopt_compression (or KHR_meshopt_compression) into a
 /// buffer of its own and points the view at it; checks that views into placeholder buffers are
 /// all compressed and that filtered views are read as the filter's output type.
-Result<void> decodeMeshopt(tinygltf::Model& model, const RawFacts& raw, DecodeBudget& budget,
-                           const Diagnostics& diag);
+/// The decoded data is charged to the load's budget (Diagnostics::charge) before it is allocated.
+Result<void> decodeMeshopt(tinygltf::Model& model, const RawFacts& raw, const Diagnostics& diag);
 
 /// Decodes every primitive with KHR_draco_mesh_compression and points its accessors at the
 /// decoded data; the stream's counts are checked against the accessors before decoding
-/// (GltfDracoHeader.cpp reads them) and after.
-Result<void> decodeDraco(tinygltf::Model& model, DecodeBudget& budget, const Diagnostics& diag);
+/// (GltfDracoHeader.cpp reads them) and after. The decoded data is charged to the load's budget
+/// (Diagnostics::charge) before the stream is decoded.
+Result<void> decodeDraco(tinygltf::Model& model, const Diagnostics& diag);
 
 /// Puts back the Draco primitives' indices accessors that inspectJson hid from tinygltf.
 void restoreDracoIndices(tinygltf::Model& model, const RawFacts& raw);

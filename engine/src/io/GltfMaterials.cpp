@@ -108,6 +108,14 @@ private:
             return m_diag.error(obj, "decoded image (" + std::to_string(rgbaBytes) +
                                          " bytes) exceeds --max-size (" +
                                          std::to_string(m_options.maxBytes) + " bytes)");
+        // The header's declared size is charged before a pixel is decoded: stb's working
+        // memory (the inflated rows at the file's channels and depth, the conversion to
+        // 4 channels at that depth) and the result, then Lantern's copy.
+        const std::uint64_t depth = stbi_is_16_bit_from_memory(bytes, int(size)) ? 2 : 1;
+        const std::uint64_t perPixel = std::uint64_t(channels) * depth + 4 * depth + 4 + 4;
+        LANTERN_TRY(m_diag.charge(std::uint64_t(w) * std::uint64_t(h), perPixel, obj,
+                                  "decoding the " + std::to_string(w) + "x" + std::to_string(h) +
+                                      " image"));
         stbi_uc* pixels = stbi_load_from_memory(bytes, int(size), &w, &h, &channels, 4);
         if (!pixels)
             return m_diag.error(obj, std::string("cannot be decoded: ") + stbi_failure_reason());

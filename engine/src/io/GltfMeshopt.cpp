@@ -1,8 +1,8 @@
 // EXT_meshopt_compression (and KHR_meshopt_compression, the same JSON): buffer views whose data
 // meshoptimizer decodes from a compressed range of another buffer. Every parameter is checked
 // before meshoptimizer sees it (its preconditions are asserts, not errors), the decoded total is
-// taken from the budget before allocating, views into placeholder (fallback) buffers must all be
-// compressed, and filtered data must be read as the type the filter writes.
+// charged to the load's budget before allocating, views into placeholder (fallback) buffers must
+// all be compressed, and filtered data must be read as the type the filter writes.
 #include "io/GltfInternal.h"
 
 #include <meshoptimizer.h>
@@ -11,17 +11,6 @@
 #include <cstring>
 
 namespace lantern::gltf {
-
-Result<void> DecodeBudget::take(std::uint64_t bytes, const std::string& object,
-                                const Diagnostics& diag) {
-    if (bytes > m_left)
-        return diag.error(object, "decodes to " + std::to_string(bytes) + " bytes, more than the " +
-                                      std::to_string(m_left) + " left of --max-size (" +
-                                      std::to_string(m_max) +
-                                      " bytes) for the file's decoded data");
-    m_left -= bytes;
-    return {};
-}
 
 int addDecodedBuffer(tinygltf::Model& model, std::vector<unsigned char> data) {
     tinygltf::Buffer buffer;
@@ -315,8 +304,7 @@ Result<void> checkFilteredReads(const tinygltf::Model& model, const std::vector<
 
 } // namespace
 
-Result<void> decodeMeshopt(tinygltf::Model& model, const RawFacts& raw, DecodeBudget& budget,
-                           const Diagnostics& diag) {
+Result<void> decodeMeshopt(tinygltf::Model& model, const RawFacts& raw, const Diagnostics& diag) {
     auto views = compressedViews(model, raw, diag);
     if (!views) return std::move(views).error();
     if (views->empty()) return {};
@@ -327,9 +315,11 @@ Result<void> decodeMeshopt(tinygltf::Model& model, const RawFacts& raw, DecodeBu
     std::size_t total = 0;
     for (const Compressed& c : *views) {
         const std::size_t bytes = c.byteStride * c.count;
-        LANTERN_TRY(budget.take(bytes, c.object, diag));
         const std::size_t offset = ((total + 15) & ~std::size_t(15)) +
                                    model.bufferViews[std::size_t(c.view)].byteOffset % 16;
+        // Charged with its alignment padding, before the decoded buffer is allocated.
+        LANTERN_TRY(diag.charge(offset - total + std::uint64_t(bytes), 1, c.object,
+                                "decoding the compressed view"));
         offsets.push_back(offset);
         total = offset + bytes;
     }

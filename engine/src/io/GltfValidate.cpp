@@ -77,39 +77,57 @@ bool declares(const tinygltf::Model& model, const char* name) {
 
 /// The formats allowed for each vertex attribute Lantern reads: glTF 2.0's, or, when the file
 /// declares KHR_mesh_quantization, that extension's wider table (integer positions and texture
-/// coordinates, normalized or not; BYTE/SHORT normalized normals).
+/// coordinates, normalized or not; BYTE/SHORT normalized normals; BYTE/SHORT morph target
+/// position displacements, normalized or not, and normalized normal displacements). Skin
+/// influences (JOINTS_0/1, WEIGHTS_0/1) are the same in both: KHR_mesh_quantization leaves them.
 struct AttributeFormats {
-    Format position, normal, color, texcoord;
+    Format position, normal, color, texcoord, joints, weights, targetPosition, targetNormal;
     explicit AttributeFormats(bool quantized)
         : position{{TINYGLTF_TYPE_VEC3}, {kFloat}}, normal{{TINYGLTF_TYPE_VEC3}, {kFloat}},
           color{{TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, {kFloat, kUnsignedByte, kUnsignedShort}},
-          texcoord{{TINYGLTF_TYPE_VEC2}, {kFloat, kUnsignedByte, kUnsignedShort}} {
+          texcoord{{TINYGLTF_TYPE_VEC2}, {kFloat, kUnsignedByte, kUnsignedShort}},
+          joints{{TINYGLTF_TYPE_VEC4}, {kUnsignedByte, kUnsignedShort}, false},
+          weights{{TINYGLTF_TYPE_VEC4}, {kFloat, kUnsignedByte, kUnsignedShort}},
+          targetPosition{{TINYGLTF_TYPE_VEC3}, {kFloat}},
+          targetNormal{{TINYGLTF_TYPE_VEC3}, {kFloat}} {
         if (!quantized) return;
         const std::vector<int> all{kFloat, kByte, kUnsignedByte, kShort, kUnsignedShort};
         position = {{TINYGLTF_TYPE_VEC3}, all, false};
         normal = {{TINYGLTF_TYPE_VEC3}, {kFloat, kByte, kShort}};
         texcoord = {{TINYGLTF_TYPE_VEC2}, all, false};
+        targetPosition = {{TINYGLTF_TYPE_VEC3}, {kFloat, kByte, kShort}, false};
+        targetNormal = {{TINYGLTF_TYPE_VEC3}, {kFloat, kByte, kShort}};
     }
-    /// The format for attribute `name`, or null for attributes Lantern does not read.
-    const Format* of(const std::string& name) const {
+    /// The format for attribute `name` (of a morph target when `target`), or null for
+    /// attributes Lantern does not read.
+    const Format* of(const std::string& name, bool target) const {
+        if (target) {
+            if (name == "POSITION") return &targetPosition;
+            if (name == "NORMAL") return &targetNormal;
+            return nullptr;
+        }
         if (name == "POSITION") return &position;
         if (name == "NORMAL") return &normal;
         if (name == "COLOR_0") return &color;
         if (name.rfind("TEXCOORD_", 0) == 0) return &texcoord;
+        if (name == "JOINTS_0" || name == "JOINTS_1") return &joints;
+        if (name == "WEIGHTS_0" || name == "WEIGHTS_1") return &weights;
         return nullptr;
     }
 };
 
-/// An attribute's format; a refusal says when KHR_mesh_quantization would have allowed it.
+/// An attribute's format (a morph target's when `target`); a refusal says when
+/// KHR_mesh_quantization would have allowed it.
 Result<void> checkAttributeFormat(const tinygltf::Model& model, int accessor,
-                                  const std::string& name, bool quantized, const std::string& object,
-                                  const Diagnostics& diag) {
+                                  const std::string& name, bool target, bool quantized,
+                                  const std::string& object, const Diagnostics& diag) {
     static const AttributeFormats core(false), withQuantization(true);
-    const Format* format = (quantized ? withQuantization : core).of(name);
+    const Format* format = (quantized ? withQuantization : core).of(name, target);
     if (!format) return {};
     auto checked = checkFormat(model, accessor, *format, object, diag);
-    if (checked || quantized || !checkFormat(model, accessor, *withQuantization.of(name), object,
-                                             Diagnostics("", {})))
+    if (checked || quantized ||
+        !checkFormat(model, accessor, *withQuantization.of(name, target), object,
+                     Diagnostics("", {})))
         return checked;
     Error e = std::move(checked).error();
     e.message += " (KHR_mesh_quantization allows it, but the file does not declare that "
@@ -143,7 +161,7 @@ Result<void> validateMeshes(const tinygltf::Model& model, const RawFacts& raw,
             for (const auto& [name, accessor] : prim.attributes) {
                 const std::string aobj = obj + ".attributes." + name;
                 LANTERN_TRY(checkIndex(accessor, model.accessors.size(), aobj, "accessor", diag));
-                LANTERN_TRY(checkAttributeFormat(model, accessor, name, quantized, aobj, diag));
+                LANTERN_TRY(checkAttributeFormat(model, accessor, name, false, quantized, aobj, diag));
                 const std::size_t n = model.accessors[std::size_t(accessor)].count;
                 if (count && *count != n)
                     return diag.error(aobj, "has " + std::to_string(n) + " elements but " +
@@ -152,6 +170,24 @@ Result<void> validateMeshes(const tinygltf::Model& model, const RawFacts& raw,
                 count = n;
                 countFrom = name;
             }
+            for (std::size_t t = 0; t < prim.targets.size(); ++t)
+                for (const auto& [name, accessor] : prim.targets[t]) {
+                    const std::string tobj = obj + "." + at("targets", t) + "." + name;
+                    LANTERN_TRY(checkIndex(accessor, model.accessors.size(), tobj, "accessor", diag));
+                    LANTERN_TRY(
+                        checkAttributeFormat(model, accessor, name, true, quantized, tobj, diag));
+                    const std::size_t n = model.accessors[std::size_t(accessor)].count;
+                    if (count && *count != n)
+                        return diag.error(tobj, "has " + std::to_string(n) + " elements but " +
+                                                    countFrom + " has " + std::to_string(*count) +
+                                                    " (a morph target matches its primitive)");
+                }
+            if (p > 0 && prim.targets.size() != mesh.primitives[0].targets.size())
+                return diag.error(obj + ".targets",
+                                  "has " + std::to_string(prim.targets.size()) +
+                                      " morph targets; primitives[0] has " +
+                                      std::to_string(mesh.primitives[0].targets.size()) +
+                                      " (every primitive of a mesh has the same number)");
             if (prim.indices != -1) {
                 LANTERN_TRY(checkIndex(prim.indices, model.accessors.size(), obj + ".indices",
                                        "accessor", diag));
@@ -215,6 +251,8 @@ Result<void> validateNodes(const tinygltf::Model& model, const Diagnostics& diag
         if (n.camera != -1)
             LANTERN_TRY(
                 checkIndex(n.camera, model.cameras.size(), obj + ".camera", "camera", diag));
+        if (n.skin != -1)
+            LANTERN_TRY(checkIndex(n.skin, model.skins.size(), obj + ".skin", "skin", diag));
         for (std::size_t c = 0; c < n.children.size(); ++c)
             LANTERN_TRY(checkIndex(n.children[c], model.nodes.size(), obj + "." + at("children", c),
                                    "node", diag));
@@ -246,6 +284,31 @@ Result<void> validateNodes(const tinygltf::Model& model, const Diagnostics& diag
                                    at("scenes", s) + "." + at("nodes", k), "node", diag));
     if (model.defaultScene != -1)
         LANTERN_TRY(checkIndex(model.defaultScene, model.scenes.size(), "scene", "scene", diag));
+    return {};
+}
+
+Result<void> validateSkins(const tinygltf::Model& model, const Diagnostics& diag) {
+    const Format matrices{{TINYGLTF_TYPE_MAT4}, {kFloat}};
+    for (std::size_t i = 0; i < model.skins.size(); ++i) {
+        const tinygltf::Skin& skin = model.skins[i];
+        const std::string obj = at("skins", i);
+        if (skin.joints.empty()) return diag.error(obj + ".joints", "a skin needs at least one joint");
+        for (std::size_t j = 0; j < skin.joints.size(); ++j)
+            LANTERN_TRY(checkIndex(skin.joints[j], model.nodes.size(), obj + "." + at("joints", j),
+                                   "node", diag));
+        if (skin.skeleton != -1)
+            LANTERN_TRY(checkIndex(skin.skeleton, model.nodes.size(), obj + ".skeleton", "node", diag));
+        if (skin.inverseBindMatrices != -1) {
+            const std::string mobj = obj + ".inverseBindMatrices";
+            LANTERN_TRY(checkIndex(skin.inverseBindMatrices, model.accessors.size(), mobj,
+                                   "accessor", diag));
+            LANTERN_TRY(checkFormat(model, skin.inverseBindMatrices, matrices, mobj, diag));
+            const std::size_t count = model.accessors[std::size_t(skin.inverseBindMatrices)].count;
+            if (count < skin.joints.size())
+                return diag.error(mobj, "has " + std::to_string(count) + " matrices for " +
+                                            std::to_string(skin.joints.size()) + " joints");
+        }
+    }
     return {};
 }
 
@@ -366,6 +429,7 @@ Result<void> validateModel(const tinygltf::Model& model, const RawFacts& raw,
     LANTERN_TRY(validateMeshes(model, raw, diag));
     LANTERN_TRY(validateMaterialsAndTextures(model, diag));
     LANTERN_TRY(validateNodes(model, diag));
+    LANTERN_TRY(validateSkins(model, diag));
     LANTERN_TRY(validateAnimations(model, diag));
     return {};
 }

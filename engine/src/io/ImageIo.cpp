@@ -16,7 +16,7 @@
 #include <IexBaseExc.h>
 #include <half.h>
 
-#include <stb_image_write.h>
+#include <png.h>
 
 #include <algorithm>
 #include <cmath>
@@ -325,6 +325,41 @@ Result<Image> readExr(const std::filesystem::path& path) {
     }
 }
 
+namespace {
+
+// libpng's write state, destroyed however encoding ends.
+struct PngWriteState {
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    png_infop info = png ? png_create_info_struct(png) : nullptr;
+    ~PngWriteState() { png_destroy_write_struct(&png, &info); }
+};
+
+// libpng reports errors by longjmp back here: this frame holds no object with a destructor and
+// changes no local after setjmp; the caller owns the state, the rows and the output.
+bool encodePng(PngWriteState* state, int width, int height, unsigned char* const* rows,
+               std::vector<unsigned char>* out) {
+    if (!state->png || !state->info) return false;
+    if (setjmp(png_jmpbuf(state->png))) return false;
+    png_set_write_fn(
+        state->png, out,
+        [](png_structp p, png_bytep data, png_size_t size) {
+            auto* bytes = static_cast<std::vector<unsigned char>*>(png_get_io_ptr(p));
+            bytes->insert(bytes->end(), data, data + size);
+        },
+        nullptr);
+    png_set_IHDR(state->png, state->info, png_uint_32(width), png_uint_32(height), 8,
+                 PNG_COLOR_TYPE_RGB_ALPHA, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+                 PNG_FILTER_TYPE_DEFAULT);
+    // The pixels are sRGB-encoded: say so (sRGB chunk), with the gAMA and cHRM that decoders
+    // without sRGB support read instead, so no viewer has to guess the colour space.
+    png_set_sRGB_gAMA_and_cHRM(state->png, state->info, PNG_sRGB_INTENT_PERCEPTUAL);
+    png_set_rows(state->png, state->info, const_cast<png_bytepp>(rows));
+    png_write_png(state->png, state->info, PNG_TRANSFORM_IDENTITY, nullptr);
+    return true;
+}
+
+} // namespace
+
 Result<void> writePng(const std::filesystem::path& path, const Image& image) {
     LANTERN_TRY(checkImage(image, path));
     io::AtomicFile file(path);
@@ -342,14 +377,14 @@ Result<void> writePng(const std::filesystem::path& path, const Image& image) {
         }
         pixels[i * 4 + 3] = static_cast<unsigned char>(std::lround(a * 255.0f));
     }
+    std::vector<unsigned char*> rows(std::size_t(image.height));
+    for (int y = 0; y < image.height; ++y)
+        rows[std::size_t(y)] = pixels.data() + std::size_t(y) * std::size_t(image.width) * 4;
     std::vector<unsigned char> encoded;
-    auto sink = [](void* ctx, void* data, int size) {
-        auto* out = static_cast<std::vector<unsigned char>*>(ctx);
-        out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
-    };
-    if (!stbi_write_png_to_func(sink, &encoded, image.width, image.height, 4, pixels.data(),
-                                image.width * 4))
-        return makeError(ErrorCode::IoError, "PNG encoding failed", {}, path.string());
+    encoded.reserve(n * 2);
+    PngWriteState state;
+    if (!encodePng(&state, image.width, image.height, rows.data(), &encoded))
+        return makeError(ErrorCode::IoError, "PNG encoding failed (libpng)", {}, path.string());
     LANTERN_TRY(file.writeAll(encoded.data(), encoded.size()));
     return file.commit();
 }

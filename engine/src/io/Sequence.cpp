@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdint>
 #include <cstdio>
 
 namespace lantern {
@@ -26,6 +27,12 @@ Result<FrameRange> parseFrameRange(std::string_view text) {
         return makeError(ErrorCode::InvalidInput,
                          "\"" + std::string(text) + "\" is not a frame range A-B with 0 <= A <= B",
                          "--frames");
+    // A typo like 0-2000000000 would otherwise allocate the frame list until memory runs out.
+    if (std::int64_t(r.last) - r.first + 1 > kMaxSequenceFrames)
+        return makeError(ErrorCode::InvalidInput,
+                         "\"" + std::string(text) + "\" has more than " +
+                             std::to_string(kMaxSequenceFrames) + " frames",
+                         "--frames");
     return r;
 }
 
@@ -41,8 +48,13 @@ Result<Shard> parseShard(std::string_view text) {
 
 std::vector<int> shardFrames(const FrameRange& range, const Shard& shard) {
     std::vector<int> frames;
-    for (int k = range.first; k <= range.last; ++k)
-        if (shard.contains(k)) frames.push_back(k);
+    if (range.first < 0 || range.last < range.first || shard.count < 1) return frames;
+    // At most kMaxSequenceFrames (a longer range is refused by renderSequence); the counter is
+    // 64-bit so that a range ending at INT_MAX ends.
+    const std::int64_t last =
+        std::min<std::int64_t>(range.last, std::int64_t(range.first) + kMaxSequenceFrames - 1);
+    for (std::int64_t k = range.first; k <= last; ++k)
+        if (shard.contains(int(k))) frames.push_back(int(k));
     return frames;
 }
 
@@ -64,9 +76,10 @@ Result<std::vector<int>> parseFrameList(std::string_view text) {
                                  "\" is not a frame N or a range A-B with 0 <= A <= B",
                              "--frame-list");
         // One range may not make the list unreasonably long (a typo like 0-2000000000).
-        if (frames.size() + std::size_t(last - first) >= std::size_t(1) << 24)
+        if (std::int64_t(frames.size()) + (std::int64_t(last) - first) >= kMaxSequenceFrames)
             return makeError(ErrorCode::InvalidInput,
-                             "more than 16777216 frames in \"" + std::string(text) + "\"",
+                             "more than " + std::to_string(kMaxSequenceFrames) + " frames in \"" +
+                                 std::string(text) + "\"",
                              "--frame-list");
         for (int k = first;; ++k) { // not k <= last: last may be INT_MAX
             frames.push_back(k);
@@ -116,9 +129,13 @@ std::string expandFramePattern(std::string_view pattern, int frame) {
         }
         std::size_t run = 0;
         while (i < pattern.size() && pattern[i] == '#') ++run, ++i;
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "%0*d", int(run), frame);
-        out += buf;
+        // Any run length: the number, then zeros in front up to the run's length (a fixed
+        // buffer here once cut long runs, so frames overwrote one another).
+        const std::string number = std::to_string(frame < 0 ? -std::int64_t(frame) : frame);
+        if (frame < 0) out += '-';
+        const std::size_t width = run - (frame < 0 ? 1 : 0);
+        if (number.size() < width) out.append(width - number.size(), '0');
+        out += number;
     }
     return out;
 }

@@ -75,7 +75,7 @@ DrawRules rulesOf(const Material& mat, const Primitive& prim, const frame::Light
     r.glClamp = lit.clamp == frame::Clamp::Gl;
     r.fragmentClamp = lit.clamp != frame::Clamp::None;
     r.opaque = mat.alphaMode != AlphaMode::Blend;
-    r.twoSided = lit.model.twoSided;
+    r.twoSided = frame::twoSidedLighting(lit, mat);
     r.textured = mat.baseColorTexture >= 0 && !prim.texcoords.empty();
     return r;
 }
@@ -126,17 +126,41 @@ ProbeEvaluation evaluate(const std::string& where, double weight, const glm::dve
 PixelReference::PixelReference(const Scene& scene, const frame::Frame& frame, int imageHeight)
     : m_scene(scene), m_frame(frame), m_imageHeight(imageHeight) {}
 
+const DeformedPrimitive& PixelReference::deformed(const frame::Draw& d) const {
+    std::lock_guard lock(m_mutex);
+    const auto key = std::pair{d.node, d.primitive};
+    auto it = m_deformed.find(key);
+    if (it == m_deformed.end()) {
+        const Primitive& prim = m_scene.meshes[d.mesh].primitives[d.primitive];
+        it = m_deformed.emplace(key, deformPrimitive(m_scene, m_frame.pose, int(d.node), prim)).first;
+    }
+    return it->second;
+}
+
 namespace {
 
+// A draw's vertices in its model space: the primitive's own, or as the pose deforms them.
+struct Vertices {
+    const Primitive& prim;
+    const DeformedPrimitive* deformed = nullptr;
+    glm::dvec3 position(std::uint32_t v) const {
+        return deformed ? deformed->positions[v] : glm::dvec3(prim.positions[v]);
+    }
+    glm::dvec3 normal(std::uint32_t v) const {
+        return deformed ? deformed->normals[v] : glm::dvec3(prim.normals[v]);
+    }
+};
+
 // The triangle a draw drew, in the draw's eye space.
-Triangle eyeTriangle(const Primitive& prim, const frame::Draw& d, std::uint32_t triangle) {
+Triangle eyeTriangle(const Vertices& vs, const frame::Draw& d, std::uint32_t triangle) {
+    const Primitive& prim = vs.prim;
     Triangle t;
     for (std::size_t c = 0; c < 3; ++c) {
         const std::uint32_t v = prim.indices.empty() ? std::uint32_t(triangle * 3 + c)
                                                      : prim.indices[triangle * 3 + c];
         t.vertices[c] = v;
-        t.eye[c] = glm::dvec3(d.viewFromModel * glm::dvec4(glm::dvec3(prim.positions[v]), 1.0));
-        t.normal[c] = d.normalMatrix * glm::dvec3(prim.normals[v]);
+        t.eye[c] = glm::dvec3(d.viewFromModel * glm::dvec4(vs.position(v), 1.0));
+        t.normal[c] = d.normalMatrix * vs.normal(v);
     }
     return t;
 }
@@ -163,6 +187,7 @@ void pixelRay(const frame::View& view, int imageHeight, int x, int y, glm::dvec3
 // Evaluates the equation where the frame's shading rule evaluates it, appending to r.
 struct RuleEvaluator {
     const Primitive& prim;
+    const Vertices& vertices;
     const frame::Draw& draw;
     const Triangle& t;
     const RayHit& hit;
@@ -201,7 +226,7 @@ struct RuleEvaluator {
     // streams are built (gpu/SceneBuffers.cpp); COLOR_0 averaged.
     void faceCentroid(ProbeReport& r) const {
         glm::dvec3 p[3];
-        for (std::size_t c = 0; c < 3; ++c) p[c] = glm::dvec3(prim.positions[t.vertices[c]]);
+        for (std::size_t c = 0; c < 3; ++c) p[c] = vertices.position(t.vertices[c]);
         const glm::dvec3 cross = glm::cross(p[1] - p[0], p[2] - p[0]);
         const double len = glm::length(cross);
         const glm::dvec3 face = (len > 0.0 && std::isfinite(len)) ? cross / len : glm::dvec3(0.0);
@@ -233,7 +258,7 @@ void describeSwitches(ProbeReport& r, const frame::Lighting& lit) {
     r.shading = lit.model.shading;
     r.specular = lit.model.specular;
     r.localViewer = lit.model.localViewer;
-    r.twoSided = lit.model.twoSided;
+    r.twoSided = lit.model.twoSided.value_or(false);
     r.glCompat = lit.glCompat;
     r.clamped = lit.clamp != frame::Clamp::None;
 }
@@ -259,7 +284,8 @@ ProbeReport PixelReference::explain(int x, int y, std::uint32_t drawId, std::uin
     const Material& mat = m_frame.materials[materialIndex];
     const DrawRules rules = rulesOf(mat, prim, lit);
 
-    const Triangle t = eyeTriangle(prim, *d, triangle);
+    const Vertices vertices{prim, d->deformed ? &deformed(*d) : nullptr};
+    const Triangle t = eyeTriangle(vertices, *d, triangle);
     glm::dvec3 origin, dir;
     pixelRay(view, m_imageHeight, x, y, origin, dir);
     const RayHit hit = intersect(t, origin, dir);
@@ -276,6 +302,7 @@ ProbeReport PixelReference::explain(int x, int y, std::uint32_t drawId, std::uin
     r.position = hit.point;
     // A mirroring transform makes clockwise triangles the front ones (glTF's rule).
     r.backFacing = d->mirrored ? hit.counterClockwise : !hit.counterClockwise;
+    r.twoSided = rules.twoSided;
     r.backMaterial = r.backFacing && rules.twoSided;
     const double sign = r.backMaterial ? -1.0 : 1.0;
     r.material = prim.material;
@@ -288,7 +315,7 @@ ProbeReport PixelReference::explain(int x, int y, std::uint32_t drawId, std::uin
     r.specularPresent = !mat.unlit && lightSpecular && nonZero(r.materialSide.specular);
     r.normal = sign * safeNormalize(interpolate(hit.barycentric, t.normal[0], t.normal[1], t.normal[2]));
 
-    const RuleEvaluator evaluator{prim, *d, t, hit, rules, view.lights, perLight, sign};
+    const RuleEvaluator evaluator{prim, vertices, *d, t, hit, rules, view.lights, perLight, sign};
     evaluator.evaluateAll(r, lit.program);
 
     glm::dvec3 colour(0.0);

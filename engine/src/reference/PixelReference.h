@@ -14,6 +14,9 @@
 #include <lantern/Probe.h>
 
 #include <cstdint>
+#include <map>
+#include <mutex>
+#include <utility>
 #include <vector>
 
 namespace lantern::ref {
@@ -32,9 +35,14 @@ public:
                         bool perLight = true) const;
 
 private:
+    /// A deformed draw's vertices in its model space (deformPrimitive()), made on first use.
+    const DeformedPrimitive& deformed(const frame::Draw& d) const;
+
     const Scene& m_scene;
     const frame::Frame& m_frame;
     int m_imageHeight = 0;
+    mutable std::mutex m_mutex;
+    mutable std::map<std::pair<std::uint32_t, std::uint32_t>, DeformedPrimitive> m_deformed;
 };
 
 /// Explains pixel (x, y) of `image` (whose ids are `ids`: two per pixel), ProbeReport::pixel

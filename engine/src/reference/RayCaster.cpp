@@ -123,7 +123,7 @@ public:
     glm::dvec4 shade(const Hit& hit) const {
         if (hit.surface < 0) return glm::dvec4(m_options.background);
         const Material& mat = *m_surfaces[hit.surface].material;
-        const bool useBack = m_twoSided && !hit.front;
+        const bool useBack = frame::twoSidedLighting(m_lighting, mat) && !hit.front;
         const MaterialSide& side = mat.side(useBack);
         ref::Settings st = m_settings;
         st.unlit = mat.unlit;
@@ -139,7 +139,7 @@ public:
         return glm::dvec4(c, 1.0);
     }
 
-    void setTwoSided(bool twoSided) { m_twoSided = twoSided; }
+    void setLighting(const frame::Lighting& lighting) { m_lighting = lighting; }
 
 private:
     // Records a candidate hit at model point p if the rasteriser would draw it there.
@@ -157,7 +157,7 @@ private:
         const Material& mat = *s.material;
         if (!front && !mat.doubleSided) return; // back-face culling
         if (mat.alphaMode == AlphaMode::Mask &&
-            mat.side(m_twoSided && !front).diffuse.a < mat.alphaCutoff)
+            mat.side(frame::twoSidedLighting(m_lighting, mat) && !front).diffuse.a < mat.alphaCutoff)
             return;
         best.t = t;
         best.surface = index;
@@ -172,7 +172,7 @@ private:
     RenderOptions m_options;
     glm::dmat4 m_clipFromView, m_viewFromClip;
     double m_nearDepth;
-    bool m_twoSided = false;
+    frame::Lighting m_lighting;
 };
 
 Error refuse(ErrorCode code, std::string message, std::string object) {
@@ -260,6 +260,11 @@ Result<std::vector<Surface>> placeSurfaces(const Scene& scene, const Pose& pose,
                               "the spheres and planes listed in ReferenceOptions::shapes)",
                           object);
         const Primitive& prim = scene.meshes[node.mesh].primitives[0];
+        if (isDeformed(scene, int(ni), prim))
+            return refuse(ErrorCode::Unsupported,
+                          "a skinned or morphing mesh is not an analytic surface (the pixel "
+                          "reference covers deformed meshes)",
+                          object);
         const Material& mat =
             prim.material >= 0 ? scene.materials[prim.material] : kDefaultMaterial;
         const std::string matObject = "materials[" + std::to_string(prim.material) + "]";
@@ -352,7 +357,7 @@ Result<ReferenceImage> raycastReference(const Scene& scene, const RenderOptions&
     settings.specular = lit.model.specular;
     Caster caster(std::move(*surfaces), *camera,
                   frame::placeLights(scene, pose, camera->viewFromWorld, false), settings, options);
-    caster.setTwoSided(lit.model.twoSided);
+    caster.setLighting(lit);
 
     const int W = options.width, H = options.height;
     const int N = reference.boxSamples, K = reference.edgeProbes;

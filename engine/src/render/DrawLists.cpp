@@ -4,6 +4,8 @@
 #include "render/Variants.h"
 
 #include <algorithm>
+#include <map>
+#include <tuple>
 
 namespace lantern::render {
 namespace {
@@ -83,6 +85,36 @@ gpu::ViewCommands packView(const frame::Frame& frame, std::size_t vi, const Rend
     return out;
 }
 
+// The deformation pre-pass: one command per (node, primitive, flat) that a draw deforms, with
+// the pose's joint matrices (world from bind space) and morph weights as floats.
+void addDeforms(const Scene& scene, const frame::Frame& frame, gpu::DrawList& list) {
+    std::map<std::tuple<std::uint32_t, std::uint32_t, bool>, int> made;
+    for (gpu::ViewCommands& v : list.views)
+        for (gpu::DrawCommand& c : v.draws) {
+            const frame::Draw* d = frame.draw(c.block.drawIndex);
+            if (!d || !d->deformed) continue;
+            const bool flat = c.pipeline.program == frame::Program::Flat;
+            const auto key = std::tuple{d->node, d->primitive, flat};
+            auto it = made.find(key);
+            if (it == made.end()) {
+                gpu::DeformCommand job;
+                job.mesh = d->mesh;
+                job.primitive = d->primitive;
+                job.flat = flat;
+                const Primitive& prim = scene.meshes[d->mesh].primitives[d->primitive];
+                if (isSkinned(scene, int(d->node), prim))
+                    for (const glm::dmat4& m :
+                         frame.pose.jointMatrices[std::size_t(scene.nodes[d->node].skin)])
+                        job.joints.push_back(toMat4(m));
+                if (!prim.targets.empty())
+                    for (double w : frame.pose.morphWeights[d->node]) job.weights.push_back(float(w));
+                list.deforms.push_back(std::move(job));
+                it = made.emplace(key, int(list.deforms.size()) - 1).first;
+            }
+            c.deform = it->second;
+        }
+}
+
 } // namespace
 
 gpu::LightData packLight(const frame::EyeLight& l) {
@@ -141,6 +173,7 @@ gpu::DrawList buildDrawList(const Scene& scene, const frame::Frame& frame,
     for (const Material& m : frame.materials) list.materials.push_back(packMaterial(m));
     for (std::size_t vi = 0; vi < frame.views.size(); ++vi)
         list.views.push_back(packView(frame, vi, o));
+    addDeforms(scene, frame, list);
     list.overlays = overlaysFor(scene, frame, o);
     return list;
 }

@@ -48,7 +48,7 @@ gpu::PipelineKey pipelineKey(const frame::Frame& frame, const frame::Draw& d,
     sc[LANTERN_SC_GLTF_FALLOFF] = all || lights.gltfFalloff;
     sc[LANTERN_SC_SPECULAR] = (all || f.specular) ? model : LANTERN_SPECULAR_NONE;
     sc[LANTERN_SC_LOCAL_VIEWER] = lit.model.localViewer;
-    sc[LANTERN_SC_TWO_SIDED] = lit.model.twoSided;
+    sc[LANTERN_SC_TWO_SIDED] = f.twoSided;
     sc[LANTERN_SC_VERTEX_COLOR] = all || f.vertexColor;
     sc[LANTERN_SC_TEXTURE] = all || f.texture;
     sc[LANTERN_SC_ALPHA_MASK] = all || f.alphaMask;

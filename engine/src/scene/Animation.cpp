@@ -67,4 +67,46 @@ glm::dvec4 sampleAnimation(const AnimationSampler& sampler, AnimationPath path, 
     return finish(value(k0));
 }
 
+std::vector<double> sampleWeights(const AnimationSampler& sampler, double time) {
+    const std::size_t n = sampler.weightCount;
+    const auto& times = sampler.times;
+    const bool cubic = sampler.interpolation == Interpolation::CubicSpline;
+    const std::size_t per = cubic ? 3 : 1;
+    std::vector<double> out(n, 0.0);
+    if (times.empty() || sampler.weights.size() < times.size() * per * n) return out;
+    // Group g (0: in-tangents, 1: values, 2: out-tangents for CubicSpline) of key k.
+    auto group = [&](std::size_t k, std::size_t g) { return &sampler.weights[(k * per + g) * n]; };
+    const std::size_t valueGroup = cubic ? 1 : 0;
+    auto copyKey = [&](std::size_t k) {
+        const double* v = group(k, valueGroup);
+        out.assign(v, v + n);
+        return out;
+    };
+    if (!(time > times.front())) return copyKey(0);
+    if (time >= times.back()) return copyKey(times.size() - 1);
+    const std::size_t k1 = std::size_t(std::upper_bound(times.begin(), times.end(), time) -
+                                       times.begin());
+    const std::size_t k0 = k1 - 1;
+    const double dt = times[k1] - times[k0];
+    const double s = (time - times[k0]) / dt;
+    switch (sampler.interpolation) {
+    case Interpolation::Step: return copyKey(k0);
+    case Interpolation::Linear: {
+        const double *a = group(k0, 0), *b = group(k1, 0);
+        for (std::size_t i = 0; i < n; ++i) out[i] = a[i] + s * (b[i] - a[i]);
+        return out;
+    }
+    case Interpolation::CubicSpline: {
+        const double *p0 = group(k0, 1), *p1 = group(k1, 1);
+        const double *b0 = group(k0, 2), *a1 = group(k1, 0);  // out-tangent of k0, in of k1
+        const double s2 = s * s, s3 = s2 * s;
+        for (std::size_t i = 0; i < n; ++i)
+            out[i] = (2 * s3 - 3 * s2 + 1) * p0[i] + (s3 - 2 * s2 + s) * dt * b0[i] +
+                     (-2 * s3 + 3 * s2) * p1[i] + (s3 - s2) * dt * a1[i];
+        return out;
+    }
+    }
+    return copyKey(k0);
+}
+
 } // namespace lantern

@@ -171,6 +171,7 @@ void addRedbookLighting(Scene& s, SceneRoot& root) {
     LightingModel lm;
     lm.globalAmbient = {0.2, 0.2, 0.2};
     lm.localViewer = false;
+    lm.twoSided = false; // GL's default light model: back faces drawn are lit one-sided
     root.lighting = lm;
 }
 

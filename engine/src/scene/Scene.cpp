@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
 
 namespace lantern {
@@ -28,6 +29,10 @@ Error invalid(const std::string& object, const std::string& message) {
     return makeError(ErrorCode::InvalidInput, message, object);
 }
 
+std::size_t morphTargetCount(const Mesh& mesh) {
+    return mesh.primitives.empty() ? 0 : mesh.primitives[0].targets.size();
+}
+
 Result<void> validateSide(const MaterialSide& s, const std::string& object) {
     if (!finite(s.ambient)) return invalid(object + ".ambient", "non-finite colour");
     if (!finite(s.diffuse)) return invalid(object + ".diffuse", "non-finite colour");
@@ -38,6 +43,55 @@ Result<void> validateSide(const MaterialSide& s, const std::string& object) {
     if (s.shininess < 0.0)
         return invalid(object + ".shininess",
                        "shininess must be >= 0, got " + std::to_string(s.shininess));
+    return {};
+}
+
+// Skin attributes (counts, set 1 only with set 0, weights finite and >= 0) and morph targets
+// (counts, finite displacements).
+Result<void> validateDeformation(const Primitive& prim, const std::string& obj) {
+    const std::size_t n = prim.positions.size();
+    const struct {
+        const char* name;
+        std::size_t size;
+    } streams[] = {{"joints0", prim.joints0.size()},
+                   {"weights0", prim.weights0.size()},
+                   {"joints1", prim.joints1.size()},
+                   {"weights1", prim.weights1.size()}};
+    for (const auto& st : streams)
+        if (st.size != 0 && st.size != n)
+            return invalid(obj + "." + st.name, "has " + std::to_string(st.size) + " entries for " +
+                                                     std::to_string(n) + " positions");
+    if (prim.joints0.size() != prim.weights0.size() || prim.joints1.size() != prim.weights1.size())
+        return invalid(obj, "joints and weights come in pairs (JOINTS_n with WEIGHTS_n)");
+    if (!prim.joints1.empty() && prim.joints0.empty())
+        return invalid(obj + ".joints1", "a second set of joints without a first");
+    for (const auto* set : {&prim.weights0, &prim.weights1})
+        for (std::size_t i = 0; i < set->size(); ++i) {
+            const glm::vec4& w = (*set)[i];
+            for (int k = 0; k < 4; ++k)
+                if (!std::isfinite(w[k]) || w[k] < 0.0f)
+                    return invalid(obj + "." + at(set == &prim.weights0 ? "weights0" : "weights1", i),
+                                   "skin weight " + std::to_string(w[k]) +
+                                       " is negative or not finite");
+        }
+    for (std::size_t t = 0; t < prim.targets.size(); ++t) {
+        const MorphTarget& target = prim.targets[t];
+        const std::string tobj = obj + "." + at("targets", t);
+        if (!target.positions.empty() && target.positions.size() != n)
+            return invalid(tobj + ".positions", "has " + std::to_string(target.positions.size()) +
+                                                    " displacements for " + std::to_string(n) +
+                                                    " positions");
+        if (!target.normals.empty() && target.normals.size() != n)
+            return invalid(tobj + ".normals", "has " + std::to_string(target.normals.size()) +
+                                                  " displacements for " + std::to_string(n) +
+                                                  " normals");
+        for (std::size_t i = 0; i < target.positions.size(); ++i)
+            if (!finite(target.positions[i]))
+                return invalid(tobj + "." + at("positions", i), "non-finite displacement");
+        for (std::size_t i = 0; i < target.normals.size(); ++i)
+            if (!finite(target.normals[i]))
+                return invalid(tobj + "." + at("normals", i), "non-finite displacement");
+    }
     return {};
 }
 
@@ -79,15 +133,106 @@ Result<void> validatePrimitive(const Primitive& prim, const std::string& obj,
     if (prim.material < -1 || prim.material >= int(materialCount))
         return invalid(obj + ".material",
                        "material " + std::to_string(prim.material) + " does not exist");
+    return validateDeformation(prim, obj);
+}
+
+Result<void> validateWeights(const std::vector<double>& weights, std::size_t targets,
+                             const std::string& obj) {
+    if (!weights.empty() && weights.size() != targets)
+        return invalid(obj, std::to_string(weights.size()) + " morph weights for " +
+                                std::to_string(targets) + " morph targets");
+    for (double w : weights)
+        if (!finite(w)) return invalid(obj, "non-finite morph weight");
     return {};
 }
 
 Result<void> validateMeshes(const Scene& scene) {
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+        const Mesh& mesh = scene.meshes[m];
+        for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+            const std::string obj = at("meshes", m) + "." + at("primitives", p);
+            LANTERN_TRY(validatePrimitive(mesh.primitives[p], obj, scene.materials.size()));
+            if (mesh.primitives[p].targets.size() != mesh.primitives[0].targets.size())
+                return invalid(obj + ".targets",
+                               "has " + std::to_string(mesh.primitives[p].targets.size()) +
+                                   " morph targets; primitive 0 has " +
+                                   std::to_string(mesh.primitives[0].targets.size()) +
+                                   " (glTF: every primitive of a mesh has the same number)");
+        }
+        LANTERN_TRY(validateWeights(mesh.weights, morphTargetCount(mesh), at("meshes", m) + ".weights"));
+    }
+    return {};
+}
+
+// Skins: joints exist and are distinct, one finite inverse bind matrix each, the skeleton
+// exists.
+Result<void> validateSkins(const Scene& scene) {
+    for (std::size_t i = 0; i < scene.skins.size(); ++i) {
+        const Skin& skin = scene.skins[i];
+        const std::string obj = at("skins", i);
+        if (skin.joints.empty()) return invalid(obj + ".joints", "a skin needs at least one joint");
+        std::vector<bool> seen(scene.nodes.size(), false);
+        for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+            const int node = skin.joints[j];
+            if (node < 0 || node >= int(scene.nodes.size()))
+                return invalid(obj + "." + at("joints", j),
+                               "node " + std::to_string(node) + " does not exist");
+            if (seen[std::size_t(node)])
+                return invalid(obj + "." + at("joints", j),
+                               "node " + std::to_string(node) + " is listed twice");
+            seen[std::size_t(node)] = true;
+        }
+        if (skin.inverseBind.size() != skin.joints.size())
+            return invalid(obj + ".inverseBindMatrices",
+                           std::to_string(skin.inverseBind.size()) + " matrices for " +
+                               std::to_string(skin.joints.size()) + " joints");
+        for (std::size_t j = 0; j < skin.inverseBind.size(); ++j)
+            for (int c = 0; c < 4; ++c)
+                if (!finite(skin.inverseBind[j][c]))
+                    return invalid(obj + ".inverseBindMatrices",
+                                   "matrix " + std::to_string(j) + " is not finite");
+        if (skin.skeleton < -1 || skin.skeleton >= int(scene.nodes.size()))
+            return invalid(obj + ".skeleton",
+                           "node " + std::to_string(skin.skeleton) + " does not exist");
+    }
+    return {};
+}
+
+// The largest joint index each primitive's vertices use (-1: not skinned), once per primitive.
+std::vector<std::vector<long long>> largestJoints(const Scene& scene) {
+    std::vector<std::vector<long long>> out(scene.meshes.size());
     for (std::size_t m = 0; m < scene.meshes.size(); ++m)
-        for (std::size_t p = 0; p < scene.meshes[m].primitives.size(); ++p)
-            LANTERN_TRY(validatePrimitive(scene.meshes[m].primitives[p],
-                                          at("meshes", m) + "." + at("primitives", p),
-                                          scene.materials.size()));
+        for (const Primitive& p : scene.meshes[m].primitives) {
+            long long big = -1;
+            for (const auto* set : {&p.joints0, &p.joints1})
+                for (const glm::uvec4& j : *set)
+                    for (int k = 0; k < 4; ++k) big = std::max(big, (long long)j[k]);
+            out[m].push_back(big);
+        }
+    return out;
+}
+
+// A node's skin and morph weights against its mesh.
+Result<void> validateNodeDeformation(const Scene& scene, const Node& nd, const std::string& obj,
+                                     const std::vector<std::vector<long long>>& largest) {
+    if (nd.skin < -1 || nd.skin >= int(scene.skins.size()))
+        return invalid(obj + ".skin", "skin " + std::to_string(nd.skin) + " does not exist");
+    if (nd.mesh < 0) {
+        if (!nd.weights.empty())
+            return invalid(obj + ".weights", "morph weights on a node without a mesh");
+        return {};
+    }
+    const Mesh& mesh = scene.meshes[std::size_t(nd.mesh)];
+    LANTERN_TRY(validateWeights(nd.weights, morphTargetCount(mesh), obj + ".weights"));
+    if (nd.skin < 0) return {};
+    const std::size_t joints = scene.skins[std::size_t(nd.skin)].joints.size();
+    for (std::size_t p = 0; p < mesh.primitives.size(); ++p)
+        if (largest[std::size_t(nd.mesh)][p] >= (long long)joints)
+            return invalid(at("meshes", std::size_t(nd.mesh)) + "." + at("primitives", p) +
+                               ".joints",
+                           "joint " + std::to_string(largest[std::size_t(nd.mesh)][p]) +
+                               " is out of range: skin " + std::to_string(nd.skin) + " (used by " +
+                               obj + ") has " + std::to_string(joints) + " joints");
     return {};
 }
 
@@ -174,16 +319,24 @@ Result<void> validateNode(const Scene& scene, const Node& nd, const std::string&
     return {};
 }
 
-// With one parent per node, a cycle is a chain of parents that never reaches a root.
+// With one parent per node, a cycle is a chain of parents that never reaches a root. Linear
+// time: each node's chain is walked once, marking every node on it; a walk stops at a node
+// already known to reach a root, and meets its own marks only on a cycle.
 Result<void> checkNoCycles(const std::vector<int>& parent) {
+    enum : unsigned char { Unknown, OnPath, ReachesRoot };
+    std::vector<unsigned char> state(parent.size(), Unknown);
+    std::vector<int> path;
     for (std::size_t i = 0; i < parent.size(); ++i) {
-        int p = parent[i];
-        std::size_t steps = 0;
-        while (p != -1 && steps <= parent.size()) {
-            p = parent[p];
-            ++steps;
+        path.clear();
+        int n = int(i);
+        while (n != -1 && state[std::size_t(n)] == Unknown) {
+            state[std::size_t(n)] = OnPath;
+            path.push_back(n);
+            n = parent[std::size_t(n)];
         }
-        if (p != -1) return invalid(at("nodes", i), "node hierarchy contains a cycle");
+        if (n != -1 && state[std::size_t(n)] == OnPath)
+            return invalid(at("nodes", std::size_t(n)), "node hierarchy contains a cycle");
+        for (int k : path) state[std::size_t(k)] = ReachesRoot;
     }
     return {};
 }
@@ -193,10 +346,12 @@ Result<void> checkNoCycles(const std::vector<int>& parent) {
 Result<std::vector<int>> validateNodes(const Scene& scene) {
     const std::vector<Node>& nodes = scene.nodes;
     std::vector<int> parent(nodes.size(), -1);
+    const std::vector<std::vector<long long>> largest = largestJoints(scene);
     for (std::size_t i = 0; i < nodes.size(); ++i) {
         const Node& nd = nodes[i];
         const std::string obj = at("nodes", i);
         LANTERN_TRY(validateNode(scene, nd, obj));
+        LANTERN_TRY(validateNodeDeformation(scene, nd, obj, largest));
         for (std::size_t c = 0; c < nd.children.size(); ++c) {
             const int ch = nd.children[c];
             if (ch < 0 || ch >= int(nodes.size()))
@@ -226,6 +381,18 @@ Result<void> validateSampler(const AnimationSampler& smp, const std::string& sob
                            "key times are not strictly increasing at key " + std::to_string(k));
     }
     const std::size_t per = smp.interpolation == Interpolation::CubicSpline ? 3 : 1;
+    if (smp.weightCount > 0 || !smp.weights.empty()) {
+        if (smp.weights.size() != smp.times.size() * per * smp.weightCount)
+            return invalid(sobj + ".output",
+                           "has " + std::to_string(smp.weights.size()) + " morph weights for " +
+                               std::to_string(smp.times.size()) + " keys of " +
+                               std::to_string(smp.weightCount) + " targets");
+        for (double w : smp.weights)
+            if (!finite(w)) return invalid(sobj + ".output", "non-finite keyframe value");
+        if (smp.interpolation == Interpolation::CubicSpline && smp.times.size() < 2)
+            return invalid(sobj, "CUBICSPLINE needs at least two keys");
+        return {};
+    }
     if (smp.values.size() != smp.times.size() * per)
         return invalid(sobj + ".output", "has " + std::to_string(smp.values.size()) +
                                              " values for " + std::to_string(smp.times.size()) +
@@ -246,7 +413,21 @@ Result<void> validateChannel(const Scene& scene, const Animation& an, const Anim
     if (ch.node < 0 || ch.node >= int(scene.nodes.size()))
         return invalid(cobj + ".target.node",
                        "node " + std::to_string(ch.node) + " does not exist");
-    if (scene.nodes[ch.node].matrix)
+    const Node& nd = scene.nodes[std::size_t(ch.node)];
+    const AnimationSampler& smp = an.samplers[std::size_t(ch.sampler)];
+    if (ch.path == AnimationPath::Weights) {
+        const std::size_t targets =
+            nd.mesh >= 0 ? morphTargetCount(scene.meshes[std::size_t(nd.mesh)]) : 0;
+        if (targets == 0 || smp.weightCount != targets)
+            return invalid(cobj, "animates " + std::to_string(smp.weightCount) +
+                                     " morph weights of node " + std::to_string(ch.node) +
+                                     ", whose mesh has " + std::to_string(targets) +
+                                     " morph targets");
+        return {};
+    }
+    if (smp.weightCount > 0)
+        return invalid(cobj, "a morph-weight sampler drives a transform");
+    if (nd.matrix)
         return invalid(cobj + ".target.node",
                        "node " + std::to_string(ch.node) + " has a matrix and cannot be animated");
     return {};
@@ -374,11 +555,57 @@ Result<void> Scene::validate() const {
     LANTERN_TRY(validateTextures(*this));
     LANTERN_TRY(validateLights(*this));
     LANTERN_TRY(validateCameras(*this));
+    LANTERN_TRY(validateSkins(*this));
     Result<std::vector<int>> parent = validateNodes(*this);
     if (!parent) return std::move(parent).error();
     LANTERN_TRY(validateAnimations(*this));
     return validateRoots(*this, *parent);
 }
+
+namespace {
+
+// The morph weights every node with morph targets is drawn with: the animated ones (set by the
+// caller), else the node's, else the mesh's, else zeros.
+void defaultMorphWeights(const Scene& scene, Pose& pose) {
+    pose.morphWeights.assign(scene.nodes.size(), {});
+    for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
+        const Node& nd = scene.nodes[i];
+        if (nd.mesh < 0) continue;
+        const Mesh& mesh = scene.meshes[std::size_t(nd.mesh)];
+        const std::size_t n = morphTargetCount(mesh);
+        if (n == 0) continue;
+        pose.morphWeights[i] = !nd.weights.empty()     ? nd.weights
+                               : !mesh.weights.empty() ? mesh.weights
+                                                       : std::vector<double>(n, 0.0);
+    }
+}
+
+// World transforms of joints outside the root's hierarchy (a skin may use nodes that no scene
+// lists): composed along their parents, each node once.
+void placeUnvisitedJoints(const Scene& scene, Pose& pose,
+                          const std::function<glm::dmat4(std::size_t)>& local) {
+    std::vector<int> parent(scene.nodes.size(), -1);
+    for (std::size_t i = 0; i < scene.nodes.size(); ++i)
+        for (int c : scene.nodes[i].children) parent[std::size_t(c)] = int(i);
+    std::vector<bool> done = pose.visible;
+    std::vector<int> chain;
+    for (const Skin& skin : scene.skins)
+        for (int joint : skin.joints) {
+            chain.clear();
+            for (int n = joint; n >= 0 && !done[std::size_t(n)]; n = parent[std::size_t(n)])
+                chain.push_back(n);
+            // Outermost first: its parent is placed already or it is a root.
+            for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+                const int p = parent[std::size_t(*it)];
+                const glm::dmat4 parentWorld = p >= 0 ? pose.worldFromNode[std::size_t(p)]
+                                                      : glm::dmat4(1.0);
+                pose.worldFromNode[std::size_t(*it)] = parentWorld * local(std::size_t(*it));
+                done[std::size_t(*it)] = true;
+            }
+        }
+}
+
+} // namespace
 
 Pose evaluatePose(const Scene& scene, int root, double time) {
     Pose pose;
@@ -387,6 +614,7 @@ Pose evaluatePose(const Scene& scene, int root, double time) {
     const std::size_t n = scene.nodes.size();
     pose.worldFromNode.assign(n, glm::dmat4(1.0));
     pose.visible.assign(n, false);
+    defaultMorphWeights(scene, pose);
 
     // Animated TRS per node, starting from the rest pose.
     std::vector<glm::dvec3> t(n), s(n);
@@ -398,11 +626,17 @@ Pose evaluatePose(const Scene& scene, int root, double time) {
     }
     for (const Animation& anim : scene.animations) {
         for (const AnimationChannel& ch : anim.channels) {
-            const glm::dvec4 v = sampleAnimation(anim.samplers[ch.sampler], ch.path, time);
+            const AnimationSampler& sampler = anim.samplers[ch.sampler];
+            if (ch.path == AnimationPath::Weights) {
+                pose.morphWeights[std::size_t(ch.node)] = sampleWeights(sampler, time);
+                continue;
+            }
+            const glm::dvec4 v = sampleAnimation(sampler, ch.path, time);
             switch (ch.path) {
             case AnimationPath::Translation: t[ch.node] = glm::dvec3(v); break;
             case AnimationPath::Scale: s[ch.node] = glm::dvec3(v); break;
             case AnimationPath::Rotation: r[ch.node] = glm::dquat(v.w, v.x, v.y, v.z); break;
+            case AnimationPath::Weights: break;
             }
         }
     }
@@ -415,17 +649,29 @@ Pose evaluatePose(const Scene& scene, int root, double time) {
         tmp.scale = s[i];
         return tmp.localTransform();
     };
-    if (pose.root < 0 || pose.root >= int(scene.roots.size())) return pose;
-    // Iterative depth-first walk (validated: a forest, so it terminates).
-    std::vector<std::pair<int, glm::dmat4>> stack;
-    for (int rn : scene.roots[pose.root].nodes) stack.emplace_back(rn, glm::dmat4(1.0));
-    while (!stack.empty()) {
-        auto [node, parentWorld] = stack.back();
-        stack.pop_back();
-        const glm::dmat4 world = parentWorld * local(std::size_t(node));
-        pose.worldFromNode[node] = world;
-        pose.visible[node] = true;
-        for (int ch : scene.nodes[node].children) stack.emplace_back(ch, world);
+    if (pose.root >= 0 && pose.root < int(scene.roots.size())) {
+        // Iterative depth-first walk (validated: a forest, so it terminates).
+        std::vector<std::pair<int, glm::dmat4>> stack;
+        for (int rn : scene.roots[pose.root].nodes) stack.emplace_back(rn, glm::dmat4(1.0));
+        while (!stack.empty()) {
+            auto [node, parentWorld] = stack.back();
+            stack.pop_back();
+            const glm::dmat4 world = parentWorld * local(std::size_t(node));
+            pose.worldFromNode[node] = world;
+            pose.visible[node] = true;
+            for (int ch : scene.nodes[node].children) stack.emplace_back(ch, world);
+        }
+    }
+    if (!scene.skins.empty()) {
+        placeUnvisitedJoints(scene, pose, local);
+        pose.jointMatrices.resize(scene.skins.size());
+        for (std::size_t k = 0; k < scene.skins.size(); ++k) {
+            const Skin& skin = scene.skins[k];
+            pose.jointMatrices[k].resize(skin.joints.size());
+            for (std::size_t j = 0; j < skin.joints.size(); ++j)
+                pose.jointMatrices[k][j] =
+                    pose.worldFromNode[std::size_t(skin.joints[j])] * skin.inverseBind[j];
+        }
     }
     return pose;
 }
@@ -434,11 +680,15 @@ Bounds computeBounds(const Scene& scene, const Pose& pose) {
     Bounds b;
     for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
         if (!pose.visible[i] || scene.nodes[i].mesh < 0) continue;
-        const glm::dmat4& m = pose.worldFromNode[i];
         for (const Primitive& prim : scene.meshes[scene.nodes[i].mesh].primitives) {
             if (prim.positions.empty()) continue;
+            const glm::dmat4 m = worldFromDrawn(scene, pose, int(i), prim);
             Bounds local;
-            for (const glm::vec3& p : prim.positions) local.extend(glm::dvec3(p));
+            if (isDeformed(scene, int(i), prim))
+                for (const glm::dvec3& p : deformPrimitive(scene, pose, int(i), prim).positions)
+                    local.extend(p);
+            else
+                for (const glm::vec3& p : prim.positions) local.extend(glm::dvec3(p));
             for (int c = 0; c < 8; ++c) {
                 const glm::dvec3 corner((c & 1) ? local.max.x : local.min.x,
                                         (c & 2) ? local.max.y : local.min.y,

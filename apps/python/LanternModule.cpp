@@ -1,0 +1,169 @@
+// The Python module `lantern._lantern` (pybind11): scenes, the renderer, images as NumPy arrays,
+// writing EXR/PNG, and the build and device facts. lantern/__init__.py adds the pure-Python
+// parts (frames of an animation, the module-level render). docs/python.md is its guide.
+#include "PythonScene.h"
+
+#include <pybind11/stl.h>
+
+namespace py = pybind11;
+using namespace lantern;
+using namespace lantern::python;
+
+namespace {
+
+std::shared_ptr<PyScene> loadPyScene(const std::string& pathOrBuiltin) {
+    auto loaded = lantern::loadScene(pathOrBuiltin);
+    if (!loaded) raise(loaded.error());
+    auto s = std::make_shared<PyScene>();
+    s->scene = std::make_shared<Scene>(std::move(*loaded));
+    return s;
+}
+
+py::dict summaryOf(const PyScene& s) {
+    const SceneSummary sum = summarize(*s.scene);
+    py::dict d;
+    d["nodes"] = sum.nodes;
+    d["meshes"] = sum.meshes;
+    d["triangles"] = sum.triangles;
+    d["vertices"] = sum.vertices;
+    d["materials"] = sum.materials;
+    d["lights"] = sum.lights;
+    d["cameras"] = sum.cameras;
+    d["animations"] = sum.animations;
+    return d;
+}
+
+void writeImageFile(const std::string& path, const py::array_t<float, py::array::c_style |
+                                                                      py::array::forcecast>& rgba,
+                    const py::object& depth, const py::object& normal, bool half) {
+    const Image image = fromArrays(rgba, depth, normal);
+    ExrOptions exr;
+    exr.half = half;
+    if (auto r = writeImage(path, image, exr); !r) raise(r.error());
+}
+
+py::dict buildFacts() {
+    const BuildInfo b = buildInfo();
+    py::dict d;
+    d["version"] = b.version;
+    d["commit"] = b.commit;
+    d["build_type"] = b.buildType;
+    d["compiler"] = b.compiler;
+    d["library"] = b.library;
+    d["vulkan_loader"] = b.vulkanLoader;
+    return d;
+}
+
+py::list deviceList(const std::string& name) {
+    auto list = listDevices(name);
+    if (!list) raise(list.error());
+    py::list out;
+    for (const DeviceListing& d : list->devices) {
+        py::dict e;
+        e["name"] = d.name;
+        e["type"] = d.type;
+        e["driver"] = d.driver;
+        e["vulkan"] = d.apiVersion;
+        e["usable"] = d.usable;
+        e["why_not"] = d.whyNot;
+        e["msaa"] = d.msaaSampleCounts;
+        e["chosen"] = d.chosen;
+        out.append(e);
+    }
+    return out;
+}
+
+void defineScene(py::module_& m) {
+    py::class_<PyScene, std::shared_ptr<PyScene>>(
+        m, "Scene", "A scene: loaded from glTF/GLB or a built-in; its lights can be edited")
+        .def_property_readonly(
+            "path", [](const PyScene& s) { return s.scene->sourcePath; },
+            "The file it came from, or builtin:NAME")
+        .def_property_readonly(
+            "animation_range",
+            [](const PyScene& s) {
+                const TimeRange r = animationRange(*s.scene);
+                return py::make_tuple(r.start, r.end);
+            },
+            "(start, end) in seconds of all its animations; (0, 0) without any")
+        .def_property_readonly("summary", &summaryOf, "Counts of nodes, meshes, triangles...")
+        .def_property_readonly("lights", &PyScene::lights, "The lights: name, type, colours")
+        .def("add_light", &PyScene::addLight, py::arg("type"), py::kw_only(),
+             py::arg("position") = py::none(), py::arg("direction") = py::none(),
+             py::arg("color") = std::vector<double>{1.0, 1.0, 1.0},
+             py::arg("ambient") = std::vector<double>{0.0, 0.0, 0.0},
+             py::arg("attenuation") = std::vector<double>{1.0, 0.0, 0.0},
+             py::arg("spot_cutoff_deg") = 45.0, py::arg("spot_exponent") = 0.0,
+             py::arg("name") = std::string(),
+             "Adds a GL light in world space: directional (direction), point (position) or "
+             "spot (both); color is its diffuse and specular, linear RGB")
+        .def("clear_lights", &PyScene::clearLights,
+             "Removes every light (a scene without lights gets GL's default light 0)")
+        .def("__repr__", [](const PyScene& s) {
+            return "<lantern.Scene " + s.scene->sourcePath + ">";
+        });
+}
+
+void defineRenderer(py::module_& m) {
+    py::class_<PyRenderer>(m, "Renderer",
+                           "The renderer: creates the Vulkan device once; keep it for many "
+                           "renders (pipelines and uploads are reused)")
+        .def(py::init<const std::string&, bool>(), py::arg("device") = std::string(),
+             py::arg("validation") = false)
+        .def_property_readonly("device", &PyRenderer::device,
+                               "The device: name, type, driver, supported msaa values")
+        .def_property_readonly(
+            "validation_enabled",
+            [](const PyRenderer& r) { return r.renderer->device().validationEnabled; },
+            "Whether the Khronos validation layer is on (Renderer(validation=True) and the "
+            "layer installed)")
+        .def_property_readonly(
+            "validation_messages",
+            [](const PyRenderer& r) { return r.renderer->validationMessageCount(); },
+            "How many messages the validation layer has reported so far")
+        .def(
+            "render",
+            [](PyRenderer& r, PyScene& scene, double time, int width, int height,
+               std::optional<std::string> shading, std::optional<std::string> specular, int msaa,
+               std::optional<std::vector<double>> background,
+               std::optional<std::vector<std::vector<double>>> lookAt,
+               std::optional<std::vector<double>> perspective,
+               std::optional<std::vector<double>> ortho, std::optional<int> camera,
+               std::optional<bool> twoSided, std::optional<bool> localViewer, bool clamp,
+               bool glCompat, bool depth, bool normal) {
+                RenderArgs a{time,       width,   height,      std::move(shading),
+                             std::move(specular), msaa, std::move(background), std::move(lookAt),
+                             std::move(perspective), std::move(ortho), camera, twoSided,
+                             localViewer, clamp, glCompat, depth, normal};
+                return r.render(scene, a);
+            },
+            py::arg("scene"), py::kw_only(), py::arg("time") = 0.0, py::arg("width") = 1280,
+            py::arg("height") = 720, py::arg("shading") = py::none(),
+            py::arg("specular") = py::none(), py::arg("msaa") = 1,
+            py::arg("background") = py::none(), py::arg("look_at") = py::none(),
+            py::arg("perspective") = py::none(), py::arg("ortho") = py::none(),
+            py::arg("camera") = py::none(), py::arg("two_sided") = py::none(),
+            py::arg("local_viewer") = py::none(), py::arg("clamp") = false,
+            py::arg("gl_compat") = false, py::arg("depth") = false, py::arg("normal") = false,
+            "Renders `scene` at `time` seconds: a (height, width, 4) float32 array of linear, "
+            "premultiplied RGBA; with depth=True and/or normal=True a tuple (rgba, depth, "
+            "normal) of the planes asked for");
+}
+
+} // namespace
+
+PYBIND11_MODULE(_lantern, m) {
+    m.doc() = "Lantern: a Vulkan renderer for the classic camera, light and material model";
+    py::register_exception<LanternException>(m, "Error", PyExc_RuntimeError);
+    m.attr("__version__") = versionString();
+    defineScene(m);
+    defineRenderer(m);
+    m.def("load", &loadPyScene, py::arg("path"), "Loads a .gltf/.glb file or builtin:NAME");
+    m.def("builtin_scenes", &builtinSceneNames, "The names builtin:NAME accepts");
+    m.def("write_image", &writeImageFile, py::arg("path"), py::arg("rgba"), py::kw_only(),
+          py::arg("depth") = py::none(), py::arg("normal") = py::none(), py::arg("half") = false,
+          "Writes .exr (float, or half) or .png (8-bit sRGB) by extension, atomically");
+    m.def("build_info", &buildFacts, "Version, commit, build type, compiler, Vulkan loader");
+    m.def("list_devices", &deviceList, py::arg("device") = std::string(),
+          "The Vulkan devices and the one a Renderer(device=...) would choose");
+}

@@ -1,0 +1,261 @@
+// The Python module's C++ side: scenes whose lights the host edits, render options from
+// keyword arguments, the renderer that keeps its device and uploads between calls, and
+// pictures handed to NumPy without a copy.
+#define GLM_ENABLE_EXPERIMENTAL
+#include "PythonScene.h"
+
+#include <glm/gtx/quaternion.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+
+namespace lantern::python {
+namespace {
+
+glm::dvec3 vec3(const std::vector<double>& v, const char* keyword) {
+    if (v.size() != 3)
+        throw py::value_error(std::string(keyword) + ": expected 3 numbers, got " +
+                              std::to_string(v.size()));
+    return {v[0], v[1], v[2]};
+}
+
+void check(const Result<void>& r) {
+    if (!r) raise(r.error());
+}
+
+// The camera keywords: look_at, perspective, ortho and the scene's camera N.
+void applyCamera(const RenderArgs& a, RenderOptions& o) {
+    if (a.camera) {
+        o.camera.source = CameraSpec::Source::SceneCamera;
+        o.camera.sceneCamera = *a.camera;
+    }
+    if (a.lookAt) {
+        if (a.lookAt->size() != 3)
+            throw py::value_error("look_at: expected (eye, target, up)");
+        LookAt la{vec3((*a.lookAt)[0], "look_at eye"), vec3((*a.lookAt)[1], "look_at target"),
+                  vec3((*a.lookAt)[2], "look_at up")};
+        check(checkLookAt(la, "look_at"));
+        o.camera.lookAt = la;
+    }
+    if (a.perspective && a.ortho) throw py::value_error("give perspective or ortho, not both");
+    if (a.perspective) {
+        const auto& p = *a.perspective;
+        if (p.size() != 3 && p.size() != 4)
+            throw py::value_error("perspective: expected (fovy_deg, near, far) or (fovy_deg, "
+                                  "aspect, near, far)");
+        const double aspect = p.size() == 4 ? p[1] : 0.0; // 0: the image's aspect
+        o.camera.projection = Projection::makePerspective(p[0] * 3.14159265358979323846 / 180.0, aspect,
+                                                          p[p.size() - 2], p.back());
+        check(checkProjection(*o.camera.projection, "perspective"));
+    }
+    if (a.ortho) {
+        const auto& p = *a.ortho;
+        if (p.size() != 6) throw py::value_error("ortho: expected (l, r, b, t, n, f)");
+        o.camera.projection = Projection::makeOrtho(p[0], p[1], p[2], p[3], p[4], p[5]);
+        check(checkProjection(*o.camera.projection, "ortho"));
+    }
+}
+
+std::atomic<std::uint64_t> g_nextRendererId{1};
+
+} // namespace
+
+void raise(const Error& error) {
+    const std::string text = std::string(errorCodeName(error.code)) + ": " + error.describe();
+    if (error.code == ErrorCode::InvalidInput || error.code == ErrorCode::Usage)
+        throw py::value_error(text);
+    if (error.code == ErrorCode::IoError) {
+        // A file that cannot be read or written: Python's OSError, as open() raises.
+        PyErr_SetString(PyExc_OSError, text.c_str());
+        throw py::error_already_set();
+    }
+    throw LanternException(text);
+}
+
+void PyScene::addLight(const std::string& type, std::optional<std::vector<double>> position,
+                       std::optional<std::vector<double>> direction, std::vector<double> color,
+                       std::vector<double> ambient, std::vector<double> attenuation,
+                       double spotCutoffDeg, double spotExponent, const std::string& name) {
+    Light light;
+    light.name = name;
+    if (type == "directional")
+        light.type = LightType::Directional;
+    else if (type == "point")
+        light.type = LightType::Point;
+    else if (type == "spot")
+        light.type = LightType::Spot;
+    else
+        throw py::value_error("light type \"" + type + "\": directional, point or spot");
+    light.diffuse = light.specular = vec3(color, "color");
+    light.ambient = vec3(ambient, "ambient");
+    light.attenuation = vec3(attenuation, "attenuation");
+    light.spotCutoffDeg = light.type == LightType::Spot ? spotCutoffDeg : 180.0;
+    light.spotExponent = spotExponent;
+    Node node;
+    node.name = name.empty() ? type + " light" : name;
+    node.light = int(scene->lights.size());
+    if (light.type != LightType::Directional) {
+        if (!position) throw py::value_error("a " + type + " light needs position=(x, y, z)");
+        node.translation = vec3(*position, "position");
+    }
+    if (light.type != LightType::Point) {
+        if (!direction) throw py::value_error("a " + type + " light needs direction=(x, y, z)");
+        const glm::dvec3 d = vec3(*direction, "direction");
+        if (!(glm::length(d) > 0.0)) throw py::value_error("direction: must not be zero");
+        // A glTF light shines down its node's -Z.
+        node.rotation = glm::rotation(glm::dvec3(0.0, 0.0, -1.0), glm::normalize(d));
+    }
+    scene->lights.push_back(light);
+    scene->nodes.push_back(node);
+    if (scene->roots.empty()) scene->roots.push_back({});
+    for (SceneRoot& root : scene->roots)
+        root.nodes.push_back(int(scene->nodes.size()) - 1);
+    if (auto r = scene->validate(); !r) {
+        scene->lights.pop_back();
+        scene->nodes.pop_back();
+        for (SceneRoot& root : scene->roots)
+            root.nodes.pop_back();
+        raise(r.error());
+    }
+    ++generation;
+}
+
+void PyScene::clearLights() {
+    for (Node& n : scene->nodes)
+        n.light = -1;
+    scene->lights.clear();
+    ++generation;
+}
+
+py::list PyScene::lights() const {
+    py::list out;
+    for (const Light& l : scene->lights) {
+        py::dict d;
+        d["name"] = l.name;
+        d["type"] = l.type == LightType::Directional ? "directional"
+                    : l.type == LightType::Point     ? "point"
+                                                     : "spot";
+        d["color"] = py::make_tuple(l.diffuse.x, l.diffuse.y, l.diffuse.z);
+        d["ambient"] = py::make_tuple(l.ambient.x, l.ambient.y, l.ambient.z);
+        out.append(d);
+    }
+    return out;
+}
+
+RenderOptions renderOptions(const RenderArgs& a) {
+    RenderOptions o;
+    o.width = a.width;
+    o.height = a.height;
+    if (a.shading) {
+        o.shading = parseShadingMode(*a.shading);
+        if (!o.shading) throw py::value_error("shading \"" + *a.shading + "\": flat, gouraud or phong");
+    }
+    if (a.specular) {
+        o.specular = parseSpecularModel(*a.specular);
+        if (!o.specular) throw py::value_error("specular \"" + *a.specular + "\": blinn or phong");
+    }
+    o.msaa = a.msaa;
+    if (a.background) {
+        // As --background: R,G,B is opaque; R,G,B,A is premultiplied here.
+        const auto& b = *a.background;
+        if (b.size() != 3 && b.size() != 4)
+            throw py::value_error("background: expected (r, g, b) or (r, g, b, a), linear");
+        const double alpha = b.size() == 4 ? b[3] : 1.0;
+        if (!(alpha >= 0.0 && alpha <= 1.0)) throw py::value_error("background: alpha in [0, 1]");
+        o.background = glm::vec4(float(b[0] * alpha), float(b[1] * alpha), float(b[2] * alpha),
+                                 float(alpha));
+    }
+    applyCamera(a, o);
+    if (a.twoSided) o.twoSided = *a.twoSided;
+    if (a.localViewer) o.localViewer = *a.localViewer;
+    o.clamp = a.clamp;
+    o.glCompat = a.glCompat;
+    o.aovs.depth = a.depth;
+    o.aovs.normal = a.normal;
+    return o;
+}
+
+PyRenderer::PyRenderer(const std::string& device, bool validation)
+    : id(g_nextRendererId.fetch_add(1)) {
+    RendererDesc desc;
+    desc.deviceName = device;
+    desc.validation = validation;
+    auto r = Renderer::create(desc);
+    if (!r) raise(r.error());
+    renderer.emplace(std::move(*r));
+}
+
+py::object PyRenderer::render(PyScene& s, const RenderArgs& a) {
+    const RenderOptions options = renderOptions(a);
+    const auto& counts = renderer->device().msaaSampleCounts;
+    if (std::find(counts.begin(), counts.end(), a.msaa) == counts.end()) {
+        std::string supported;
+        for (int c : counts)
+            supported += (supported.empty() ? "" : ", ") + std::to_string(c);
+        throw py::value_error("msaa " + std::to_string(a.msaa) + ": " + renderer->device().name +
+                              " supports " + supported);
+    }
+    // The upload is kept with the scene: a loop of renders reuses it, and only a structural
+    // edit (a light added or removed) or another renderer uploads again.
+    if (s.preparedFor != id || s.preparedGeneration != s.generation) {
+        auto prepared = renderer->prepare(s.scene);
+        if (!prepared) raise(prepared.error());
+        s.prepared = std::move(*prepared);
+        s.preparedFor = id;
+        s.preparedGeneration = s.generation;
+    }
+    auto image = renderer->render(s.prepared, options, a.time);
+    if (!image) raise(image.error());
+    return toArrays(std::move(*image), a.depth, a.normal);
+}
+
+py::dict PyRenderer::device() const {
+    const DeviceInfo& d = renderer->device();
+    py::dict out;
+    out["name"] = d.name;
+    out["type"] = d.type;
+    out["driver"] = d.driver;
+    out["msaa"] = d.msaaSampleCounts;
+    return out;
+}
+
+py::object toArrays(Image&& image, bool depth, bool normal) {
+    auto* held = new Image(std::move(image));
+    py::capsule owner(held, [](void* p) { delete static_cast<Image*>(p); });
+    const py::ssize_t h = held->height, w = held->width, f = sizeof(float);
+    py::array_t<float> rgba({h, w, py::ssize_t(4)}, {w * 4 * f, 4 * f, f}, held->rgba.data(),
+                            owner);
+    if (!depth && !normal) return rgba;
+    py::list planes;
+    planes.append(rgba);
+    if (depth) planes.append(py::array_t<float>({h, w}, {w * f, f}, held->depth.data(), owner));
+    if (normal)
+        planes.append(py::array_t<float>({h, w, py::ssize_t(3)}, {w * 3 * f, 3 * f, f},
+                                         held->normal.data(), owner));
+    return py::tuple(planes);
+}
+
+Image fromArrays(const py::array_t<float, py::array::c_style | py::array::forcecast>& rgba,
+                 const py::object& depth, const py::object& normal) {
+    if (rgba.ndim() != 3 || rgba.shape(2) != 4)
+        throw py::value_error("rgba: expected an array of shape (height, width, 4)");
+    Image image(int(rgba.shape(1)), int(rgba.shape(0)));
+    std::copy(rgba.data(), rgba.data() + image.rgba.size(), image.rgba.begin());
+    if (!depth.is_none()) {
+        auto d = depth.cast<py::array_t<float, py::array::c_style | py::array::forcecast>>();
+        if (d.ndim() != 2 || d.shape(0) != image.height || d.shape(1) != image.width)
+            throw py::value_error("depth: expected an array of shape (height, width)");
+        image.depth.assign(d.data(), d.data() + image.pixelCount());
+    }
+    if (!normal.is_none()) {
+        auto n = normal.cast<py::array_t<float, py::array::c_style | py::array::forcecast>>();
+        if (n.ndim() != 3 || n.shape(0) != image.height || n.shape(1) != image.width ||
+            n.shape(2) != 3)
+            throw py::value_error("normal: expected an array of shape (height, width, 3)");
+        image.normal.assign(n.data(), n.data() + image.pixelCount() * 3);
+    }
+    return image;
+}
+
+} // namespace lantern::python

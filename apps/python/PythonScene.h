@@ -1,0 +1,83 @@
+// PythonScene.h: what the Python module `lantern` wraps: a scene the host may edit (lights), the
+// renderer that keeps its device between calls, and the options of one render as keyword
+// arguments. Uses Lantern's public API only.
+#pragma once
+
+#include <lantern/Lantern.h>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lantern::python {
+
+namespace py = pybind11;
+
+/// A Lantern error as a Python exception (lantern.Error, a RuntimeError).
+struct LanternException : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+/// Raises the error: ValueError for refused input or misuse, OSError for a file that cannot be
+/// read or written, lantern.Error otherwise.
+[[noreturn]] void raise(const Error& error);
+
+/// A scene and the upload of it to the renderer that last drew it. Structural edits (lights
+/// added or removed) bump `generation`, so the next render uploads it again.
+struct PyScene {
+    std::shared_ptr<Scene> scene;
+    std::uint64_t generation = 0;
+    std::uint64_t preparedFor = 0;          ///< PyRenderer::id of the upload (0: none)
+    std::uint64_t preparedGeneration = 0;
+    PreparedScene prepared;
+
+    void addLight(const std::string& type, std::optional<std::vector<double>> position,
+                  std::optional<std::vector<double>> direction, std::vector<double> color,
+                  std::vector<double> ambient, std::vector<double> attenuation,
+                  double spotCutoffDeg, double spotExponent, const std::string& name);
+    void clearLights();
+    py::list lights() const;
+};
+
+/// The options of one render, as Renderer.render's keyword arguments give them.
+struct RenderArgs {
+    double time = 0.0;
+    int width = 1280, height = 720;
+    std::optional<std::string> shading, specular;
+    int msaa = 1;
+    std::optional<std::vector<double>> background;
+    std::optional<std::vector<std::vector<double>>> lookAt; ///< eye, target, up
+    std::optional<std::vector<double>> perspective;         ///< fovy_deg, [aspect,] near, far
+    std::optional<std::vector<double>> ortho;               ///< l, r, b, t, n, f
+    std::optional<int> camera;                              ///< the scene's camera N
+    std::optional<bool> twoSided, localViewer;
+    bool clamp = false, glCompat = false;
+    bool depth = false, normal = false;
+};
+
+/// Builds the RenderOptions (ValueError naming the keyword for a bad value).
+RenderOptions renderOptions(const RenderArgs& a);
+
+/// The renderer: created once (the device, its pipelines and uploads stay for every render).
+struct PyRenderer {
+    std::uint64_t id = 0;
+    std::optional<Renderer> renderer;
+
+    PyRenderer(const std::string& device, bool validation);
+    py::object render(PyScene& scene, const RenderArgs& args);
+    py::dict device() const;
+};
+
+/// The picture's planes as NumPy arrays sharing the Image's memory (no copy): RGBA, and the
+/// depth and normal planes when asked for.
+py::object toArrays(Image&& image, bool depth, bool normal);
+/// An Image from a (H, W, 4) float32 array (and optional (H, W) depth, (H, W, 3) normal).
+Image fromArrays(const py::array_t<float, py::array::c_style | py::array::forcecast>& rgba,
+                 const py::object& depth, const py::object& normal);
+
+} // namespace lantern::python

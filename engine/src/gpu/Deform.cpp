@@ -1,0 +1,181 @@
+// The deformation pre-pass: a compute pipeline, per-slot parameter and output buffers, one
+// dispatch per deformed primitive, then a barrier to the vertex-input stage.
+#include "gpu/Deform.h"
+
+#include "ShaderBlobs.h"
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+
+namespace lantern::gpu {
+namespace {
+
+VkDeviceSize align16(VkDeviceSize v) { return (v + 15) & ~VkDeviceSize(15); }
+
+Error tooLarge() {
+    return makeError(ErrorCode::OutOfMemory,
+                     "the frame's skinned and morphing vertices exceed the addressable size");
+}
+
+} // namespace
+
+Result<std::unique_ptr<Deformer>> Deformer::create(Context& ctx, Pipelines& pipelines) {
+    std::unique_ptr<Deformer> d(new Deformer(ctx));
+    const VkDevice dev = ctx.device();
+    VkDescriptorSetLayoutBinding bindings[3] = {
+        {LANTERN_BINDING_DEFORM_INPUT, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+         VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+        {LANTERN_BINDING_DEFORM_PARAMS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+         VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+        {LANTERN_BINDING_DEFORM_OUTPUT, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+         VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
+    VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    lci.bindingCount = 3;
+    lci.pBindings = bindings;
+    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &setLayout));
+    d->m_setLayout = UniqueDescriptorSetLayout(dev, setLayout);
+
+    VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(DeformJob)};
+    VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    plci.setLayoutCount = 1;
+    plci.pSetLayouts = &setLayout;
+    plci.pushConstantRangeCount = 1;
+    plci.pPushConstantRanges = &push;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkCreatePipelineLayout(dev, &plci, nullptr, &layout));
+    d->m_layout = UniquePipelineLayout(dev, layout);
+
+    auto module = pipelines.shader(std::uint32_t(shaders::ShaderId::deform_comp));
+    if (!module) return std::move(module).error();
+    VkComputePipelineCreateInfo cpci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    cpci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    cpci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    cpci.stage.module = *module;
+    cpci.stage.pName = "main";
+    cpci.layout = layout;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkCreateComputePipelines(dev, ctx.pipelineCache(), 1, &cpci, nullptr, &pipeline));
+    d->m_pipeline = UniquePipeline(dev, pipeline);
+    ctx.setName(VK_OBJECT_TYPE_PIPELINE, pipeline, "deform pre-pass");
+    return d;
+}
+
+Result<void> Deformer::prepare(DeformSlot& slot, const DrawList& list, const SceneBuffers& scene) {
+    // Parameters: per command its joint matrices, then its morph weights (floats). Output: per
+    // command its streams at 16-byte-aligned offsets.
+    slot.jobs.clear();
+    slot.streams.clear();
+    std::vector<float> params;
+    VkDeviceSize out = 0;
+    for (const DeformCommand& c : list.deforms) {
+        const PrimitiveBuffers& gp = scene.primitive(c.mesh, c.primitive);
+        DeformJob job;
+        job.flatMode = c.flat ? 1u : 0u;
+        job.vertexCount = gp.vertexCount;
+        job.count = c.flat ? gp.flatVertexCount / 3u : gp.vertexCount;
+        job.position = gp.deformPosition;
+        job.normal = gp.deformNormal;
+        job.joints = gp.deformJoints;
+        job.weights = gp.deformWeights;
+        job.influences = c.joints.empty() ? 0u : gp.influences;
+        job.targets = gp.deformTargets;
+        job.targetCount = c.weights.empty() ? 0u : std::min<std::uint32_t>(gp.targetCount,
+                                                                    std::uint32_t(c.weights.size()));
+        job.indices = gp.deformIndices;
+        job.matrices = std::uint32_t(params.size());
+        for (const Mat4& m : c.joints) params.insert(params.end(), m.m, m.m + 16);
+        job.morphWeights = std::uint32_t(params.size());
+        params.insert(params.end(), c.weights.begin(), c.weights.end());
+        const VkDeviceSize corners = c.flat ? VkDeviceSize(gp.flatVertexCount) : gp.vertexCount;
+        DeformStreams st;
+        st.position = out;
+        out = align16(out + corners * 12);
+        st.normal = out;
+        out = align16(out + corners * 12);
+        st.centroid = st.normal;
+        if (c.flat) {
+            st.centroid = out;
+            out = align16(out + corners * 12);
+        }
+        if (out / 4 >= LANTERN_DEFORM_NONE) return tooLarge();
+        job.outPosition = std::uint32_t(st.position / 4);
+        job.outNormal = std::uint32_t(st.normal / 4);
+        job.outCentroid = std::uint32_t(st.centroid / 4);
+        slot.jobs.push_back(job);
+        slot.streams.push_back(st);
+    }
+    params.push_back(0.0f);  // never empty
+    const VkDeviceSize paramBytes = params.size() * sizeof(float);
+    out = std::max<VkDeviceSize>(out, 16);
+    if (slot.params.size < paramBytes) {
+        auto b = createBuffer(m_ctx, paramBytes * 2, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                              MemoryUsage::Upload, "deform parameters");
+        if (!b) return std::move(b).error();
+        slot.params = std::move(*b);
+    }
+    if (slot.output.size < out) {
+        auto b = createBuffer(m_ctx, out * 2,
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+                              MemoryUsage::DeviceLocal, "deformed streams");
+        if (!b) return std::move(b).error();
+        slot.output = std::move(*b);
+    }
+    std::memcpy(slot.params.mapped, params.data(), paramBytes);
+    LANTERN_TRY(flush(m_ctx, slot.params));
+
+    if (!slot.pool) {
+        VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3};
+        VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+        dpci.maxSets = 1;
+        dpci.poolSizeCount = 1;
+        dpci.pPoolSizes = &size;
+        VkDescriptorPool pool = VK_NULL_HANDLE;
+        LANTERN_VK_TRY(vkCreateDescriptorPool(m_ctx.device(), &dpci, nullptr, &pool));
+        slot.pool = UniqueDescriptorPool(m_ctx.device(), pool);
+        VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+        ai.descriptorPool = pool;
+        ai.descriptorSetCount = 1;
+        const VkDescriptorSetLayout layout = m_setLayout.get();
+        ai.pSetLayouts = &layout;
+        LANTERN_VK_TRY(vkAllocateDescriptorSets(m_ctx.device(), &ai, &slot.set));
+    }
+    // The slot is not in flight (its fence was waited for): its set may be rewritten.
+    const VkDescriptorBufferInfo infos[3] = {{scene.deformInput(), 0, VK_WHOLE_SIZE},
+                                             {slot.params.get(), 0, VK_WHOLE_SIZE},
+                                             {slot.output.get(), 0, VK_WHOLE_SIZE}};
+    const std::uint32_t bindings[3] = {LANTERN_BINDING_DEFORM_INPUT, LANTERN_BINDING_DEFORM_PARAMS,
+                                       LANTERN_BINDING_DEFORM_OUTPUT};
+    VkWriteDescriptorSet writes[3]{};
+    for (std::uint32_t i = 0; i < 3; ++i) {
+        writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+        writes[i].dstSet = slot.set;
+        writes[i].dstBinding = bindings[i];
+        writes[i].descriptorCount = 1;
+        writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        writes[i].pBufferInfo = &infos[i];
+    }
+    vkUpdateDescriptorSets(m_ctx.device(), 3, writes, 0, nullptr);
+    return {};
+}
+
+void Deformer::record(VkCommandBuffer cmd, const DeformSlot& slot) const {
+    // The previous frame of this slot read the output as vertices: finish that before writing.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT, 0,
+                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m_pipeline.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m_layout.get(), 0, 1, &slot.set,
+                            0, nullptr);
+    for (const DeformJob& job : slot.jobs) {
+        if (job.count == 0) continue;
+        vkCmdPushConstants(cmd, m_layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(DeformJob),
+                           &job);
+        vkCmdDispatch(cmd, (job.count + LANTERN_DEFORM_GROUP - 1) / LANTERN_DEFORM_GROUP, 1, 1);
+    }
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT,
+                  VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT);
+}
+
+} // namespace lantern::gpu

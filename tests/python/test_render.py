@@ -1,0 +1,122 @@
+"""Rendering from Python: NumPy arrays without a copy, the same picture `lantern render` makes,
+options as keywords, lights, depth, animation frames, and the device's limits as errors."""
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+SIZE = dict(width=64, height=48)
+
+
+@pytest.fixture(scope="module")
+def teapot(lantern_module):
+    return lantern_module.load("builtin:teapot")
+
+
+def test_render_is_float32_rgba_viewing_the_images_memory(renderer, teapot):
+    rgba = renderer.render(teapot, **SIZE)
+    assert rgba.shape == (48, 64, 4) and rgba.dtype == np.float32
+    assert rgba.flags.c_contiguous
+    assert not rgba.flags.owndata and rgba.base is not None, "the Image's buffer, not a copy"
+    assert np.isfinite(rgba).all()
+    assert (rgba[..., 3] == 1.0).all(), "the background is opaque black by default"
+    assert rgba[24, 32, :3].max() > 0.05, "the teapot is in the middle"
+    assert (rgba[0, 0] == (0, 0, 0, 1)).all()
+
+
+def test_transparent_background_gives_coverage_in_alpha(renderer, teapot):
+    rgba = renderer.render(teapot, background=(0, 0, 0, 0), **SIZE)
+    alpha = rgba[..., 3]
+    assert alpha[0, 0] == 0.0 and alpha[24, 32] == 1.0
+    grey = renderer.render(teapot, background=(0.5, 0.5, 0.5), **SIZE)
+    assert (grey[0, 0] == (0.5, 0.5, 0.5, 1.0)).all()
+
+
+def test_same_picture_as_the_command_line(lantern_module, renderer, teapot, out_dir):
+    cli = os.environ.get("LANTERN_CLI")
+    if not cli:
+        pytest.skip("LANTERN_CLI is not set (run through ctest)")
+    args = ["--width", "64", "--height", "48", "--shading", "gouraud", "--msaa", "4"]
+    subprocess.run([cli, "render", "builtin:teapot", "-o", str(out_dir / "cli.png")] + args,
+                   check=True, capture_output=True)
+    rgba = renderer.render(teapot, shading="gouraud", msaa=4, **SIZE)
+    lantern_module.write_image(str(out_dir / "python.png"), rgba)
+    assert (out_dir / "cli.png").read_bytes() == (out_dir / "python.png").read_bytes()
+
+
+def test_options_change_the_picture(renderer, teapot):
+    base = renderer.render(teapot, **SIZE)
+    for options in (dict(shading="flat"), dict(specular="phong"), dict(msaa=4),
+                    dict(look_at=((0, 0, 6), (0, 0, 0), (0, 1, 0)), perspective=(30, 0.1, 100)),
+                    dict(ortho=(-3, 3, -2, 2, 0.1, 100), look_at=((0, 0, 6), (0, 0, 0), (0, 1, 0))),
+                    dict(time=0.0, gl_compat=True, shading="flat")):
+        other = renderer.render(teapot, **options, **SIZE)
+        assert np.abs(other - base).max() > 1e-3, options
+
+
+def test_bad_keywords_raise_value_error(renderer, teapot):
+    with pytest.raises(ValueError, match="shading"):
+        renderer.render(teapot, shading="toon", **SIZE)
+    with pytest.raises(ValueError, match="look_at"):
+        renderer.render(teapot, look_at=((0, 0, 0), (0, 0, 0), (0, 1, 0)), **SIZE)
+    with pytest.raises(ValueError, match="camera 3"):
+        renderer.render(teapot, camera=3, **SIZE)
+    with pytest.raises(TypeError):
+        renderer.render(teapot, widht=64)
+
+
+def test_msaa_the_device_lacks_names_the_ones_it_has(renderer, teapot):
+    supported = renderer.device["msaa"]
+    missing = [m for m in (2, 8, 16) if m not in supported]
+    if not missing:
+        pytest.skip(f"{renderer.device['name']} supports every sample count tried")
+    with pytest.raises(ValueError, match="supports " + ", ".join(map(str, supported))):
+        renderer.render(teapot, msaa=missing[0], **SIZE)
+
+
+def test_depth_and_normal_planes(renderer, teapot):
+    rgba, depth = renderer.render(teapot, depth=True, **SIZE)
+    assert depth.shape == (48, 64) and depth.dtype == np.float32
+    # Nothing there is the largest float (every plane is free of Inf and NaN).
+    assert depth[0, 0] == np.finfo(np.float32).max and 1.0 < depth[24, 32] < 100.0
+    rgba2, depth2, normal = renderer.render(teapot, depth=True, normal=True, **SIZE)
+    assert normal.shape == (48, 64, 3)
+    assert abs(np.linalg.norm(normal[24, 32]) - 1.0) < 1e-3
+    assert depth2.base is rgba2.base, "every plane views the same Image"
+
+
+def test_lights_edited_between_renders(lantern_module, renderer):
+    scene = lantern_module.load("builtin:teapot")
+    lit = renderer.render(scene, **SIZE)
+    scene.clear_lights()
+    # A black light: only the global ambient and emission, and no default light (the scene has
+    # one). The red light adds red alone.
+    scene.add_light("directional", direction=(0, 0, -1), color=(0, 0, 0))
+    dark = renderer.render(scene, **SIZE)
+    scene.clear_lights()
+    scene.add_light("directional", direction=(0, 0, -1), color=(1, 0, 0))
+    red = renderer.render(scene, **SIZE)
+    added = red[24, 32] - dark[24, 32]
+    assert added[0] > 0.05 and abs(added[1]) < 1e-6 and abs(added[2]) < 1e-6, added
+    assert np.abs(red - lit).max() > 0.05
+
+
+def test_frames_of_an_animation(lantern_module, renderer):
+    scene = lantern_module.load("builtin:spheres-animated")
+    got = list(renderer.frames(scene, first=0, last=2, fps=12, **SIZE))
+    assert [k for k, _ in got] == [0, 1, 2]
+    assert np.abs(got[0][1] - got[2][1]).max() > 1e-3, "the spheres move"
+    again = renderer.render(scene, time=2 / 12, **SIZE)
+    assert (again == got[2][1]).all(), "frame k is the picture at time k / fps"
+
+
+def test_module_level_render_keeps_one_renderer(lantern_module):
+    try:
+        first = lantern_module.render("builtin:teapot", **SIZE)
+    except lantern_module.Error as e:
+        pytest.skip(f"no Vulkan device: {e}")
+    kept = lantern_module._default_renderer
+    second = lantern_module.render("builtin:teapot", **SIZE)
+    assert lantern_module._default_renderer is kept
+    assert (first == second).all()
