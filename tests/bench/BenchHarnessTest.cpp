@@ -70,7 +70,7 @@ class BenchHarness : public GpuTest {};
 // SVG whose legend names every curve, the Pareto front and the acceptance line, and a PNG.
 // Without matplotlib the run says how to draw it.
 void expectPlot(const std::filesystem::path& dir, const std::string& err) {
-    // The CLI tries python3 on PATH, then Debian's /usr/bin/python3 (BenchAccuracyPlot.cpp).
+    // The pythons `lantern bench accuracy` tries: the one on PATH, then Debian's.
     const bool matplotlib =
         test::runProcess({"python3", "-c", "import matplotlib"}).exitCode == 0 ||
         test::runProcess({"/usr/bin/python3", "-c", "import matplotlib"}).exitCode == 0;

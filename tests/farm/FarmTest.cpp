@@ -178,8 +178,8 @@ TEST(FarmSubmit, RefusesBadInputAndWritesNothing) {
          "no --tasks"},
         {{"farm", "submit", "builtin:spheres", "--frames", "0-7", "--tasks", "0", "-o", out},
          false,
-         2,
-         "zero tasks"},
+         1,
+         "zero tasks (a value out of its range is refused input)"},
         {{"farm", "submit", "--resume", "-o", out}, false, 1, "nothing was submitted to resume"},
         {{"farm", "check", out}, false, 2, "check without --frames or a record"},
     };

@@ -16,6 +16,7 @@ class Renderer_ : public GpuTest {};
 
 RenderOptions small(int w = 96, int h = 64) {
     RenderOptions o;
+    o.background = glm::vec4(0.0f); // alpha is coverage in these checks
     o.width = w;
     o.height = h;
     return o;

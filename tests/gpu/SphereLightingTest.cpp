@@ -53,6 +53,7 @@ TEST_P(SphereLighting, MatchesTheExactSphereAtPixelCentres) {
     const Scene scene = ss.build();
 
     RenderOptions o;
+    o.background = glm::vec4(0.0f); // alpha is coverage in these checks
     o.width = W;
     o.height = H;
     o.shading = ShadingMode::Phong;

@@ -127,6 +127,7 @@ TEST_F(CameraProjection, KnownPointsLandWhereTheGlMatricesPutThem) {
     double worst = 0.0;
     for (const CameraCase& cc : cases()) {
         RenderOptions o;
+        o.background = glm::vec4(0.0f); // alpha is coverage in these checks
         o.width = cc.width;
         o.height = cc.height;
         o.depth = cc.depth;
@@ -181,6 +182,7 @@ TEST_F(CameraProjection, ViewsStayInsideTheirViewports) {
     // A quad far larger than any view: every pixel of every view is covered.
     test::addRampQuad(scene, 1e3, 1e3, kId, glm::dmat4(1.0));
     RenderOptions o;
+    o.background = glm::vec4(0.0f); // alpha is coverage in these checks
     o.width = 96;
     o.height = 64;
     const Projection p = Projection::makePerspective(60 * kDeg, 0.0, 0.1, kInfinity);
@@ -233,6 +235,7 @@ TEST_F(CameraProjection, FrontFacesAreCounterClockwiseAsInGl) {
         scene.nodes.push_back(n);
         scene.roots[0].nodes.push_back(0);
         RenderOptions o;
+        o.background = glm::vec4(0.0f); // alpha is coverage in these checks
         o.width = o.height = 32;
         o.camera.source = CameraSpec::Source::GlDefault;
         o.camera.lookAt = LookAt{r.eye, {0, 0, 0}, {0, 1, 0}};

@@ -34,6 +34,7 @@ test::SimpleScene litSphere() {
 
 RenderOptions withAovs(int size = 64) {
     RenderOptions o;
+    o.background = glm::vec4(0.0f); // alpha is coverage in these checks
     o.width = o.height = size;
     o.aovs.depth = true;
     o.aovs.normal = true;
@@ -171,6 +172,7 @@ TEST_F(CameraTransform, ExtremeButValidProjectionsRenderWithoutNanOrInf) {
     for (const Row& r : rows) {
         ASSERT_TRUE(checkProjection(r.projection, r.why)) << r.why;
         RenderOptions o;
+        o.background = glm::vec4(0.0f); // alpha is coverage in these checks
         o.width = r.width;
         o.height = r.height;
         o.aovs.depth = o.aovs.normal = true;

@@ -92,9 +92,7 @@ TEST_F(GltfSamples, EachRendersAndReportsTheFilesCounts) {
             const auto exr = out / (std::filesystem::path(s.file).stem().string() + "_" + std::to_string(i) + ".exr");
             std::vector<std::string> args = {cliPath().string(), "render", path.string(), "--width", "64", "--height",
                                              "64",     "--time", std::to_string(s.times[i]), "-o", exr.string(),
-                                             // Coverage is read from alpha: a transparent background
-                                             // (the default is opaque since issue 19).
-                                             "--background", "0,0,0,0"};
+                                             "--background", "0,0,0,0"};  // alpha is coverage
             args.insert(args.end(), s.args.begin(), s.args.end());
             const auto r = runProcess(args, {"LANTERN_VALIDATION=1"});
             ASSERT_EQ(r.exitCode, 0) << r.err;

@@ -80,6 +80,7 @@ Light makeLight(LightType type) {
 
 RenderOptions optionsFor(int width, int height, ShadingMode mode) {
     RenderOptions o;
+    o.background = glm::vec4(0.0f); // alpha is coverage in these checks
     o.width = width;
     o.height = height;
     o.shading = mode;

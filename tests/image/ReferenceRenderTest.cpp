@@ -37,6 +37,7 @@ Scene sphereScene(int segments) {
 const ReferenceImage& sphereReference() {
     static const ReferenceImage ref = [] {
         RenderOptions o;
+        o.background = glm::vec4(0.0f); // alpha is coverage in these checks
         o.width = kW;
         o.height = kH;
         ReferenceOptions r;
@@ -65,6 +66,7 @@ class ReferenceAgreement : public GpuTest, public ::testing::WithParamInterface<
 TEST_P(ReferenceAgreement, InteriorErrorAndHighlightPeak) {
     const AccuracyCase& c = GetParam();
     RenderOptions o;
+    o.background = glm::vec4(0.0f); // alpha is coverage in these checks
     o.width = kW;
     o.height = kH;
     o.shading = c.mode;
@@ -107,6 +109,7 @@ TEST_F(ReferenceRender, MsaaLowersTheWholeImageError) {
     ErrorMetrics e[2];
     for (int i = 0; i < 2; ++i) {
         RenderOptions o;
+        o.background = glm::vec4(0.0f); // alpha is coverage in these checks
         o.width = kW;
         o.height = kH;
         o.msaa = i == 0 ? 1 : 4;
@@ -130,6 +133,7 @@ TEST_F(ReferenceRender, MsaaLowersTheWholeImageError) {
 TEST_F(ReferenceRender, FloorDrawsTheSamePixelsInConstantWhite) {
     const Scene scene = sphereScene(64);
     RenderOptions o;
+    o.background = glm::vec4(0.0f); // alpha is coverage in these checks
     o.width = kW;
     o.height = kH;
     o.msaa = 4;

@@ -29,6 +29,7 @@ TEST_F(TeapotGrid, TwentyFourTeapotsEachInItsOwnMaterial) {
     ASSERT_TRUE(loaded) << loaded.error().describe();
     const Scene& scene = *loaded;
     RenderOptions o;
+    o.background = glm::vec4(0.0f); // alpha is coverage in these checks
     o.width = W;
     o.height = H;
     o.shading = ShadingMode::Phong;
@@ -131,6 +132,7 @@ TEST_F(TeapotGrid, EveryShadingModeIsFiniteWithTheSameCoverage) {
     auto scene = loadScene("builtin:default");
     ASSERT_TRUE(scene) << scene.error().describe();
     RenderOptions o;
+    o.background = glm::vec4(0.0f); // alpha is coverage in these checks
     o.width = 320;
     o.height = 180;
     std::vector<float> phongAlpha;

@@ -77,7 +77,9 @@ TEST_F(CliOutput, HashRunsAreTheFrameNumberForOneFrame) {
              {"--time", "-1"}}) {
         auto args = small({"render", "builtin:spheres-animated", "-o", pattern});
         args.insert(args.end(), bad.begin(), bad.end());
-        EXPECT_EQ(runLantern(args).exitCode, 2) << bad.front() << " " << bad.back();
+        // Two options that cannot be combined: usage (2); a time out of range: a bad value (1).
+        EXPECT_EQ(runLantern(args).exitCode, bad.size() == 2 && bad[0] == "--time" ? 1 : 2)
+            << bad.front() << " " << bad.back();
     }
 }
 

@@ -163,7 +163,7 @@ TEST(CliSuggest, MistypedNamesGetTheNearestValidName) {
         {{"info", "--devics"}, "did you mean --devices?"},
         {{"bench", "accuracy", "--resolutions", "64x48"}, "it is now --width"},
         {{"render", "builtin:spheres", "--frobnicate"}, "lantern render --help"},
-        {{"zzzzzz"}, "render, view, info, bench, farm, help"},
+        {{"zzzzzz"}, "render, view, info, bench, farm, compare, help"},
     };
     for (const Case& c : cases) {
         const auto r = runLantern(c.args);

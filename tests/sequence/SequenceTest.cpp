@@ -123,9 +123,14 @@ TEST(Sequence, RefusesPatternlessOutputsAndUnwritableFolders) {
     auto r = runLantern(withOutput(kSequence, (dir / "same.exr").string()));
     EXPECT_EQ(r.exitCode, 1) << r.err;
     EXPECT_NE(r.err.find("'#'"), std::string::npos) << r.err;
-    r = runLantern(withOutput(kSequence, (dir / "missing" / "f_#.exr").string()));
+    // A missing folder is created (docs/cli.md); one that cannot be (a file is in the way) is
+    // an I/O failure, and nothing is written.
+    { std::ofstream(dir / "blocker") << "a file"; }
+    r = runLantern(withOutput(kSequence, (dir / "blocker" / "f_#.exr").string()));
     EXPECT_EQ(r.exitCode, 3) << r.err;
-    EXPECT_TRUE(listing(dir).empty());
+    EXPECT_EQ(listing(dir), std::vector<std::string>{"blocker"}) << "nothing but the file in the way";
+    { std::ifstream in(dir / "blocker"); std::string text; std::getline(in, text); EXPECT_EQ(text, "a file"); }
+    std::filesystem::remove(dir / "blocker");
     r = runLantern({"render", "builtin:spheres", "--shard", "0/2"});
     EXPECT_EQ(r.exitCode, 2) << r.err;
     r = runLantern({"render", "builtin:spheres", "--frames", "0-3", "--time", "1", "-o", (dir / "f#.exr").string()});

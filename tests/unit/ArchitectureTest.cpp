@@ -36,6 +36,7 @@ const std::map<std::string, std::set<std::string>> kRoomIncludes = {
     {"render", {"core", "math", "scene", "frame", "reference", "gpu"}},
     {"api", {"core", "math", "scene", "frame", "reference", "render", "io", "gpu"}},
     {"glfw", {}},
+    {"compare", {"core"}},  // image comparison: device-free, no Vulkan
 };
 
 // gpu/ as the rooms above it see it: no Vulkan type in these headers.

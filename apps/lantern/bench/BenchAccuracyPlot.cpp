@@ -34,20 +34,17 @@ int spawnAndWait(const std::vector<std::string>& args) {
 } // namespace
 
 std::string plotScriptPath() {
-    std::vector<fs::path> candidates;
     std::error_code ec;
     const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-    if (!ec)
-        candidates.push_back(exe.parent_path() / LANTERN_BIN_TO_DATA / "lantern" /
-                             "plot_accuracy.py");
-    candidates.emplace_back(LANTERN_SOURCE_PLOT_SCRIPT);
-    // Each candidate with its own error code: a missing installed copy sets one (ENOENT), which
-    // must not hide the source tree's copy.
+    const fs::path candidates[] = {
+        exe.parent_path() / LANTERN_BIN_TO_DATA / "lantern" / "plot_accuracy.py",
+        fs::path(LANTERN_SOURCE_PLOT_SCRIPT),
+    };
     for (const fs::path& c : candidates) {
+        // Each candidate with its own error code: a first one that cannot be looked at (a
+        // component that is not a folder) must not hide the next.
         std::error_code cec;
-        if (!fs::is_regular_file(c, cec)) continue;
-        const fs::path canonical = fs::weakly_canonical(c, cec);
-        return (cec ? c : canonical).string();
+        if (fs::is_regular_file(c, cec)) return fs::weakly_canonical(c, cec).string();
     }
     return "plot_accuracy.py";
 }

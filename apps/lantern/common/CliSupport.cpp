@@ -110,23 +110,7 @@ void CameraOptions::add(CLI::App& app) {
         ->check(CLI::IsMember({"reversed", "standard"}));
 }
 
-Result<void> CameraOptions::apply(RenderOptions& o) const {
-    const int projections = !perspective.empty() + !ortho.empty() + !frustum.empty();
-    if (projections > 1)
-        return makeError(ErrorCode::Usage,
-                         "give at most one of --perspective, --ortho and --frustum",
-                         "--perspective/--ortho/--frustum");
-    if (defaultCamera && !cameras.empty())
-        return makeError(ErrorCode::Usage, "give either --camera or --default-camera", "--camera");
-    if (!depth.empty()) o.depth = *parseDepthMode(depth); // CLI11 checked the spelling
-    if (!view.empty() && (defaultCamera || !cameras.empty()))
-        return makeError(ErrorCode::Usage,
-                         "--view frames the scene automatically: it cannot be combined with " +
-                             std::string(defaultCamera ? "--default-camera" : "--camera"),
-                         "--view");
-    CameraSpec spec;
-    if (defaultCamera) spec.source = CameraSpec::Source::GlDefault;
-    if (!view.empty()) spec = CameraSpec::framed(*parseViewDirection(view)); // CLI11 checked it
+Result<void> CameraOptions::applyOverrides(CameraSpec& spec) const {
     if (!lookAt.empty()) {
         auto v = parseNumbers(lookAt, 9, "--look-at");
         if (!v) return std::move(v).error();
@@ -162,6 +146,27 @@ Result<void> CameraOptions::apply(RenderOptions& o) const {
         LANTERN_TRY(checkProjection(p, "--frustum"));
         spec.projection = p;
     }
+    return {};
+}
+
+Result<void> CameraOptions::apply(RenderOptions& o) const {
+    const int projections = !perspective.empty() + !ortho.empty() + !frustum.empty();
+    if (projections > 1)
+        return makeError(ErrorCode::Usage,
+                         "give at most one of --perspective, --ortho and --frustum",
+                         "--perspective/--ortho/--frustum");
+    if (defaultCamera && !cameras.empty())
+        return makeError(ErrorCode::Usage, "give either --camera or --default-camera", "--camera");
+    if (!depth.empty()) o.depth = *parseDepthMode(depth); // CLI11 checked the spelling
+    if (!view.empty() && (defaultCamera || !cameras.empty()))
+        return makeError(ErrorCode::Usage,
+                         "--view frames the scene automatically: it cannot be combined with " +
+                             std::string(defaultCamera ? "--default-camera" : "--camera"),
+                         "--view");
+    CameraSpec spec;
+    if (defaultCamera) spec.source = CameraSpec::Source::GlDefault;
+    if (!view.empty()) spec = CameraSpec::framed(*parseViewDirection(view)); // CLI11 checked it
+    LANTERN_TRY(applyOverrides(spec));
     if (!layout.empty() && !viewports.empty())
         return makeError(ErrorCode::Usage, "--layout and --viewport cannot be combined",
                          "--layout");

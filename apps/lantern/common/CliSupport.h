@@ -89,6 +89,10 @@ struct CameraOptions {
     void add(CLI::App& app);
     /// Fills options.camera / options.views; refuses bad values with the option named.
     Result<void> apply(RenderOptions& options) const;
+
+private:
+    /// --look-at and the projection options into `spec`.
+    Result<void> applyOverrides(CameraSpec& spec) const;
 };
 
 /// The four views of --layout quad for a width x height image: top, front and side

@@ -27,6 +27,7 @@ std::vector<Runner> addAllCommands(CLI::App& app) {
     runners.push_back(addInfoCommand(app));
     runners.push_back(addBenchCommand(app));
     runners.push_back(addFarmCommand(app));
+    runners.push_back(addCompareCommand(app));
     runners.push_back(addHelpCommand(app));
     return runners;
 }
@@ -50,12 +51,12 @@ int runCommandLine(int argc, char** argv) {
         return app.exit(e);
     } catch (const CLI::ValidationError& e) {
         // A value outside the range or the choices the help states: a bad option value, refused
-        // input (docs/cli.md: exit 1), not a usage error.
-        app.exit(e);
+        // input (docs/cli.md: exit 1), not a usage error; one line naming the option.
+        std::cerr << "lantern: error: " << e.what() << "\n";
         return kRefused;
     } catch (const CLI::ConversionError& e) {
         // Not a number where one is needed, or one too large for its type.
-        app.exit(e);
+        std::cerr << "lantern: error: " << e.what() << "\n";
         return kRefused;
     } catch (const CLI::ParseError& e) {
         // An unknown name gets the nearest valid one; other errors CLI11 words well itself.

@@ -1,6 +1,7 @@
 // `lantern render SCENE`: headless rendering to EXR/PNG (docs/cli.md).
 #include "common/CliSupport.h"
 #include "common/Commands.h"
+#include "common/CompareCli.h"
 
 #include <algorithm>
 #include <atomic>
@@ -110,6 +111,8 @@ struct RenderArgs {
     CameraOptions camera;
     ShadingOptions shading;
     DeviceOptions device;
+    std::string compareRef;     // --compare REF: compare the picture with REF
+    CompareCliOptions compare;  // its thresholds (common/CompareCli.h)
 };
 
 // The signal that asked a sequence to stop (0: none). The first SIGINT/SIGTERM stops cleanly;
@@ -274,8 +277,8 @@ Result<void> explainAndProbe(const RenderArgs& a, Renderer& renderer, const Scen
 
 // One frame, written to every output with its '#' runs replaced by the frame number (the
 // paths on stdout).
-int renderFrame(const SingleFrame& frame, Renderer& renderer, const PreparedScene& prepared,
-                const RenderOptions& options, ExrOptions exr,
+int renderFrame(const RenderArgs& a, const SingleFrame& frame, Renderer& renderer,
+                const PreparedScene& prepared, const RenderOptions& options, ExrOptions exr,
                 const std::vector<std::string>& patterns) {
     auto image = renderer.render(prepared, options, frame.time);
     if (!image) return report(image.error());
@@ -289,6 +292,9 @@ int renderFrame(const SingleFrame& frame, Renderer& renderer, const PreparedScen
                       << " values exceeded the half range and were clamped to 65504\n";
         std::cout << out << "\n";
     }
+    if (!a.compareRef.empty())
+        return compareRendered(a.compare, a.compareRef, *image,
+                               expandFramePattern(patterns.front(), frame.number));
     return kOk;
 }
 
@@ -355,6 +361,11 @@ int run(const RenderArgs& a) {
                                         " is negative; '#' runs need a frame >= 0",
                                     "--output"));
     }
+    if (!a.compareRef.empty()) {
+        if (sequence)
+            return report(makeError(ErrorCode::Usage, "--compare renders one frame, not --frames", "--compare"));
+        if (auto o = a.compare.options(); !o) return report(o.error());
+    }
 
     LoadOptions load;
     load.maxBytes = a.maxSize;
@@ -381,7 +392,7 @@ int run(const RenderArgs& a) {
         !r)
         return report(r.error());
     if (sequence) return runSequence(a, *renderer, *prepared, *options, exr, outputs);
-    return renderFrame(frame, *renderer, *prepared, *options, exr, outputs);
+    return renderFrame(a, frame, *renderer, *prepared, *options, exr, outputs);
 }
 
 } // namespace
@@ -434,6 +445,10 @@ Runner addRenderCommand(CLI::App& app) {
     args->camera.add(*cmd);
     args->shading.add(*cmd);
     args->device.add(*cmd);
+    cmd->add_option("--compare", args->compareRef,
+                    "Compare the picture with this reference (.exr or .png) as `lantern compare` "
+                    "does, with its thresholds; exit 1 when it fails");
+    args->compare.add(*cmd);
     return [args, cmd]() {
         if (!cmd->parsed()) return -1;
         args->timeGiven = cmd->count("--time") > 0;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <lantern/Camera.h>
+#include <lantern/Compare.h>
 #include <lantern/Image.h>
 #include <lantern/Io.h>
 #include <lantern/Log.h>

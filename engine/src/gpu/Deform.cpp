@@ -142,21 +142,11 @@ Result<void> Deformer::prepare(DeformSlot& slot, const DrawList& list, const Sce
         LANTERN_VK_TRY(vkAllocateDescriptorSets(m_ctx.device(), &ai, &slot.set));
     }
     // The slot is not in flight (its fence was waited for): its set may be rewritten.
-    const VkDescriptorBufferInfo infos[3] = {{scene.deformInput(), 0, VK_WHOLE_SIZE},
-                                             {slot.params.get(), 0, VK_WHOLE_SIZE},
-                                             {slot.output.get(), 0, VK_WHOLE_SIZE}};
-    const std::uint32_t bindings[3] = {LANTERN_BINDING_DEFORM_INPUT, LANTERN_BINDING_DEFORM_PARAMS,
-                                       LANTERN_BINDING_DEFORM_OUTPUT};
-    VkWriteDescriptorSet writes[3]{};
-    for (std::uint32_t i = 0; i < 3; ++i) {
-        writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-        writes[i].dstSet = slot.set;
-        writes[i].dstBinding = bindings[i];
-        writes[i].descriptorCount = 1;
-        writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        writes[i].pBufferInfo = &infos[i];
-    }
-    vkUpdateDescriptorSets(m_ctx.device(), 3, writes, 0, nullptr);
+    constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writeBufferDescriptors(m_ctx, slot.set,
+                           {{LANTERN_BINDING_DEFORM_INPUT, kStorage, {scene.deformInput(), 0, VK_WHOLE_SIZE}},
+                            {LANTERN_BINDING_DEFORM_PARAMS, kStorage, {slot.params.get(), 0, VK_WHOLE_SIZE}},
+                            {LANTERN_BINDING_DEFORM_OUTPUT, kStorage, {slot.output.get(), 0, VK_WHOLE_SIZE}}});
     return {};
 }
 

@@ -144,26 +144,14 @@ Result<FrameRing::ArenaLayout> FrameRing::fillArena(Slot& slot, const DrawList& 
     }
     LANTERN_TRY(flush(m_ctx, slot.arena));
 
-    const VkDescriptorBufferInfo infos[3] = {
-        {slot.arena.get(), 0, sizeof(FrameBlock)},
-        {slot.arena.get(), 0, a.lightRange},
-        {slot.arena.get(), 0, std::max<VkDeviceSize>(a.materialBytes, sizeof(MaterialData))},
-    };
-    const std::uint32_t bindings[3] = {LANTERN_BINDING_FRAME, LANTERN_BINDING_LIGHTS,
-                                       LANTERN_BINDING_MATERIALS};
-    const VkDescriptorType types[3] = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC,
-                                       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC,
-                                       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
-    VkWriteDescriptorSet writes[3]{};
-    for (std::uint32_t i = 0; i < 3; ++i) {
-        writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-        writes[i].dstSet = slot.frameSet;
-        writes[i].dstBinding = bindings[i];
-        writes[i].descriptorCount = 1;
-        writes[i].descriptorType = types[i];
-        writes[i].pBufferInfo = &infos[i];
-    }
-    vkUpdateDescriptorSets(m_ctx.device(), 3, writes, 0, nullptr);
+    writeBufferDescriptors(
+        m_ctx, slot.frameSet,
+        {{LANTERN_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC,
+          {slot.arena.get(), 0, sizeof(FrameBlock)}},
+         {LANTERN_BINDING_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC,
+          {slot.arena.get(), 0, a.lightRange}},
+         {LANTERN_BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+          {slot.arena.get(), 0, std::max<VkDeviceSize>(a.materialBytes, sizeof(MaterialData))}}});
     return a;
 }
 

@@ -2,6 +2,7 @@
 #include "gpu/Resources.h"
 
 #include <cstring>
+#include <vector>
 
 namespace lantern::gpu {
 
@@ -173,6 +174,21 @@ Result<void> uploadToBuffer(Context& ctx, Buffer& dst, VkDeviceSize offset, cons
         memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                       VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT);
     });
+}
+
+void writeBufferDescriptors(Context& ctx, VkDescriptorSet set, std::initializer_list<BufferBinding> bindings) {
+    std::vector<VkWriteDescriptorSet> writes(bindings.size());
+    std::size_t i = 0;
+    for (const BufferBinding& b : bindings) {
+        VkWriteDescriptorSet& w = writes[i++];
+        w.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+        w.dstSet = set;
+        w.dstBinding = b.binding;
+        w.descriptorCount = 1;
+        w.descriptorType = b.type;
+        w.pBufferInfo = &b.info;
+    }
+    vkUpdateDescriptorSets(ctx.device(), std::uint32_t(writes.size()), writes.data(), 0, nullptr);
 }
 
 } // namespace lantern::gpu

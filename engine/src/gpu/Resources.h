@@ -9,6 +9,7 @@
 #include <lantern/Result.h>
 
 #include <cstdint>
+#include <initializer_list>
 #include <string>
 
 namespace lantern::gpu {
@@ -67,6 +68,16 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
 /// Records a global memory dependency (synchronization2).
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                    VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+
+/// One buffer descriptor of a set to write: its binding, type and buffer range.
+struct BufferBinding {
+    std::uint32_t binding = 0;
+    VkDescriptorType type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    VkDescriptorBufferInfo info{};
+};
+
+/// Points each binding of `set` at its buffer range (the set must not be in use by the device).
+void writeBufferDescriptors(Context& ctx, VkDescriptorSet set, std::initializer_list<BufferBinding> bindings);
 
 /// Copies `size` bytes from host memory into a device-local buffer at `offset`, through a
 /// temporary staging buffer (or directly when the buffer is host-visible).

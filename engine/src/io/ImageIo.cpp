@@ -2,6 +2,7 @@
 #include <lantern/Io.h>
 
 #include "io/AtomicFile.h"
+#include "io/ImageEncode.h"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -283,21 +284,27 @@ Result<void> writeExr(const std::filesystem::path& path, const Image& image,
     return file.commit();
 }
 
+Result<std::pair<int, int>> io::exrWindowSize(const ExrWindow& dw, const std::filesystem::path& path) {
+    const long long w = (long long)dw.maxX - dw.minX + 1, h = (long long)dw.maxY - dw.minY + 1;
+    if (w <= 0 || h <= 0 || w * h > (1LL << 31))
+        return makeError(ErrorCode::InvalidInput, "unsupported data window", {}, path.string());
+    return std::pair<int, int>(int(w), int(h));
+}
+
 Result<Image> readExr(const std::filesystem::path& path) {
     try {
         Imf::InputFile in(path.c_str());
         const Imath::Box2i dw = in.header().dataWindow();
-        const long long w = (long long)dw.max.x - dw.min.x + 1, h = (long long)dw.max.y - dw.min.y + 1;
-        if (w <= 0 || h <= 0 || w * h > (1LL << 31))
-            return makeError(ErrorCode::InvalidInput, "unsupported data window", {}, path.string());
-        Image img{int(w), int(h)};
+        const io::ExrWindow window{dw.min.x, dw.min.y, dw.max.x, dw.max.y};
+        auto size = io::exrWindowSize(window, path);
+        if (!size) return std::move(size).error();
+        const int w = size->first;
+        Image img{w, size->second};
         const std::size_t n = img.pixelCount();
         Imf::FrameBuffer fb;
         const char* names[4] = {"R", "G", "B", "A"};
         auto base = [&](float* p, std::size_t comps) {
-            // OpenEXR addresses pixel (x, y) at base + x * xStride + y * yStride.
-            return reinterpret_cast<char*>(p) -
-                   (std::ptrdiff_t(dw.min.x) + std::ptrdiff_t(dw.min.y) * w) * std::ptrdiff_t(comps * sizeof(float));
+            return io::exrSliceBase(p, window, comps * sizeof(float), comps * sizeof(float) * std::size_t(w));
         };
         for (int c = 0; c < 4; ++c)
             fb.insert(names[c], Imf::Slice(Imf::FLOAT, base(img.rgba.data() + c, 4), 16, 16 * std::size_t(w), 1, 1,
@@ -360,10 +367,7 @@ bool encodePng(PngWriteState* state, int width, int height, unsigned char* const
 
 } // namespace
 
-Result<void> writePng(const std::filesystem::path& path, const Image& image) {
-    LANTERN_TRY(checkImage(image, path));
-    io::AtomicFile file(path);
-    LANTERN_TRY(file.checkWritable());
+std::vector<unsigned char> io::pngPixels(const Image& image) {
     const std::size_t n = image.pixelCount();
     std::vector<unsigned char> pixels(n * 4);
     for (std::size_t i = 0; i < n; ++i) {
@@ -377,6 +381,15 @@ Result<void> writePng(const std::filesystem::path& path, const Image& image) {
         }
         pixels[i * 4 + 3] = static_cast<unsigned char>(std::lround(a * 255.0f));
     }
+    return pixels;
+}
+
+Result<void> writePng(const std::filesystem::path& path, const Image& image) {
+    LANTERN_TRY(checkImage(image, path));
+    io::AtomicFile file(path);
+    LANTERN_TRY(file.checkWritable());
+    std::vector<unsigned char> pixels = io::pngPixels(image);
+    const std::size_t n = image.pixelCount();
     std::vector<unsigned char*> rows(std::size_t(image.height));
     for (int y = 0; y < image.height; ++y)
         rows[std::size_t(y)] = pixels.data() + std::size_t(y) * std::size_t(image.width) * 4;

@@ -1,0 +1,36 @@
+// What the image writers and readers share with `lantern compare`: the bytes a PNG holds for an
+// Image (so that a render compared with a PNG reference is quantised exactly as
+// `lantern render -o x.png` writes it), and the reading of an EXR's data window.
+#pragma once
+
+#include <lantern/Image.h>
+#include <lantern/Result.h>
+
+#include <cstddef>
+#include <filesystem>
+#include <utility>
+#include <vector>
+
+namespace lantern::io {
+
+/// 8-bit RGBA, un-premultiplied, clamped to [0,1], sRGB-encoded (non-finite values read as 0).
+std::vector<unsigned char> pngPixels(const Image& image);
+
+/// An EXR data window, corners inclusive (Imath::Box2i's min and max, without OpenEXR's headers).
+struct ExrWindow {
+    int minX = 0, minY = 0, maxX = -1, maxY = -1;
+};
+
+/// The width and height of an EXR's data window; refused, naming the file, when it is empty or
+/// holds more than 2^31 pixels.
+Result<std::pair<int, int>> exrWindowSize(const ExrWindow& window, const std::filesystem::path& path);
+
+/// The base pointer OpenEXR wants for a slice whose pixel at the window's minimum corner is
+/// `first`: OpenEXR addresses pixel (x, y) at base + x * xStride + y * yStride.
+inline char* exrSliceBase(float* first, const ExrWindow& window, std::size_t xStride,
+                          std::size_t yStride) {
+    return reinterpret_cast<char*>(first) - (std::ptrdiff_t(window.minX) * std::ptrdiff_t(xStride) +
+                                             std::ptrdiff_t(window.minY) * std::ptrdiff_t(yStride));
+}
+
+} // namespace lantern::io
