@@ -2,6 +2,7 @@
 // goes through. The GPU side is measured by `lantern bench` (frame, sequence, speed, accuracy);
 // these are the parts a host pays on its own thread. Compare rows of one run (ratios), never
 // absolute numbers across runs. See docs/performance.md for the results and the command.
+#include "GltfEncode.h"
 #include "reference/Lighting.h"
 #include "render/FrameRender.h"
 
@@ -13,6 +14,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -262,6 +264,54 @@ void BM_LoadGltf(benchmark::State& state, const char* relative) {
 BENCHMARK_CAPTURE(BM_LoadGltf, Suzanne, "Suzanne/glTF/Suzanne.gltf")
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_LoadGltf, Duck, "Duck/glTF-Binary/Duck.glb")->Unit(benchmark::kMillisecond);
+
+// One UV sphere of 1 000 000 triangles (501 x 1001 vertices with normals and texcoords) written
+// as .glb once per run in each encoding (GltfEncode.h: the test suite's encoders), then loaded:
+// what decompression costs against reading the same mesh plain. The file size is a counter.
+class CompressedSpheres {
+public:
+    ~CompressedSpheres() {
+        std::error_code ec;
+        for (const auto& [encoding, path] : m_paths) fs::remove(path, ec);
+    }
+    const fs::path& path(test::Encoding e) {
+        auto it = m_paths.find(e);
+        if (it != m_paths.end()) return it->second;
+        if (m_sphere.indices.empty()) m_sphere = test::makeSphere(500, 1000);
+        test::GltfBuilder b;
+        test::addEncodedMesh(b, m_sphere, e);
+        const std::string name =
+            "lantern-microbench-" + std::to_string(::getpid()) + "-" + test::encodingName(e);
+        return m_paths[e] = b.write(fs::temp_directory_path(), name, test::GltfBuilder::Storage::Glb);
+    }
+
+private:
+    test::TestMesh m_sphere;
+    std::map<test::Encoding, fs::path> m_paths;
+};
+
+void BM_LoadCompressedGltf(benchmark::State& state) {
+    static CompressedSpheres spheres;
+    const auto encoding = test::Encoding(state.range(0));
+    const fs::path& path = spheres.path(encoding);
+    for (auto _ : state) {
+        auto scene = loadGltf(path);
+        if (!scene) {
+            state.SkipWithError(scene.error().describe().c_str());
+            break;
+        }
+        benchmark::DoNotOptimize(scene);
+    }
+    state.counters["MiB"] = double(fs::file_size(path)) / (1024.0 * 1024.0);
+    state.SetLabel(test::encodingName(encoding));
+}
+BENCHMARK(BM_LoadCompressedGltf)
+    ->Arg(int(test::Encoding::Float))
+    ->Arg(int(test::Encoding::Quantized))
+    ->Arg(int(test::Encoding::MeshoptFloat))
+    ->Arg(int(test::Encoding::MeshoptQuantized))
+    ->Arg(int(test::Encoding::Draco))
+    ->Unit(benchmark::kMillisecond);
 
 // Writing a 640x360 float EXR (a smooth gradient with a highlight, like a rendered frame) per
 // compression, one thread: the encode stage of a sequence. Bytes written are a counter.

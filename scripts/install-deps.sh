@@ -5,8 +5,8 @@
 # Usage: scripts/install-deps.sh [build|test|all|slurm]   (default: all)
 #   build  what `cmake --build` and `lantern render` need
 #   test   build + the tools the test suite drives (Xvfb, xdotool, oiiotool, valgrind, clang,
-#          a single-node Slurm for the farm tests, pytest and NumPy for the Python module's
-#          tests, matplotlib for the accuracy plot)
+#          gltfpack and draco_transcoder, a single-node Slurm for the farm tests, pytest and NumPy
+#          for the Python module's tests, matplotlib for the accuracy plot)
 #   slurm  only Slurm and munge (scripts/slurm-single-node.sh install)
 set -euo pipefail
 
@@ -19,6 +19,7 @@ build_pkgs=(
     libcli11-dev libfmt-dev libglfw3-dev libimgui-dev libx11-dev
     libpng-dev libyaml-cpp-dev
     libgtest-dev libgmock-dev libbenchmark-dev
+    libmeshoptimizer-dev libdraco-dev
     python3-dev pybind11-dev python3-numpy
 )
 # The farm tests start a private single-node Slurm (scripts/slurm-single-node.sh).
@@ -26,7 +27,8 @@ slurm_pkgs=(slurm-wlm slurmctld slurmd slurm-client munge)
 test_pkgs=(
     xvfb xauth xdotool x11-utils openimageio-tools vulkan-tools
     clang-14 libclang-rt-14-dev valgrind python3 librsvg2-bin
-    "${slurm_pkgs[@]}" python3-pytest python3-matplotlib
+    gltfpack draco
+    "${slurm_pkgs[@]}" python3-yaml python3-pytest python3-matplotlib
 )
 
 case "$what" in

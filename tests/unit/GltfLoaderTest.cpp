@@ -140,14 +140,14 @@ TEST(GltfLoader, UnsupportedRequiredExtensionsAreRefused) {
     const auto dir = testOutputDir();
     GltfBuilder b;
     b.addTriangle();
-    b.doc["extensionsUsed"] = {"KHR_draco_mesh_compression", "KHR_materials_unlit"};
-    b.doc["extensionsRequired"] = {"KHR_draco_mesh_compression"};
-    EXPECT_TRUE(refusedWith(loadCapturing(b.write(dir, "draco")), "extensionsRequired[0]",
-                            "KHR_draco_mesh_compression"));
+    b.doc["extensionsUsed"] = {"EXT_texture_webp", "KHR_materials_unlit"};
+    b.doc["extensionsRequired"] = {"EXT_texture_webp"};
+    EXPECT_TRUE(refusedWith(loadCapturing(b.write(dir, "webp")), "extensionsRequired[0]",
+                            "EXT_texture_webp"));
     b.doc.erase("extensionsRequired");
     auto o = loadCapturing(b.write(dir, "used"));
     ASSERT_TRUE(o.scene);
-    EXPECT_TRUE(o.warned("ignored (not supported): KHR_draco_mesh_compression")) << o.allWarnings();
+    EXPECT_TRUE(o.warned("ignored (not supported): EXT_texture_webp")) << o.allWarnings();
 }
 
 // --- Accessors ------------------------------------------------------------------------------

@@ -18,6 +18,8 @@ class GltfBuilder {
 public:
     nlohmann::json doc;
     std::vector<unsigned char> bin;
+    /// Buffers written after buffer 0 (the binary buffer), as given (meshopt fallback buffers).
+    std::vector<nlohmann::json> extraBuffers;
 
     GltfBuilder() {
         doc["asset"] = {{"version", "2.0"}};
@@ -91,6 +93,10 @@ public:
                 writeBytes(dir / (name + ".bin"), bin);
             }
             out["buffers"] = nlohmann::json::array({buffer});
+        }
+        for (const nlohmann::json& extra : extraBuffers) {
+            if (!out.contains("buffers")) out["buffers"] = nlohmann::json::array({{{"byteLength", 0}}});
+            out["buffers"].push_back(extra);
         }
         if (storage != Storage::Glb) {
             const std::string text = out.dump(1);

@@ -4,12 +4,14 @@
 #include "io/GltfInternal.h"
 
 #include <cerrno>
-#include <cmath>
 #include <climits>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -354,13 +356,41 @@ const json* arrayOf(const json& doc, const char* name) {
     return (it != doc.end() && it->is_array()) ? &*it : nullptr;
 }
 
+// Whether a buffer is marked as a meshopt fallback (its views' data is decoded from elsewhere).
+bool isMeshoptFallback(const json& buffer) {
+    auto extensions = buffer.find("extensions");
+    if (extensions == buffer.end() || !extensions->is_object()) return false;
+    for (const char* name : kMeshoptExtensions) {
+        auto e = extensions->find(name);
+        if (e == extensions->end() || !e->is_object()) continue;
+        auto fallback = e->find("fallback");
+        if (fallback != e->end() && fallback->is_boolean() && fallback->get<bool>()) return true;
+    }
+    return false;
+}
+
+// A meshopt fallback buffer without data: recorded with its byteLength (the bound its views
+// must lie within) for the meshopt pass, which refuses any view into it that is not compressed.
+Result<void> recordPlaceholder(const json& buffer, std::size_t i, const std::string& object,
+                               const Diagnostics& diag, RawFacts& facts) {
+    auto length = buffer.find("byteLength");
+    if (length == buffer.end() || !length->is_number_unsigned())
+        return diag.error(object + ".byteLength", "is missing or not a non-negative integer");
+    facts.placeholderBuffers[int(i)] = length->get<std::uint64_t>();
+    return {};
+}
+
 // Buffer `i` without a uri: only a GLB's buffer 0 may have none, and then the file has a BIN
-// chunk.
-Result<void> checkBufferWithoutUri(std::size_t i, const std::string& object, const Source& source,
-                                   const Diagnostics& diag) {
+// chunk; or a meshopt fallback buffer (a placeholder).
+Result<void> checkBufferWithoutUri(const json& buffer, std::size_t i, const std::string& object,
+                                   const Source& source, const Diagnostics& diag,
+                                   RawFacts& facts) {
+    if (isMeshoptFallback(buffer) && !(source.glb && i == 0))
+        return recordPlaceholder(buffer, i, object, diag, facts);
     if (!source.glb)
         return diag.error(object, "has no uri: a .gltf buffer's data must come from "
-                                  "a file or a data: URI");
+                                  "a file or a data: URI (or it is a meshopt fallback buffer, "
+                                  "extensions.EXT_meshopt_compression.fallback)");
     if (i != 0)
         return diag.error(object, "has no uri: only buffer 0 can refer to the GLB's "
                                   "BIN chunk");
@@ -387,7 +417,7 @@ Result<void> checkExternalItem(const json& item, const char* kind, std::size_t i
     auto uri = item.find("uri");
     if (uri == item.end() || !uri->is_string()) {
         if (!buffers) return {};
-        return checkBufferWithoutUri(i, object, source, diag);
+        return checkBufferWithoutUri(item, i, object, source, diag, facts);
     }
     const std::string& value = uri->get_ref<const std::string&>();
     if (isDataUri(value)) {
@@ -572,6 +602,82 @@ Result<std::vector<std::size_t>> primitiveCounts(const json& doc, const Diagnost
     return counts;
 }
 
+// An integer member of a compression extension must fit tinygltf's int (it keeps the low 32
+// bits of larger ones, which would turn 2^32 + 8 into 8).
+Result<void> checkIntMember(const json& value, const std::string& object, const Diagnostics& diag) {
+    if (!value.is_number_integer()) return {}; // other types: refused by the decoding pass
+    const bool fits = value.is_number_unsigned()
+                          ? value.get<std::uint64_t>() <= std::uint64_t(INT32_MAX)
+                          : value.get<std::int64_t>() >= 0 &&
+                                value.get<std::int64_t>() <= std::int64_t(INT32_MAX);
+    if (!fits)
+        return diag.error(object, value.dump() + " is outside [0, " + std::to_string(INT32_MAX) +
+                                      "]");
+    return {};
+}
+
+// The integers of every meshopt and Draco extension object (see checkIntMember).
+Result<void> checkCompressionIntegers(const json& doc, const Diagnostics& diag) {
+    auto members = [&](const json& ext, const std::string& object) -> Result<void> {
+        if (!ext.is_object()) return {};
+        for (const auto& [key, value] : ext.items()) {
+            LANTERN_TRY(checkIntMember(value, object + "." + key, diag));
+            if (key == "attributes" && value.is_object())
+                for (const auto& [name, id] : value.items())
+                    LANTERN_TRY(checkIntMember(id, object + ".attributes." + name, diag));
+        }
+        return {};
+    };
+    auto extensionsOf = [](const json& item) -> const json* {
+        auto e = item.is_object() ? item.find("extensions") : item.end();
+        return (item.is_object() && e != item.end() && e->is_object()) ? &*e : nullptr;
+    };
+    if (const json* views = arrayOf(doc, "bufferViews"))
+        for (std::size_t v = 0; v < views->size(); ++v)
+            if (const json* ext = extensionsOf((*views)[v]))
+                for (const char* name : kMeshoptExtensions)
+                    if (ext->contains(name))
+                        LANTERN_TRY(members((*ext)[name],
+                                            at("bufferViews", v) + ".extensions." + name));
+    if (const json* meshes = arrayOf(doc, "meshes"))
+        for (std::size_t m = 0; m < meshes->size(); ++m) {
+            const json& mesh = (*meshes)[m];
+            const json* prims = mesh.is_object() ? arrayOf(mesh, "primitives") : nullptr;
+            for (std::size_t p = 0; prims && p < prims->size(); ++p)
+                if (const json* ext = extensionsOf((*prims)[p]);
+                    ext && ext->contains("KHR_draco_mesh_compression"))
+                    LANTERN_TRY(members((*ext)["KHR_draco_mesh_compression"],
+                                        at("meshes", m) + "." + at("primitives", p) +
+                                            ".extensions.KHR_draco_mesh_compression"));
+        }
+    return {};
+}
+
+// tinygltf 2.7.0 (built without Draco) refuses a primitive whose indices accessor has no
+// bufferView, which is how KHR_draco_mesh_compression primitives are written: their indices are
+// taken out of the JSON it reads and put back after it (restoreDracoIndices, GltfDraco.cpp).
+void hideDracoIndices(json& doc, RawFacts& facts) {
+    auto meshes = doc.find("meshes");
+    if (meshes == doc.end() || !meshes->is_array()) return;
+    for (std::size_t m = 0; m < meshes->size(); ++m) {
+        json& mesh = (*meshes)[m];
+        auto prims = mesh.is_object() ? mesh.find("primitives") : mesh.end();
+        if (!mesh.is_object() || prims == mesh.end() || !prims->is_array()) continue;
+        for (std::size_t p = 0; p < prims->size(); ++p) {
+            json& prim = (*prims)[p];
+            if (!prim.is_object()) continue;
+            auto ext = prim.find("extensions");
+            auto indices = prim.find("indices");
+            if (ext == prim.end() || !ext->is_object() ||
+                !ext->contains("KHR_draco_mesh_compression") || indices == prim.end() ||
+                !indices->is_number_unsigned() || indices->get<std::uint64_t>() > INT32_MAX)
+                continue;
+            facts.dracoIndices[{int(m), int(p)}] = indices->get<int>();
+            prim.erase(indices);
+        }
+    }
+}
+
 } // namespace
 
 Result<RawFacts> inspectJson(std::string_view text, const Source& source, const Diagnostics& diag) {
@@ -580,11 +686,52 @@ Result<RawFacts> inspectJson(std::string_view text, const Source& source, const 
     RawFacts facts;
     LANTERN_TRY(checkAllNumbers(*doc, diag));
     LANTERN_TRY(checkExternalFiles(*doc, source, diag, facts));
+    LANTERN_TRY(checkCompressionIntegers(*doc, diag));
     facts.perspectiveHasZfar = perspectiveHasZfar(*doc);
     auto counts = primitiveCounts(*doc, diag);
     if (!counts) return std::move(counts).error();
     facts.primitiveCounts = std::move(*counts);
+    // Four zero bytes: tinygltf refuses a buffer without data, and nothing reads these.
+    for (const auto& [index, length] : facts.placeholderBuffers) {
+        json& buffer = (*doc)["buffers"][std::size_t(index)];
+        buffer["uri"] = "data:application/octet-stream;base64,AAAAAA==";
+        buffer["byteLength"] = 4;
+    }
+    hideDracoIndices(*doc, facts);
+    if (!facts.placeholderBuffers.empty() || !facts.dracoIndices.empty())
+        facts.jsonForTinygltf = doc->dump();
     return facts;
+}
+
+Result<std::vector<unsigned char>> rebuildGlb(const std::vector<unsigned char>& bytes,
+                                              const GlbLayout& layout, const std::string& json,
+                                              const Diagnostics& diag) {
+    std::string text = json;
+    while (text.size() % 4 != 0)
+        text += ' ';
+    const std::uint64_t total =
+        20 + std::uint64_t(text.size()) + (layout.hasBin ? 8 + std::uint64_t(layout.binLength) : 0);
+    if (total > std::numeric_limits<std::uint32_t>::max())
+        return diag.error("GLB", "files of 4 GiB or more cannot be read by tinygltf");
+    std::vector<unsigned char> out;
+    out.reserve(std::size_t(total));
+    auto u32 = [&](std::uint64_t v) {
+        for (int i = 0; i < 4; ++i)
+            out.push_back((v >> (8 * i)) & 0xFF);
+    };
+    u32(kGlbMagic);
+    u32(2);
+    u32(total);
+    u32(text.size());
+    u32(kChunkJson);
+    out.insert(out.end(), text.begin(), text.end());
+    if (layout.hasBin) {
+        u32(layout.binLength);
+        u32(kChunkBin);
+        const auto bin = bytes.begin() + std::ptrdiff_t(layout.binOffset);
+        out.insert(out.end(), bin, bin + std::ptrdiff_t(layout.binLength));
+    }
+    return out;
 }
 
 } // namespace lantern::gltf

@@ -1,6 +1,7 @@
 // loadGltf: reads a .gltf/.glb within size bounds, runs the container checks, parses it with
-// tinygltf through file-system callbacks confined to the scene's folder, then validates and
-// converts it (GltfInternal.h lists the passes). Nothing escapes as an exception.
+// tinygltf through file-system callbacks confined to the scene's folder, decodes compressed
+// data, then validates and converts it (GltfInternal.h lists the passes). Nothing escapes as an
+// exception.
 #include "io/GltfInternal.h"
 #include "io/GltfLoad.h"
 
@@ -110,78 +111,128 @@ std::string oneLine(const std::string& text) {
     return out.empty() ? "tinygltf refused the file without a reason" : printable(out, 240);
 }
 
-Result<Scene> loadBytes(std::vector<unsigned char> fileBytes, const std::filesystem::path& path,
-                        const LoadOptions& options) {
-    const Diagnostics diag(path.string(), options.log, options.maxBytes);
-    std::vector<unsigned char>* bytes = &fileBytes;
-    if (fileBytes.size() > options.maxBytes)
-        return diag.error("", "\"" + path.filename().string() + "\" is " +
-                                  std::to_string(fileBytes.size()) + " bytes, more than --max-size (" +
-                                  std::to_string(options.maxBytes) + " bytes)");
-    if (bytes->empty()) return diag.error("", "the file is empty");
-    if (bytes->size() > std::numeric_limits<std::uint32_t>::max())
-        return diag.error("", "files of 4 GiB or more cannot be read by tinygltf");
-
-    std::error_code ec;
-    const std::filesystem::path absolute = std::filesystem::absolute(path, ec).lexically_normal();
-    if (ec) return diag.error(ErrorCode::IoError, "", "cannot resolve the path: " + ec.message());
-    Source source;
-    source.folder = absolute.parent_path();
-    source.maxBytes = options.maxBytes;
-
-    std::string extension = path.extension().string();
-    for (char& c : extension)
-        c = char(std::tolower(static_cast<unsigned char>(c)));
+/// The file as tinygltf will read it: its JSON, and for a GLB the container (header length cut
+/// after the chunks tinygltf understands). Both point into `bytes`, or into `storage` when the
+/// JSON had to be rewritten for tinygltf (meshopt placeholder buffers).
+struct TinygltfInput {
     std::string_view json;
     std::optional<GlbLayout> glb;
-    if (isGlb(*bytes) || extension == ".glb") {
-        auto layout = parseGlb(*bytes, diag);
-        if (!layout) return std::move(layout).error();
-        glb = *layout;
-        source.glb = true;
-        source.glbHasBin = glb->hasBin;
-        json = std::string_view(reinterpret_cast<const char*>(bytes->data()) + glb->jsonOffset,
-                                glb->jsonLength);
-        // Unknown chunks after the ones tinygltf reads are dropped by shortening the length.
-        const std::uint32_t length = std::uint32_t(glb->tinygltfLength);
-        for (int i = 0; i < 4; ++i)
-            (*bytes)[8 + std::size_t(i)] = (length >> (8 * i)) & 0xFF;
-    } else {
-        json = std::string_view(reinterpret_cast<const char*>(bytes->data()), bytes->size());
-    }
-    LANTERN_TRY(checkJsonNesting(json, diag));
-    auto raw = inspectJson(json, source, diag);
-    if (!raw) return std::move(raw).error();
+    const unsigned char* glbData = nullptr;
+    std::size_t glbLength = 0;
+};
 
-    FsContext fs;
-    fs.folder = source.folder.string();
-    fs.maxBytes = options.maxBytes;
-    ImageStore images;
-
+/// Runs tinygltf on the input with the confined file-system callbacks and the image store.
+Result<tinygltf::Model> parseModel(const TinygltfInput& in, FsContext& fs, ImageStore& images,
+                                   const Diagnostics& diag) {
     tinygltf::TinyGLTF parser;
     parser.SetFsCallbacks(
         tinygltf::FsCallbacks{&fileExists, &expandFilePath, &readWholeFile, &writeWholeFile, &fs});
     parser.SetImageLoader(&keepImage, &images);
     tinygltf::Model model;
     std::string err, warn;
-    const bool parsed = glb ? parser.LoadBinaryFromMemory(&model, &err, &warn, bytes->data(),
-                                                          unsigned(glb->tinygltfLength), fs.folder)
-                            : parser.LoadASCIIFromString(&model, &err, &warn, json.data(),
-                                                         unsigned(json.size()), fs.folder);
+    const bool parsed =
+        in.glb ? parser.LoadBinaryFromMemory(&model, &err, &warn, in.glbData,
+                                             unsigned(in.glbLength), fs.folder)
+               : parser.LoadASCIIFromString(&model, &err, &warn, in.json.data(),
+                                            unsigned(in.json.size()), fs.folder);
     if (!parsed) {
         std::string message = oneLine(err);
         if (!fs.refusal.empty()) message += " (" + fs.refusal + ")";
         return diag.error("", "not a readable glTF file: " + message);
     }
     if (!warn.empty()) diag.warn("", "tinygltf: " + oneLine(warn));
-    bytes->clear();
-    bytes->shrink_to_fit();
-    // The buffers tinygltf holds count against the load's budget (each was bounded alone).
-    for (std::size_t i = 0; i < model.buffers.size(); ++i)
-        LANTERN_TRY(diag.charge(model.buffers[i].data.size(), 1, at("buffers", i), "holding the data"));
+    return model;
+}
 
-    LANTERN_TRY(validateModel(model, *raw, options, diag));
-    auto scene = convertModel(model, *raw, images, options, diag);
+/// Locates the JSON (and GLB chunks) in the file's bytes; a GLB's header length is rewritten
+/// to end after the chunks tinygltf reads.
+Result<TinygltfInput> locateJson(std::vector<unsigned char>& bytes,
+                                 const std::filesystem::path& path, const Diagnostics& diag) {
+    std::string extension = path.extension().string();
+    for (char& c : extension)
+        c = char(std::tolower(static_cast<unsigned char>(c)));
+    TinygltfInput in;
+    if (!isGlb(bytes) && extension != ".glb") {
+        in.json = std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+        return in;
+    }
+    auto layout = parseGlb(bytes, diag);
+    if (!layout) return std::move(layout).error();
+    in.glb = *layout;
+    in.json = std::string_view(reinterpret_cast<const char*>(bytes.data()) + layout->jsonOffset,
+                               layout->jsonLength);
+    // Unknown chunks after the ones tinygltf reads are dropped by shortening the length.
+    const std::uint32_t length = std::uint32_t(layout->tinygltfLength);
+    for (int i = 0; i < 4; ++i)
+        bytes[8 + std::size_t(i)] = (length >> (8 * i)) & 0xFF;
+    in.glbData = bytes.data();
+    in.glbLength = layout->tinygltfLength;
+    return in;
+}
+
+/// Points the input at a rewritten JSON (kept in `json`), rebuilding a GLB around it in `glb`.
+Result<void> useRewrittenJson(const std::vector<unsigned char>& bytes, const std::string& json,
+                              std::vector<unsigned char>& glb, TinygltfInput& in,
+                              const Diagnostics& diag) {
+    in.json = json;
+    if (!in.glb) return {};
+    auto rebuilt = rebuildGlb(bytes, *in.glb, json, diag);
+    if (!rebuilt) return std::move(rebuilt).error();
+    glb = std::move(*rebuilt);
+    in.glbData = glb.data();
+    in.glbLength = glb.size();
+    return {};
+}
+
+Result<Scene> loadBytes(std::vector<unsigned char> bytes, const std::filesystem::path& path,
+                        const LoadOptions& options) {
+    const Diagnostics diag(path.string(), options.log, options.maxBytes);
+    if (bytes.size() > options.maxBytes)
+        return diag.error("", "\"" + path.filename().string() + "\" is " +
+                                  std::to_string(bytes.size()) + " bytes, more than --max-size (" +
+                                  std::to_string(options.maxBytes) + " bytes)");
+    if (bytes.empty()) return diag.error("", "the file is empty");
+    if (bytes.size() > std::numeric_limits<std::uint32_t>::max())
+        return diag.error("", "files of 4 GiB or more cannot be read by tinygltf");
+
+    std::error_code ec;
+    const std::filesystem::path absolute = std::filesystem::absolute(path, ec).lexically_normal();
+    if (ec) return diag.error(ErrorCode::IoError, "", "cannot resolve the path: " + ec.message());
+    auto in = locateJson(bytes, path, diag);
+    if (!in) return std::move(in).error();
+    Source source;
+    source.folder = absolute.parent_path();
+    source.maxBytes = options.maxBytes;
+    source.glb = bool(in->glb);
+    source.glbHasBin = in->glb && in->glb->hasBin;
+    LANTERN_TRY(checkJsonNesting(in->json, diag));
+    auto raw = inspectJson(in->json, source, diag);
+    if (!raw) return std::move(raw).error();
+    std::vector<unsigned char> rebuiltGlb;
+    if (!raw->jsonForTinygltf.empty())
+        LANTERN_TRY(useRewrittenJson(bytes, raw->jsonForTinygltf, rebuiltGlb, *in, diag));
+
+    FsContext fs;
+    fs.folder = source.folder.string();
+    fs.maxBytes = options.maxBytes;
+    ImageStore images;
+    auto model = parseModel(*in, fs, images, diag);
+    if (!model) return std::move(model).error();
+    // The file's bytes are in the model now; what follows may allocate as much again.
+    std::vector<unsigned char>().swap(bytes);
+    std::vector<unsigned char>().swap(rebuiltGlb);
+    std::string().swap(raw->jsonForTinygltf);
+    // The buffers tinygltf holds count against the load's budget (each was bounded alone).
+    for (std::size_t i = 0; i < model->buffers.size(); ++i)
+        LANTERN_TRY(
+            diag.charge(model->buffers[i].data.size(), 1, at("buffers", i), "holding the data"));
+
+    restoreDracoIndices(*model, *raw);
+    // Decoded meshopt views and Draco primitives are charged to the same budget.
+    LANTERN_TRY(decodeMeshopt(*model, *raw, diag));
+    LANTERN_TRY(decodeDraco(*model, diag));
+    LANTERN_TRY(validateModel(*model, *raw, options, diag));
+    auto scene = convertModel(*model, *raw, images, options, diag);
     if (!scene) return std::move(scene).error();
     if (auto valid = scene->validate(); !valid) {
         Error e = std::move(valid).error();

@@ -6,6 +6,10 @@
 //   1. GltfContainer.cpp  the bytes: size bound, GLB chunks, JSON nesting depth, external URIs
 //                         (relative, inside the scene's folder), facts tinygltf discards.
 //   2. tinygltf           JSON -> tinygltf::Model, buffers read through confined callbacks.
+//   2b. compressed data   GltfMeshopt.cpp (EXT_/KHR_meshopt_compression buffer views) and
+//                         GltfDraco.cpp (KHR_draco_mesh_compression primitives): decoded into
+//                         buffers appended to the model, views and accessors pointed at them, so
+//                         that every later pass reads them as plain data.
 //   3. GltfValidate.cpp   every reference, buffer view, accessor, index, count and enum, with
 //                         the glTF object path in each message, before any data is read.
 //   4. conversion        data -> Scene: GltfGeometry.cpp meshes (strips/fans to lists, normals
@@ -50,18 +54,26 @@ inline constexpr int kMaxTextureSide = 16384;
 /// the lobe (half-width 0.68 degrees at 1e4) is already narrower than a pixel in most views.
 inline constexpr double kMaxPbrShininess = 1.0e4;
 
-/// Extensions the loader understands (anything else listed in extensionsRequired is refused).
+/// Extensions the loader understands (anything else listed in extensionsRequired is refused;
+/// listed only in extensionsUsed, it is ignored with a warning).
 inline constexpr const char* kSupportedExtensions[] = {
-    "KHR_lights_punctual",     "KHR_materials_unlit",  "KHR_materials_emissive_strength",
-    "LANTERN_materials_phong", "LANTERN_lights_phong", "LANTERN_lighting",
-    "LANTERN_camera",
+    "KHR_lights_punctual",     "KHR_materials_unlit",     "KHR_materials_emissive_strength",
+    "LANTERN_materials_phong", "LANTERN_lights_phong",    "LANTERN_lighting",
+    "LANTERN_camera",          "KHR_mesh_quantization",   "EXT_meshopt_compression",
+    "KHR_meshopt_compression", "KHR_draco_mesh_compression",
 };
+
+/// The two names of the meshopt codec's extension: EXT_ (ratified) and KHR_ (its successor, the
+/// same JSON; its newer bitstream versions are refused by the decoder with a message).
+inline constexpr const char* kMeshoptExtensions[] = {"EXT_meshopt_compression",
+                                                     "KHR_meshopt_compression"};
 
 /// Where a load's errors and warnings come from: every message names the file. It also keeps
 /// the load's allocation budget: every allocation whose size the file decides (buffers,
 /// decoded accessors, decoded images and their decoder's working memory, converted
-/// geometry) is charged with charge() before it is made, and the total may not exceed
-/// LoadOptions::maxBytes, however small the file (a count of 10^9 costs 20 bytes of JSON).
+/// geometry, meshopt- and Draco-decoded data) is charged with charge() before it is made, and
+/// the total may not exceed LoadOptions::maxBytes, however small the file (a count of 10^9
+/// costs 20 bytes of JSON).
 class Diagnostics {
 public:
     Diagnostics(std::string file, LogSink log, std::uint64_t budget = ~std::uint64_t(0))
@@ -153,6 +165,17 @@ struct RawFacts {
     std::vector<bool> perspectiveHasZfar;     ///< per camera
     std::vector<std::size_t> primitiveCounts; ///< per mesh, as written
     std::map<int, std::string> imageProblems; ///< per image index
+    /// meshopt fallback buffers without data (no uri), per buffer index: the byteLength written.
+    /// tinygltf cannot read a buffer without data, so each is handed to it as a 4-byte data: URI
+    /// (`jsonForTinygltf`); every view into one must be compressed (GltfMeshopt.cpp).
+    std::map<int, std::uint64_t> placeholderBuffers;
+    /// Indices accessors of KHR_draco_mesh_compression primitives, per (mesh, primitive):
+    /// left out of the JSON tinygltf reads (it refuses an indices accessor without a
+    /// bufferView) and put back by restoreDracoIndices.
+    std::map<std::pair<int, int>, int> dracoIndices;
+    /// The JSON to hand tinygltf when it differs from the file's (placeholders, Draco indices);
+    /// else empty.
+    std::string jsonForTinygltf;
 };
 
 /// Where the JSON came from, for the checks on buffers and external files.
@@ -163,11 +186,53 @@ struct Source {
     std::uint64_t maxBytes = 0;
 };
 
+/// A GLB with the JSON chunk replaced by `json` (padded) and the same BIN chunk; unknown chunks
+/// are left out (tinygltf reads none). Refused when the result reaches 4 GiB.
+Result<std::vector<unsigned char>> rebuildGlb(const std::vector<unsigned char>& bytes,
+                                              const GlbLayout& layout, const std::string& json,
+                                              const Diagnostics& diag);
+
 /// Parses the JSON text (already depth-checked) and collects RawFacts. Refuses syntax errors,
 /// a root that is not an object, buffers without data, external URIs that leave the scene's
 /// folder, missing buffer files, files over the size bound, and primitives tinygltf would
 /// silently drop.
 Result<RawFacts> inspectJson(std::string_view json, const Source& source, const Diagnostics& diag);
+
+// --- Pass 2b: compressed data (GltfMeshopt.cpp, GltfDraco.cpp) -------------------------------
+
+/// Appends a buffer holding decoded bytes to the model; returns its index.
+int addDecodedBuffer(tinygltf::Model& model, std::vector<unsigned char> data);
+
+/// Decodes every buffer view with EXT_meshopt_compression (or KHR_meshopt_compression) into a
+/// buffer of its own and points the view at it; checks that views into placeholder buffers are
+/// all compressed and that filtered views are read as the filter's output type.
+/// The decoded data is charged to the load's budget (Diagnostics::charge) before it is allocated.
+Result<void> decodeMeshopt(tinygltf::Model& model, const RawFacts& raw, const Diagnostics& diag);
+
+/// Decodes every primitive with KHR_draco_mesh_compression and points its accessors at the
+/// decoded data; the stream's counts are checked against the accessors before decoding
+/// (GltfDracoHeader.cpp reads them) and after. The decoded data is charged to the load's budget
+/// (Diagnostics::charge) before the stream is decoded.
+Result<void> decodeDraco(tinygltf::Model& model, const Diagnostics& diag);
+
+/// Puts back the Draco primitives' indices accessors that inspectJson hid from tinygltf.
+void restoreDracoIndices(tinygltf::Model& model, const RawFacts& raw);
+
+/// What a Draco stream's header says, read without decoding it.
+struct DracoHeader {
+    int versionMajor = 0, versionMinor = 0;
+    bool edgebreaker = false;
+    std::uint64_t faces = 0;
+    /// Sequential: the point count. Edgebreaker: the encoded vertices plus split symbols (an
+    /// upper bound of what the decoder allocates per vertex).
+    std::uint64_t vertices = 0;
+};
+
+/// Reads the header and connectivity counts of a Draco mesh stream; refuses what is not a
+/// triangle mesh of bitstream 2.0-2.2, metadata nested too deep or running past the end, and
+/// counts that contradict each other.
+Result<DracoHeader> readDracoHeader(const unsigned char* data, std::size_t size,
+                                    const std::string& object, const Diagnostics& diag);
 
 // --- Pass 3: structure (GltfValidate.cpp) ------------------------------------------------------
 

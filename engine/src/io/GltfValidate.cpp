@@ -68,18 +68,78 @@ Result<void> checkFormat(const tinygltf::Model& model, int accessor, const Forma
                                   componentTypeName(a.componentType) + "; expected " + allowed);
 }
 
+/// Whether the file declares `name` (in extensionsUsed; extensionsRequired should be a subset).
+bool declares(const tinygltf::Model& model, const char* name) {
+    for (const auto* list : {&model.extensionsUsed, &model.extensionsRequired})
+        if (std::find(list->begin(), list->end(), name) != list->end()) return true;
+    return false;
+}
+
+/// The formats allowed for each vertex attribute Lantern reads: glTF 2.0's, or, when the file
+/// declares KHR_mesh_quantization, that extension's wider table (integer positions and texture
+/// coordinates, normalized or not; BYTE/SHORT normalized normals; BYTE/SHORT morph target
+/// position displacements, normalized or not, and normalized normal displacements). Skin
+/// influences (JOINTS_0/1, WEIGHTS_0/1) are the same in both: KHR_mesh_quantization leaves them.
+struct AttributeFormats {
+    Format position, normal, color, texcoord, joints, weights, targetPosition, targetNormal;
+    explicit AttributeFormats(bool quantized)
+        : position{{TINYGLTF_TYPE_VEC3}, {kFloat}}, normal{{TINYGLTF_TYPE_VEC3}, {kFloat}},
+          color{{TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, {kFloat, kUnsignedByte, kUnsignedShort}},
+          texcoord{{TINYGLTF_TYPE_VEC2}, {kFloat, kUnsignedByte, kUnsignedShort}},
+          joints{{TINYGLTF_TYPE_VEC4}, {kUnsignedByte, kUnsignedShort}, false},
+          weights{{TINYGLTF_TYPE_VEC4}, {kFloat, kUnsignedByte, kUnsignedShort}},
+          targetPosition{{TINYGLTF_TYPE_VEC3}, {kFloat}},
+          targetNormal{{TINYGLTF_TYPE_VEC3}, {kFloat}} {
+        if (!quantized) return;
+        const std::vector<int> all{kFloat, kByte, kUnsignedByte, kShort, kUnsignedShort};
+        position = {{TINYGLTF_TYPE_VEC3}, all, false};
+        normal = {{TINYGLTF_TYPE_VEC3}, {kFloat, kByte, kShort}};
+        texcoord = {{TINYGLTF_TYPE_VEC2}, all, false};
+        targetPosition = {{TINYGLTF_TYPE_VEC3}, {kFloat, kByte, kShort}, false};
+        targetNormal = {{TINYGLTF_TYPE_VEC3}, {kFloat, kByte, kShort}};
+    }
+    /// The format for attribute `name` (of a morph target when `target`), or null for
+    /// attributes Lantern does not read.
+    const Format* of(const std::string& name, bool target) const {
+        if (target) {
+            if (name == "POSITION") return &targetPosition;
+            if (name == "NORMAL") return &targetNormal;
+            return nullptr;
+        }
+        if (name == "POSITION") return &position;
+        if (name == "NORMAL") return &normal;
+        if (name == "COLOR_0") return &color;
+        if (name.rfind("TEXCOORD_", 0) == 0) return &texcoord;
+        if (name == "JOINTS_0" || name == "JOINTS_1") return &joints;
+        if (name == "WEIGHTS_0" || name == "WEIGHTS_1") return &weights;
+        return nullptr;
+    }
+};
+
+/// An attribute's format (a morph target's when `target`); a refusal says when
+/// KHR_mesh_quantization would have allowed it.
+Result<void> checkAttributeFormat(const tinygltf::Model& model, int accessor,
+                                  const std::string& name, bool target, bool quantized,
+                                  const std::string& object, const Diagnostics& diag) {
+    static const AttributeFormats core(false), withQuantization(true);
+    const Format* format = (quantized ? withQuantization : core).of(name, target);
+    if (!format) return {};
+    auto checked = checkFormat(model, accessor, *format, object, diag);
+    if (checked || quantized ||
+        !checkFormat(model, accessor, *withQuantization.of(name, target), object,
+                     Diagnostics("", {})))
+        return checked;
+    Error e = std::move(checked).error();
+    e.message += " (KHR_mesh_quantization allows it, but the file does not declare that "
+                 "extension in extensionsUsed)";
+    return e;
+}
+
 Result<void> validateMeshes(const tinygltf::Model& model, const RawFacts& raw,
                             const Diagnostics& diag) {
-    const Format position{{TINYGLTF_TYPE_VEC3}, {kFloat}};
-    const Format normal{{TINYGLTF_TYPE_VEC3}, {kFloat}};
-    const Format color{{TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4},
-                       {kFloat, kUnsignedByte, kUnsignedShort}};
-    const Format texcoord{{TINYGLTF_TYPE_VEC2}, {kFloat, kUnsignedByte, kUnsignedShort}};
+    const bool quantized = declares(model, "KHR_mesh_quantization");
     const Format indices{
         {TINYGLTF_TYPE_SCALAR}, {kUnsignedByte, kUnsignedShort, kUnsignedInt}, false};
-    const Format joints{{TINYGLTF_TYPE_VEC4}, {kUnsignedByte, kUnsignedShort}, false};
-    const Format weights{{TINYGLTF_TYPE_VEC4}, {kFloat, kUnsignedByte, kUnsignedShort}};
-    const Format displacement{{TINYGLTF_TYPE_VEC3}, {kFloat}};
     for (std::size_t m = 0; m < model.meshes.size(); ++m) {
         const tinygltf::Mesh& mesh = model.meshes[m];
         if (m < raw.primitiveCounts.size() && raw.primitiveCounts[m] != mesh.primitives.size())
@@ -101,20 +161,7 @@ Result<void> validateMeshes(const tinygltf::Model& model, const RawFacts& raw,
             for (const auto& [name, accessor] : prim.attributes) {
                 const std::string aobj = obj + ".attributes." + name;
                 LANTERN_TRY(checkIndex(accessor, model.accessors.size(), aobj, "accessor", diag));
-                const Format* format = nullptr;
-                if (name == "POSITION")
-                    format = &position;
-                else if (name == "NORMAL")
-                    format = &normal;
-                else if (name == "COLOR_0")
-                    format = &color;
-                else if (name.rfind("TEXCOORD_", 0) == 0)
-                    format = &texcoord;
-                else if (name == "JOINTS_0" || name == "JOINTS_1")
-                    format = &joints;
-                else if (name == "WEIGHTS_0" || name == "WEIGHTS_1")
-                    format = &weights;
-                if (format) LANTERN_TRY(checkFormat(model, accessor, *format, aobj, diag));
+                LANTERN_TRY(checkAttributeFormat(model, accessor, name, false, quantized, aobj, diag));
                 const std::size_t n = model.accessors[std::size_t(accessor)].count;
                 if (count && *count != n)
                     return diag.error(aobj, "has " + std::to_string(n) + " elements but " +
@@ -127,8 +174,8 @@ Result<void> validateMeshes(const tinygltf::Model& model, const RawFacts& raw,
                 for (const auto& [name, accessor] : prim.targets[t]) {
                     const std::string tobj = obj + "." + at("targets", t) + "." + name;
                     LANTERN_TRY(checkIndex(accessor, model.accessors.size(), tobj, "accessor", diag));
-                    if (name == "POSITION" || name == "NORMAL")
-                        LANTERN_TRY(checkFormat(model, accessor, displacement, tobj, diag));
+                    LANTERN_TRY(
+                        checkAttributeFormat(model, accessor, name, true, quantized, tobj, diag));
                     const std::size_t n = model.accessors[std::size_t(accessor)].count;
                     if (count && *count != n)
                         return diag.error(tobj, "has " + std::to_string(n) + " elements but " +
