@@ -145,6 +145,9 @@ struct Mesh {
     std::string name;
     std::vector<Primitive> primitives;
     std::vector<double> weights;  ///< default morph-target weights (empty: all 0)
+
+    /// Morph targets per primitive (every primitive of a mesh has the same number).
+    std::size_t morphTargetCount() const { return primitives.empty() ? 0 : primitives[0].targets.size(); }
 };
 
 /// A skin (glTF `skins`): the joints that deform the vertices of the meshes drawn with it.

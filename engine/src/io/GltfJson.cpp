@@ -1,0 +1,392 @@
+// The glTF loader's JSON pass, on the document before tinygltf sees it: every number checked
+// (finite, integers in range), external URIs confined to the scene's folder, the integers of
+// the compression extensions, and the facts tinygltf discards (optional numbers' presence,
+// primitives it would drop); placeholder buffers and Draco's indices hidden from tinygltf.
+#include "io/GltfInternal.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+namespace lantern::gltf {
+namespace {
+
+bool isDataUri(std::string_view uri) { return uri.substr(0, 5) == "data:"; }
+
+} // namespace
+namespace {
+
+using nlohmann::json;
+
+// The document, or the parser's message; its top level must be an object.
+Result<json> parseJson(std::string_view text, const Diagnostics& diag) {
+    json doc;
+    try {
+        doc = json::parse(text.begin(), text.end());
+    } catch (const json::exception& e) {
+        // nlohmann's message names the line and column ("parse error at line 1, column 2").
+        std::string what = e.what();
+        if (const std::size_t bracket = what.find("] "); bracket != std::string::npos)
+            what = what.substr(bracket + 2);
+        return diag.error("JSON", what);
+    }
+    if (!doc.is_object()) return diag.error("JSON", "the top level is not a JSON object");
+    return doc;
+}
+
+// The top-level array `name`, or null when absent or not an array.
+const json* arrayOf(const json& doc, const char* name) {
+    auto it = doc.find(name);
+    return (it != doc.end() && it->is_array()) ? &*it : nullptr;
+}
+
+// Whether a buffer is marked as a meshopt fallback (its views' data is decoded from elsewhere).
+bool isMeshoptFallback(const json& buffer) {
+    auto extensions = buffer.find("extensions");
+    if (extensions == buffer.end() || !extensions->is_object()) return false;
+    for (const char* name : kMeshoptExtensions) {
+        auto e = extensions->find(name);
+        if (e == extensions->end() || !e->is_object()) continue;
+        auto fallback = e->find("fallback");
+        if (fallback != e->end() && fallback->is_boolean() && fallback->get<bool>()) return true;
+    }
+    return false;
+}
+
+// A meshopt fallback buffer without data: recorded with its byteLength (the bound its views
+// must lie within) for the meshopt pass, which refuses any view into it that is not compressed.
+Result<void> recordPlaceholder(const json& buffer, std::size_t i, const std::string& object,
+                               const Diagnostics& diag, RawFacts& facts) {
+    auto length = buffer.find("byteLength");
+    if (length == buffer.end() || !length->is_number_unsigned())
+        return diag.error(object + ".byteLength", "is missing or not a non-negative integer");
+    facts.placeholderBuffers[int(i)] = length->get<std::uint64_t>();
+    return {};
+}
+
+// Buffer `i` without a uri: only a GLB's buffer 0 may have none, and then the file has a BIN
+// chunk; or a meshopt fallback buffer (a placeholder).
+Result<void> checkBufferWithoutUri(const json& buffer, std::size_t i, const std::string& object,
+                                   const Source& source, const Diagnostics& diag,
+                                   RawFacts& facts) {
+    if (isMeshoptFallback(buffer) && !(source.glb && i == 0))
+        return recordPlaceholder(buffer, i, object, diag, facts);
+    if (!source.glb)
+        return diag.error(object, "has no uri: a .gltf buffer's data must come from "
+                                  "a file or a data: URI (or it is a meshopt fallback buffer, "
+                                  "extensions.EXT_meshopt_compression.fallback)");
+    if (i != 0)
+        return diag.error(object, "has no uri: only buffer 0 can refer to the GLB's "
+                                  "BIN chunk");
+    if (!source.glbHasBin)
+        return diag.error(object, "refers to the GLB's BIN chunk, but the file has "
+                                  "none");
+    return {};
+}
+
+// Why the external file `relative` cannot be read (missing, outside the folder through a
+// symlink, not a regular file, over the size bound); empty when it can.
+std::string externalFileProblem(const std::string& relative, const Source& source) {
+    auto resolved = resolveConfined(source.folder, relative, source.maxBytes);
+    return resolved ? std::string() : resolved.error().message;
+}
+
+// One buffer or image (item `i` of `kind`): its URI stays inside the folder; a buffer's file must
+// exist and fit the size bound; an image's missing file is recorded in `facts` (an error only
+// if a material uses it).
+Result<void> checkExternalItem(const json& item, const char* kind, std::size_t i,
+                               const Source& source, const Diagnostics& diag, RawFacts& facts) {
+    const bool buffers = std::string_view(kind) == "buffers";
+    const std::string object = at(kind, i);
+    auto uri = item.find("uri");
+    if (uri == item.end() || !uri->is_string()) {
+        if (!buffers) return {};
+        return checkBufferWithoutUri(item, i, object, source, diag, facts);
+    }
+    const std::string& value = uri->get_ref<const std::string&>();
+    if (isDataUri(value)) {
+        // tinygltf would take a data: URI it cannot decode for a file name.
+        if (!tinygltf::IsDataURI(value))
+            return diag.error(object + ".uri",
+                              "data: URI with an unsupported MIME type or encoding "
+                              "(read: base64 with application/octet-stream, "
+                              "application/gltf-buffer or an image type)");
+        return {};
+    }
+    auto relative = checkRelativeUri(value, object + ".uri", diag);
+    if (!relative) return std::move(relative).error();
+    const std::string problem = externalFileProblem(*relative, source);
+    if (problem.empty()) return {};
+    // A missing image is an error only when a material uses it; a file that escapes the
+    // folder, is not a regular file or is too large is refused whatever uses it.
+    if (buffers || problem.find("does not exist") == std::string::npos)
+        return diag.error(object + ".uri", problem);
+    facts.imageProblems[int(i)] = problem; // an error only if a material uses it
+    return {};
+}
+
+// External files: the URI must stay inside the folder; buffers must exist and fit the
+// size bound (tinygltf's own message would be a bare "file not found").
+Result<void> checkExternalFiles(const json& doc, const Source& source, const Diagnostics& diag,
+                                RawFacts& facts) {
+    for (const char* kind : {"buffers", "images"}) {
+        const json* items = arrayOf(doc, kind);
+        if (!items) continue;
+        for (std::size_t i = 0; i < items->size(); ++i) {
+            const json& item = (*items)[i];
+            if (!item.is_object()) continue;
+            LANTERN_TRY(checkExternalItem(item, kind, i, source, diag, facts));
+        }
+    }
+    return {};
+}
+
+// glTF's integer properties (indices into arrays, offsets, lengths, counts, enums): tinygltf
+// reads them into int or size_t, so 4294967296 became 0, 0.5 was dropped and -4 read as 0.
+// Indices must be integers in 0..INT_MAX; offsets, lengths and counts in 0..2^53.
+enum class IntKind { None, Index, Size, IndexMap /* an object of indices: attributes */ };
+
+IntKind integerKind(std::string_view key) {
+    static const char* const indices[] = {
+        "scene", "buffer", "bufferView", "componentType", "mesh", "camera", "skin", "material",
+        "indices", "mode", "sampler", "source", "index", "texCoord", "input", "output", "node",
+        "inverseBindMatrices", "skeleton", "magFilter", "minFilter", "wrapS", "wrapT", "light",
+        "children", "nodes", "joints", "target"};
+    static const char* const sizes[] = {"byteOffset", "byteLength", "byteStride", "count"};
+    if (key == "attributes" || key == "targets") return IntKind::IndexMap;
+    for (const char* k : indices)
+        if (key == k) return IntKind::Index;
+    for (const char* k : sizes)
+        if (key == k) return IntKind::Size;
+    return IntKind::None;
+}
+
+// The largest magnitude accepted for any other number (colours, intensities, transforms,
+// camera parameters): 1e30, beyond the 1e-20..1e20 scales the image tests draw, and far below
+// where double composition overflows (1e300 in a transform put Inf into EXR headers; in a
+// light it turned the image black).
+constexpr double kMaxMagnitude = 1e30;
+
+Result<void> checkInteger(const json& v, IntKind kind, const std::string& path,
+                          const Diagnostics& diag) {
+    if (!v.is_number()) return {}; // a wrong type is reported by the structural checks
+    const double limit = kind == IntKind::Index ? 2147483647.0 : 9007199254740992.0;
+    const double d = v.get<double>();
+    const bool integral = v.is_number_integer() || (std::isfinite(d) && d == std::floor(d));
+    if (!integral)
+        return diag.error(path, "is " + printable(v.dump(), 40) + ", not an integer");
+    if (v.is_number_integer() && !v.is_number_unsigned() && v.get<std::int64_t>() < 0)
+        return diag.error(path, "is " + v.dump() + "; it must be 0 or more");
+    if (d < 0) return diag.error(path, "is " + printable(v.dump(), 40) + "; it must be 0 or more");
+    if (d > limit)
+        return diag.error(path, "is " + printable(v.dump(), 40) + ", more than the largest " +
+                                    (kind == IntKind::Index ? "index" : "size") + " (" +
+                                    std::to_string(std::uint64_t(limit)) + ")");
+    return {};
+}
+
+// Walks the document once (linear; its depth is bounded by checkJsonNesting), checking
+// integer properties and number magnitudes, skipping "extras" (the application's own data)
+// and accessors' min/max (they describe the data, which is checked when read).
+Result<void> checkNumbers(const json& v, std::string& path, IntKind kind, bool inAccessor,
+                          const Diagnostics& diag) {
+    if (v.is_object()) {
+        for (auto it = v.begin(); it != v.end(); ++it) {
+            if (it.key() == "extras") continue;
+            const std::size_t mark = path.size();
+            path += "." + printable(it.key(), 40);
+            const bool accessorBounds = inAccessor && (it.key() == "min" || it.key() == "max");
+            const IntKind child = kind == IntKind::IndexMap ? IntKind::Index : integerKind(it.key());
+            Result<void> r = accessorBounds ? Result<void>()
+                                            : checkNumbers(it.value(), path, child, inAccessor, diag);
+            path.resize(mark);
+            if (!r) return r;
+        }
+        return {};
+    }
+    if (v.is_array()) {
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            const std::size_t mark = path.size();
+            path += "[" + std::to_string(i) + "]";
+            // An array passes its kind to numbers and to index maps (targets), not to objects.
+            const IntKind element =
+                v[i].is_object() && kind != IntKind::IndexMap ? IntKind::None : kind;
+            Result<void> r = checkNumbers(v[i], path, element, inAccessor, diag);
+            path.resize(mark);
+            if (!r) return r;
+        }
+        return {};
+    }
+    if (!v.is_number()) return {};
+    if (kind == IntKind::Index || kind == IntKind::Size) return checkInteger(v, kind, path, diag);
+    const double d = v.get<double>();
+    if (!std::isfinite(d) || std::abs(d) > kMaxMagnitude)
+        return diag.error(path, "is " + printable(v.dump(), 40) +
+                                    "; numbers beyond +-1e30 would become infinite on the way to "
+                                    "an image");
+    if (path.size() >= 12 && path.compare(path.size() - 12, 12, ".aspectRatio") == 0 && !(d > 0))
+        return diag.error(path, "is " + v.dump() + "; an aspect ratio must be greater than 0");
+    return {};
+}
+
+Result<void> checkAllNumbers(const json& doc, const Diagnostics& diag) {
+    for (auto it = doc.begin(); it != doc.end(); ++it) {
+        if (it.key() == "extras") continue;
+        std::string path = printable(it.key(), 40);
+        // Top-level arrays ("nodes", "scenes") hold objects; "scene" is an index.
+        LANTERN_TRY(checkNumbers(it.value(), path, integerKind(it.key()),
+                                 it.key() == "accessors", diag));
+    }
+    return {};
+}
+
+// Per camera: whether its perspective block has a zfar (tinygltf does not keep the difference
+// between an absent zfar and its default).
+std::vector<bool> perspectiveHasZfar(const json& doc) {
+    std::vector<bool> out;
+    if (const json* cameras = arrayOf(doc, "cameras")) {
+        for (const json& c : *cameras) {
+            bool hasZfar = false;
+            if (c.is_object()) {
+                auto p = c.find("perspective");
+                if (p != c.end() && p->is_object()) hasZfar = p->contains("zfar");
+            }
+            out.push_back(hasZfar);
+        }
+    }
+    return out;
+}
+
+// Per mesh: the number of primitives written. tinygltf drops a primitive without an attributes
+// object silently, which would shift every later primitive's index: refuse instead.
+Result<std::vector<std::size_t>> primitiveCounts(const json& doc, const Diagnostics& diag) {
+    std::vector<std::size_t> counts;
+    if (const json* meshes = arrayOf(doc, "meshes")) {
+        for (std::size_t m = 0; m < meshes->size(); ++m) {
+            const json& mesh = (*meshes)[m];
+            std::size_t count = 0;
+            if (mesh.is_object()) {
+                auto prims = mesh.find("primitives");
+                if (prims != mesh.end() && prims->is_array()) {
+                    count = prims->size();
+                    for (std::size_t p = 0; p < prims->size(); ++p) {
+                        const json& prim = (*prims)[p];
+                        const std::string object = at("meshes", m) + "." + at("primitives", p);
+                        if (!prim.is_object()) return diag.error(object, "is not an object");
+                        auto attrs = prim.find("attributes");
+                        if (attrs == prim.end() || !attrs->is_object())
+                            return diag.error(object + ".attributes",
+                                              "is missing or not an object");
+                    }
+                }
+            }
+            counts.push_back(count);
+        }
+    }
+    return counts;
+}
+
+// An integer member of a compression extension must fit tinygltf's int (it keeps the low 32
+// bits of larger ones, which would turn 2^32 + 8 into 8).
+Result<void> checkIntMember(const json& value, const std::string& object, const Diagnostics& diag) {
+    if (!value.is_number_integer()) return {}; // other types: refused by the decoding pass
+    const bool fits = value.is_number_unsigned()
+                          ? value.get<std::uint64_t>() <= std::uint64_t(INT32_MAX)
+                          : value.get<std::int64_t>() >= 0 &&
+                                value.get<std::int64_t>() <= std::int64_t(INT32_MAX);
+    if (!fits)
+        return diag.error(object, value.dump() + " is outside [0, " + std::to_string(INT32_MAX) +
+                                      "]");
+    return {};
+}
+
+// The integers of every meshopt and Draco extension object (see checkIntMember).
+Result<void> checkCompressionIntegers(const json& doc, const Diagnostics& diag) {
+    auto members = [&](const json& ext, const std::string& object) -> Result<void> {
+        if (!ext.is_object()) return {};
+        for (const auto& [key, value] : ext.items()) {
+            LANTERN_TRY(checkIntMember(value, object + "." + key, diag));
+            if (key == "attributes" && value.is_object())
+                for (const auto& [name, id] : value.items())
+                    LANTERN_TRY(checkIntMember(id, object + ".attributes." + name, diag));
+        }
+        return {};
+    };
+    auto extensionsOf = [](const json& item) -> const json* {
+        auto e = item.is_object() ? item.find("extensions") : item.end();
+        return (item.is_object() && e != item.end() && e->is_object()) ? &*e : nullptr;
+    };
+    if (const json* views = arrayOf(doc, "bufferViews"))
+        for (std::size_t v = 0; v < views->size(); ++v)
+            if (const json* ext = extensionsOf((*views)[v]))
+                for (const char* name : kMeshoptExtensions)
+                    if (ext->contains(name))
+                        LANTERN_TRY(members((*ext)[name],
+                                            at("bufferViews", v) + ".extensions." + name));
+    if (const json* meshes = arrayOf(doc, "meshes"))
+        for (std::size_t m = 0; m < meshes->size(); ++m) {
+            const json& mesh = (*meshes)[m];
+            const json* prims = mesh.is_object() ? arrayOf(mesh, "primitives") : nullptr;
+            for (std::size_t p = 0; prims && p < prims->size(); ++p)
+                if (const json* ext = extensionsOf((*prims)[p]);
+                    ext && ext->contains("KHR_draco_mesh_compression"))
+                    LANTERN_TRY(members((*ext)["KHR_draco_mesh_compression"],
+                                        at("meshes", m) + "." + at("primitives", p) +
+                                            ".extensions.KHR_draco_mesh_compression"));
+        }
+    return {};
+}
+
+// tinygltf 2.7.0 (built without Draco) refuses a primitive whose indices accessor has no
+// bufferView, which is how KHR_draco_mesh_compression primitives are written: their indices are
+// taken out of the JSON it reads and put back after it (restoreDracoIndices, GltfDraco.cpp).
+void hideDracoIndices(json& doc, RawFacts& facts) {
+    auto meshes = doc.find("meshes");
+    if (meshes == doc.end() || !meshes->is_array()) return;
+    for (std::size_t m = 0; m < meshes->size(); ++m) {
+        json& mesh = (*meshes)[m];
+        auto prims = mesh.is_object() ? mesh.find("primitives") : mesh.end();
+        if (!mesh.is_object() || prims == mesh.end() || !prims->is_array()) continue;
+        for (std::size_t p = 0; p < prims->size(); ++p) {
+            json& prim = (*prims)[p];
+            if (!prim.is_object()) continue;
+            auto ext = prim.find("extensions");
+            auto indices = prim.find("indices");
+            if (ext == prim.end() || !ext->is_object() ||
+                !ext->contains("KHR_draco_mesh_compression") || indices == prim.end() ||
+                !indices->is_number_unsigned() || indices->get<std::uint64_t>() > INT32_MAX)
+                continue;
+            facts.dracoIndices[{int(m), int(p)}] = indices->get<int>();
+            prim.erase(indices);
+        }
+    }
+}
+
+} // namespace
+
+Result<RawFacts> inspectJson(std::string_view text, const Source& source, const Diagnostics& diag) {
+    auto doc = parseJson(text, diag);
+    if (!doc) return std::move(doc).error();
+    RawFacts facts;
+    LANTERN_TRY(checkAllNumbers(*doc, diag));
+    LANTERN_TRY(checkExternalFiles(*doc, source, diag, facts));
+    LANTERN_TRY(checkCompressionIntegers(*doc, diag));
+    facts.perspectiveHasZfar = perspectiveHasZfar(*doc);
+    auto counts = primitiveCounts(*doc, diag);
+    if (!counts) return std::move(counts).error();
+    facts.primitiveCounts = std::move(*counts);
+    // Four zero bytes: tinygltf refuses a buffer without data, and nothing reads these.
+    for (const auto& [index, length] : facts.placeholderBuffers) {
+        json& buffer = (*doc)["buffers"][std::size_t(index)];
+        buffer["uri"] = "data:application/octet-stream;base64,AAAAAA==";
+        buffer["byteLength"] = 4;
+    }
+    hideDracoIndices(*doc, facts);
+    if (!facts.placeholderBuffers.empty() || !facts.dracoIndices.empty())
+        facts.jsonForTinygltf = doc->dump();
+    return facts;
+}
+
+} // namespace lantern::gltf
