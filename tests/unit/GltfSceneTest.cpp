@@ -37,19 +37,30 @@ void expectNear(const glm::dvec3& a, const glm::dvec3& b, const char* what) {
 
 // --- Materials ------------------------------------------------------------------------------
 
-TEST(GltfScene, PbrFallbackMapsAsTheSpecSays) {
+// The mapping of docs/scene-format-support.md ("Materials"), each value worked out by hand:
+// f0 = mix(0.04, b, m), w = r^2; diffuse = b(1-m) + f0 w m; s = clamp(2/r^4 - 2, 1, 1e4);
+// specular = f0 (1 - w m) (s + 8)/8.
+TEST(GltfScene, PbrFallbackMapsAsDocumented) {
     struct Case {
         glm::dvec4 base;
         double metallic, roughness;
-        double shininess;  ///< 2/r^4 - 2, clamped
+        glm::dvec3 diffuse, specular;
+        double shininess;
         const char* why;
     };
     const Case cases[] = {
-        {{0.8, 0.4, 0.2, 1.0}, 0.0, 1.0, 0.0, "dielectric, roughness 1: shininess 2/1-2 = 0"},
-        {{0.8, 0.4, 0.2, 0.5}, 1.0, 0.5, 30.0, "metal: diffuse 0, specular = base; 2/0.0625-2 = 30"},
-        {{0.5, 0.5, 0.5, 1.0}, 0.25, 0.2, 2.0 / 0.0016 - 2.0, "mixed"},
-        {{1.0, 1.0, 1.0, 1.0}, 0.0, 0.0, gltf::kMaxPbrShininess, "roughness 0 clamps to the maximum"},
-        {{1.0, 1.0, 1.0, 1.0}, 0.0, 0.05, gltf::kMaxPbrShininess, "2/r^4-2 = 319998 above the maximum"},
+        {{1.0, 1.0, 1.0, 1.0}, 1.0, 1.0, {1.0, 1.0, 1.0}, {0.0, 0.0, 0.0}, 1.0,
+         "glTF's default (metal, roughness 1): all of it diffuse, a matte light surface"},
+        {{0.8, 0.4, 0.2, 1.0}, 0.0, 1.0, {0.8, 0.4, 0.2}, {0.045, 0.045, 0.045}, 1.0,
+         "rough dielectric: 2/1-2 = 0 raised to 1; specular 0.04 * 9/8"},
+        {{0.8, 0.4, 0.2, 0.5}, 1.0, 0.5, {0.2, 0.1, 0.05}, {2.85, 1.425, 0.7125}, 30.0,
+         "metal: w = 0.25 of the base diffuse; s = 2/0.0625-2 = 30; base * 0.75 * 38/8"},
+        {{0.5, 0.5, 0.5, 1.0}, 0.25, 0.2, glm::dvec3(0.375 + 0.155 * 0.04 * 0.25),
+         glm::dvec3(0.155 * 0.99 * 1256.0 / 8.0), 1248.0, "mixed: f0 = 0.155, s = 2/0.0016-2"},
+        {{1.0, 1.0, 1.0, 1.0}, 0.0, 0.0, {1.0, 1.0, 1.0}, glm::dvec3(0.04 * 10008.0 / 8.0),
+         gltf::kMaxPbrShininess, "roughness 0 clamps to the maximum"},
+        {{1.0, 1.0, 1.0, 1.0}, 0.0, 0.05, {1.0, 1.0, 1.0}, glm::dvec3(0.04 * 10008.0 / 8.0),
+         gltf::kMaxPbrShininess, "2/r^4-2 = 319998 above the maximum"},
     };
     for (const Case& c : cases) {
         auto s = loadMaterial({{"pbrMetallicRoughness",
@@ -59,17 +70,27 @@ TEST(GltfScene, PbrFallbackMapsAsTheSpecSays) {
                                {"emissiveFactor", {0.1, 0.2, 0.3}}});
         ASSERT_TRUE(s) << s.error().describe();
         const Material& m = s->materials[0];
-        const glm::dvec3 base(c.base);
-        expectNear(glm::dvec3(m.front.diffuse), base * (1.0 - c.metallic), c.why);
+        EXPECT_LT(glm::length(glm::dvec3(m.front.diffuse) - c.diffuse), 1e-12) << c.why;
         EXPECT_DOUBLE_EQ(m.front.diffuse.a, c.base.a) << c.why;
-        expectNear(m.front.specular, glm::dvec3(0.04) * (1.0 - c.metallic) + base * c.metallic, c.why);
+        EXPECT_LT(glm::length(m.front.specular - c.specular), 1e-9 * (1.0 + glm::length(c.specular))) << c.why;
         expectNear(m.front.ambient, glm::dvec3(m.front.diffuse), c.why);
         expectNear(m.front.emission, {0.1, 0.2, 0.3}, c.why);
         EXPECT_NEAR(m.front.shininess, c.shininess, 1e-9 * c.shininess) << c.why;
-        EXPECT_TRUE(std::isfinite(m.front.shininess));
         EXPECT_TRUE(m.ambientFollowsDiffuse) << c.why;
         EXPECT_FALSE(m.back);
     }
+}
+
+// A material without pbrMetallicRoughness takes glTF's defaults (base 1, metallic 1,
+// roughness 1): before the mapping above, that was diffuse 0 with specular 1 at shininess 0,
+// a constant white silhouette.
+TEST(GltfScene, AMaterialWithNoFactorsIsAMatteLightSurface) {
+    auto s = loadMaterial({{"name", "plain"}});
+    ASSERT_TRUE(s) << s.error().describe();
+    const Material& m = s->materials[0];
+    EXPECT_EQ(glm::dvec3(m.front.diffuse), glm::dvec3(1.0));
+    EXPECT_EQ(m.front.specular, glm::dvec3(0.0));
+    EXPECT_GE(m.front.shininess, 1.0);
 }
 
 TEST(GltfScene, LanternPhongMaterialsTakeGlDefaultsAndBackSides) {
@@ -224,7 +245,8 @@ TEST(GltfScene, MetallicRoughnessTexturesScaleTheFactorsByTheirMean) {
     ASSERT_TRUE(o.scene) << o.scene.error().describe();
     const Material& m = o.scene->materials[0];
     const double metallic = 0.5 * 1.0, roughness = 1.0 * 128.0 / 255.0;
-    expectNear(glm::dvec3(m.front.diffuse), glm::dvec3(0.5 * (1 - metallic)), "diffuse");
+    const double f0 = 0.04 * (1 - metallic) + 0.5 * metallic, w = roughness * roughness;
+    expectNear(glm::dvec3(m.front.diffuse), glm::dvec3(0.5 * (1 - metallic) + f0 * w * metallic), "diffuse");
     EXPECT_NEAR(m.front.shininess, 2.0 / std::pow(roughness, 4) - 2.0, 1e-9);
     EXPECT_TRUE(o.scene->textures.empty());  // averaged, not kept as a texture
 }

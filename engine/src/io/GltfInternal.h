@@ -54,6 +54,18 @@ inline constexpr int kMaxTextureSide = 16384;
 /// the lobe (half-width 0.68 degrees at 1e4) is already narrower than a pixel in most views.
 inline constexpr double kMaxPbrShininess = 1.0e4;
 
+/// The floor of that mapping: at 1 the lobe (n.h)^s still falls off across the surface, where
+/// 2/r^4 - 2 = 0 at roughness 1 would make the specular term a constant over the lit side.
+inline constexpr double kMinPbrShininess = 1.0;
+
+/// A metallic-roughness material in the classic equation's terms (see mapPbr in
+/// GltfMaterials.cpp and docs/scene-format-support.md for the formula and its reasons).
+struct PhongFromPbr {
+    glm::dvec3 diffuse{0.0}, specular{0.0};
+    double shininess = 1.0;
+};
+PhongFromPbr phongFromPbr(const glm::dvec3& base, double metallic, double roughness);
+
 /// Extensions the loader understands (anything else listed in extensionsRequired is refused;
 /// listed only in extensionsUsed, it is ignored with a warning).
 inline constexpr const char* kSupportedExtensions[] = {

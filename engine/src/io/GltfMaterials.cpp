@@ -190,10 +190,13 @@ void makeUnlit(const glm::dvec4& baseColor, Material& m) {
     m.ambientFollowsDiffuse = true;
 }
 
-// The PBR fallback (scene-format.md section 2). A metallicRoughnessTexture scales the
-// factors per texel; the Phong material is uniform, so it takes the texture's mean
-// (without it, the default factors 1 and 1 turn every textured PBR material into a
-// uniform white specular).
+// The PBR fallback (docs/scene-format-support.md, "Materials"): metallic-roughness into the
+// classic equation. With f0 = mix(0.04, base, m) and w = r^2 (the share of a metal's
+// reflection spread so wide that it reads as diffuse): diffuse = base(1-m) + f0 w m;
+// shininess = clamp(2/r^4 - 2, 1, 1e4) (Blinn-Phong's equivalent of the microfacet width, at
+// least 1 so the lobe always falls off); specular = f0 (1 - w m) (s+8)/8, the lobe normalised
+// so that a rougher surface has a wider and dimmer highlight. A metallicRoughnessTexture
+// scales the factors; the Phong material is uniform, so it takes the texture's mean.
 Result<void> mapPbr(const tinygltf::Material& src, const glm::dvec4& baseColor,
                     double emissiveStrength, TextureTable& textures, Material& m) {
     const tinygltf::PbrMetallicRoughness& pbr = src.pbrMetallicRoughness;
@@ -206,12 +209,11 @@ Result<void> mapPbr(const tinygltf::Material& src, const glm::dvec4& baseColor,
             roughness *= (*mean)->y;
         }
     }
-    const glm::dvec3 base(baseColor);
-    m.front.diffuse = glm::dvec4(base * (1.0 - metallic), baseColor.a);
-    m.front.specular = glm::mix(glm::dvec3(0.04), base, metallic);
-    const double r4 = roughness * roughness * roughness * roughness;
-    m.front.shininess = r4 > 0.0 ? std::min(2.0 / r4 - 2.0, kMaxPbrShininess) : kMaxPbrShininess;
-    m.front.ambient = glm::dvec3(m.front.diffuse);
+    const PhongFromPbr p = phongFromPbr(glm::dvec3(baseColor), metallic, roughness);
+    m.front.diffuse = glm::dvec4(p.diffuse, baseColor.a);
+    m.front.specular = p.specular;
+    m.front.shininess = p.shininess;
+    m.front.ambient = p.diffuse;
     m.front.emission = vec3(src.emissiveFactor) * emissiveStrength;
     m.ambientFollowsDiffuse = true;
     return {};
@@ -261,6 +263,17 @@ Result<void> convertMaterials(const tinygltf::Model& model, const RawFacts& raw,
         scene.materials.push_back(std::move(*m));
     }
     return {};
+}
+
+PhongFromPbr phongFromPbr(const glm::dvec3& base, double metallic, double roughness) {
+    const double w = roughness * roughness;
+    const glm::dvec3 f0 = glm::mix(glm::dvec3(0.04), base, metallic);
+    PhongFromPbr p;
+    p.diffuse = base * (1.0 - metallic) + f0 * (w * metallic);
+    const double r4 = w * w;
+    p.shininess = r4 > 0.0 ? std::clamp(2.0 / r4 - 2.0, kMinPbrShininess, kMaxPbrShininess) : kMaxPbrShininess;
+    p.specular = f0 * ((1.0 - w * metallic) * (p.shininess + 8.0) / 8.0);
+    return p;
 }
 
 } // namespace lantern::gltf
