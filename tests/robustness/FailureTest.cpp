@@ -69,6 +69,42 @@ TEST(Failure, OutOfDeviceMemoryExits3) {
     EXPECT_TRUE(files(dir).empty());
 }
 
+// A frame that holds NaN or Inf after all (a renderer bug: the shaders are written so that
+// none arises) is refused, never written with the values zeroed: exit 3, the count, the first
+// pixel and the object drawn there. The readback hook plants a NaN where a shader bug would.
+TEST(Failure, NonFiniteFrameExits3NamingTheObjectAndWritesNothing) {
+    LANTERN_SKIP_IF_MISSING(lantern::test::missingVulkanDevice());
+    if (!hookedBuild()) GTEST_SKIP() << "this build has no fault-injection hooks (LANTERN_TESTING_HOOKS=OFF)";
+    const auto dir = testOutputDir();
+    const auto r = runLantern({"render", "builtin:spheres", "--width", "48", "--height", "32", "-o",
+                               (dir / "x.exr").string(), "-o", (dir / "x.png").string()},
+                              {"LANTERN_TEST_NONFINITE_PIXEL=24,16"});
+    EXPECT_EQ(r.exitCode, 3) << r.err;
+    EXPECT_NE(r.err.find("1 non-finite values (NaN or Inf), the first at pixel (24, 16) on nodes[1] \"sphere 1\""),
+              std::string::npos)
+        << r.err;
+    EXPECT_TRUE(files(dir).empty());
+    // Without the NaN the same command writes both files: the refusal came from the NaN.
+    const auto ok = runLantern({"render", "builtin:spheres", "--width", "48", "--height", "32", "-o",
+                                (dir / "x.exr").string(), "-o", (dir / "x.png").string()});
+    EXPECT_EQ(ok.exitCode, 0) << ok.err;
+    EXPECT_EQ(files(dir).size(), 2u);
+}
+
+// In a sequence, the frames before the bad one are kept, complete, and no later one is written.
+TEST(Failure, NonFiniteFrameMidSequenceKeepsTheFramesBefore) {
+    LANTERN_SKIP_IF_MISSING(lantern::test::missingVulkanDevice());
+    if (!hookedBuild()) GTEST_SKIP() << "this build has no fault-injection hooks (LANTERN_TESTING_HOOKS=OFF)";
+    const auto dir = testOutputDir();
+    const auto r = runLantern({"render", "builtin:spheres-animated", "--frames", "0-9", "--width", "48",
+                               "--height", "32", "--encoder-threads", "1", "-o", (dir / "f_##.exr").string()},
+                              {"LANTERN_TEST_NONFINITE_PIXEL=24,16@3"});
+    EXPECT_EQ(r.exitCode, 3) << r.err;
+    EXPECT_NE(r.err.find("frame 3 (time 0.125 s) holds 1 non-finite values"), std::string::npos) << r.err;
+    EXPECT_EQ(files(dir), (std::vector<std::string>{"f_00.exr", "f_01.exr", "f_02.exr"}));
+    expectOnlyCompleteExrs(dir);
+}
+
 // A disk that fills mid-sequence, through the I/O fault hook (no privilege needed, so it runs
 // everywhere): after 20 writes every write fails with ENOSPC, as on a full disk. A 160x120
 // uncompressed float frame is about 310 kB, 6 of the EXR stream's writes, so a few frames are

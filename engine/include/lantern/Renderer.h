@@ -71,7 +71,10 @@ struct FrameStats {
     double waitMs = 0.0;    ///< waiting for the GPU and reading the image back
     std::size_t draws = 0;
     std::size_t pipelinesCreated = 0;  ///< variants compiled for this frame (first use)
-    std::uint64_t nonFinite = 0;       ///< NaN/Inf values replaced by 0 (always 0 unless a bug)
+    /// NaN/Inf values found at readback (always 0 unless a bug). render() and renderSequence()
+    /// refuse such a frame (ErrorCode::Internal, naming the first pixel's object); the
+    /// viewer shows it with the values replaced by 0.
+    std::uint64_t nonFinite = 0;
 };
 
 /// What the device is.

@@ -124,6 +124,9 @@ Result<Image> Renderer::render(const PreparedScene& prepared, const RenderOption
     auto frame = render::renderFrame(device, prepared.m_gpu, prepared.scene(), options, time,
                                      m_impl->stats);
     if (!frame) return std::move(frame).error();
+    if (frame->readback.nonFinite > 0)
+        return render::nonFiniteFrame(device, prepared.m_gpu, prepared.scene(), options, time,
+                                      frame->readback);
     Image image = std::move(frame->readback.image);
     attachMetadata(image, frame->frame, device.info(), time);
     return image;

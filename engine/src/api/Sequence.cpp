@@ -92,6 +92,9 @@ public:
     // failed.
     void renderFrames(const Scene& scene, const std::shared_ptr<gpu::SceneBuffers>& buffers,
                       const RenderOptions& options, const std::vector<int>& frames) {
+        m_scene = &scene;
+        m_buffers = &buffers;
+        m_options = &options;
         for (int frame : frames) {
             if (m_seq.shouldStop && m_seq.shouldStop()) {
                 m_report.stopped = true;
@@ -174,6 +177,13 @@ private:
         m_report.renderMs.push_back(f.submitMs + msBetween(t0, Clock::now()));
         m_report.gpuMs.push_back(result->gpuMs);
         if (!encode) return {};
+        if (result->nonFinite > 0) {
+            // The later frames are dropped (collected, not written): the probe that names the
+            // object renders on their slots.
+            for (; !m_inFlight.empty(); m_inFlight.pop_front()) (void)m_device.collect(m_inFlight.front().slot);
+            return render::nonFiniteFrame(m_device, *m_buffers, *m_scene, *m_options, f.time, *result,
+                                          f.frame);
+        }
         Image image = std::move(result->image);
         attachMetadata(image, f.model, m_device.info(), f.time);
         image.metadata.emplace_back("lantern:frame", std::to_string(f.frame));
@@ -213,6 +223,10 @@ private:
     std::deque<InFlight> m_inFlight;
     std::optional<Error> m_failure;
     std::size_t m_reported = 0;
+    // What renderFrames was given, for naming the object of a non-finite frame.
+    const Scene* m_scene = nullptr;
+    const std::shared_ptr<gpu::SceneBuffers>* m_buffers = nullptr;
+    const RenderOptions* m_options = nullptr;
 };
 
 } // namespace

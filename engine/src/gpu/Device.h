@@ -52,6 +52,7 @@ struct FrameReadback {
     lantern::Image image;           ///< empty when the frame was submitted without readback
     double gpuMs = -1.0;            ///< render-pass time from GPU timestamps (-1: unavailable)
     std::uint64_t nonFinite = 0;    ///< NaN/Inf values found (and zeroed) at readback
+    int nonFiniteX = -1, nonFiniteY = -1;  ///< the first colour pixel that held one (-1: none)
     std::size_t draws = 0;
     /// With AOVs: per pixel (draw index + 1, primitive id); 0: no draw.
     std::vector<std::uint32_t> ids;

@@ -2,8 +2,11 @@
 // slot's host-visible buffers. The last line of defence: no NaN or Inf leaves the renderer.
 #include "gpu/FrameRing.h"
 
+#include <atomic>
 #include <cfloat>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 namespace lantern::gpu {
@@ -21,6 +24,35 @@ float finiteOr(float v, float replacement, std::uint64_t& nonFinite) {
     if (std::isfinite(v)) return v;
     ++nonFinite;
     return replacement;
+}
+
+#ifdef LANTERN_TESTING_HOOKS
+// LANTERN_TEST_NONFINITE_PIXEL="X,Y[@N]" (tests only): the (N+1)th colour readback and every
+// later one find NaN at pixel (X, Y), as a shader bug would leave it, so that the path from
+// detection to the refusal can be tested without one.
+void injectNonFinite(FrameReadback& r) {
+    static std::atomic<long> readbacks{0};
+    const long index = readbacks++;
+    const char* env = std::getenv("LANTERN_TEST_NONFINITE_PIXEL");
+    int x = -1, y = -1;
+    long after = 0;
+    if (!env || std::sscanf(env, "%d,%d@%ld", &x, &y, &after) < 2 || index < after) return;
+    if (x < 0 || y < 0 || x >= r.image.width || y >= r.image.height) return;
+    r.image.rgba[(std::size_t(y) * std::size_t(r.image.width) + std::size_t(x)) * 4] = NAN;
+}
+#endif
+
+// Counts and zeroes NaN/Inf in the colour image, remembering the first pixel that held one.
+void scrubColour(FrameReadback& r) {
+    const std::size_t n = r.image.rgba.size() / 4;
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::uint64_t before = r.nonFinite;
+        for (std::size_t c = 0; c < 4; ++c) r.image.rgba[i * 4 + c] = finiteOr(r.image.rgba[i * 4 + c], 0.0f, r.nonFinite);
+        if (r.nonFinite != before && r.nonFiniteX < 0) {
+            r.nonFiniteX = int(i % std::size_t(r.image.width));
+            r.nonFiniteY = int(i / std::size_t(r.image.width));
+        }
+    }
 }
 
 void readAovs(const FrameRing::Slot& slot, std::size_t n, FrameReadback& r) {
@@ -58,15 +90,15 @@ Result<FrameReadback> readBack(Context& ctx, const FrameRing::Slot& slot) {
     r.image.height = int(t.height);
     r.image.rgba.resize(n * 4);
     std::memcpy(r.image.rgba.data(), t.readColor.mapped, n * 16);
-    for (float& v : r.image.rgba) v = finiteOr(v, 0.0f, r.nonFinite);
+#ifdef LANTERN_TESTING_HOOKS
+    injectNonFinite(r);
+#endif
+    scrubColour(r);
     if (t.aov) {
         LANTERN_TRY(invalidate(ctx, t.readNormalDepth));
         LANTERN_TRY(invalidate(ctx, t.readIds));
         readAovs(slot, n, r);
     }
-    if (r.nonFinite > 0)
-        ctx.log(LogLevel::Error, std::to_string(r.nonFinite) +
-                                     " non-finite values were produced and replaced by 0");
     return r;
 }
 

@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <set>
+#include <sstream>
 
 namespace lantern::render {
 namespace {
@@ -110,6 +111,30 @@ Result<ProbeReport> probe(gpu::Device& device, const std::shared_ptr<gpu::SceneB
     auto f = renderFrame(device, scene, sceneData, single, time, stats);
     if (!f) return std::move(f).error();
     return ref::probePixel(sceneData, f->frame, f->readback.image, f->readback.ids, x, y);
+}
+
+Error nonFiniteFrame(gpu::Device& device, const std::shared_ptr<gpu::SceneBuffers>& scene,
+                     const Scene& sceneData, const RenderOptions& options, double time,
+                     const gpu::FrameReadback& readback, int frameNumber) {
+    std::ostringstream m;
+    if (frameNumber >= 0) m << "frame " << frameNumber << " (time " << time << " s)";
+    else m << "the frame at time " << time << " s";
+    m << " holds " << readback.nonFinite
+      << " non-finite values (NaN or Inf), the first at pixel (" << readback.nonFiniteX << ", "
+      << readback.nonFiniteY << ")";
+    FrameStats stats;
+    auto p = readback.nonFiniteX < 0 ? Result<ProbeReport>(ProbeReport{})
+                                     : probe(device, scene, sceneData, options, time,
+                                             readback.nonFiniteX, readback.nonFiniteY, stats);
+    if (p && p->hit) {
+        m << " on nodes[" << p->node << "]";
+        if (!p->nodeName.empty()) m << " \"" << p->nodeName << "\"";
+        m << " (meshes[" << p->mesh << "].primitives[" << p->primitive << "])";
+    } else if (p) {
+        m << " where no object is drawn";
+    }
+    m << "; nothing was written for it (a renderer bug: please report it with the scene)";
+    return makeError(ErrorCode::Internal, m.str());
 }
 
 } // namespace lantern::render

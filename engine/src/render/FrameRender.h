@@ -46,6 +46,13 @@ Result<RenderedFrame> renderFrame(gpu::Device& device, const std::shared_ptr<gpu
                                   const Scene& sceneData, const RenderOptions& options, double time,
                                   FrameStats& stats, const FrameEdits& edits = {});
 
+/// The refusal of a frame whose readback held NaN or Inf (never written to a file): exit 3,
+/// with the count, the first such pixel and the object drawn there (found by probing it);
+/// `frameNumber` names the frame of a sequence.
+Error nonFiniteFrame(gpu::Device& device, const std::shared_ptr<gpu::SceneBuffers>& scene,
+                     const Scene& sceneData, const RenderOptions& options, double time,
+                     const gpu::FrameReadback& readback, int frameNumber = -1);
+
 /// The features `scene` needs under `options` and the pipeline variants chosen for them.
 Result<FeatureReport> explain(const Scene& scene, const RenderOptions& options, double time);
 
