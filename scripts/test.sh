@@ -43,13 +43,15 @@ run() {
 }
 
 # skip_reasons LASTTESTLOG: "NAME<TAB>REASON" for every test whose GoogleTest output says it
-# skipped; the reason is the message between "file:line: Skipped" and the blank line after it.
+# skipped; the reason is the message between "file:line: Skipped" and the blank line after it,
+# or the rest of a "SKIPPED: " line (a script that exits with its SKIP_RETURN_CODE says why so).
 skip_reasons() {
     awk '
         /^[0-9]+\/[0-9]+ Testing: / { name = $0; sub(/^[0-9]+\/[0-9]+ Testing: /, "", name); grab = 0; next }
         grab && (/^$/ || /^\[  SKIPPED \]/ || /^<end of output>$/) { grab = 0; print name "\t" reason; next }
         grab { reason = reason (reason == "" ? "" : " ") $0; next }
         /: Skipped$/ && !(name in seen) { seen[name] = 1; grab = 1; reason = "" }
+        /^SKIPPED: / && !(name in seen) { seen[name] = 1; r = $0; sub(/^SKIPPED: /, "", r); print name "\t" r }
     ' "$1" 2>/dev/null
 }
 

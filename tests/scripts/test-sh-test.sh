@@ -40,6 +40,10 @@ printf '[ RUN      ] Fake.SkipsWithAReason\n/src/fake.cpp:3: Skipped\n'
 printf 'the fake tool is not installed (Debian package fake-tool)\n\n'
 printf '[  SKIPPED ] Fake.SkipsWithAReason (0 ms)\n'
 SH
+    cat >"$repo/t/skip77.sh" <<'SH'
+echo "SKIPPED: the fake module was not built (a sanitizer build)"
+exit 77
+SH
     cat >"$repo/CMakeLists.txt" <<'CM'
 cmake_minimum_required(VERSION 3.21)
 project(fake NONE)
@@ -48,6 +52,8 @@ add_test(NAME Fake.Passes COMMAND sh -c "exit 0")
 add_test(NAME Fake.FailsOnDemand COMMAND sh -c "test \"$FAKE_PRESET\" != \"$FAKE_FAILING_SUITE\"")
 add_test(NAME Fake.SkipsWithAReason COMMAND sh ${CMAKE_SOURCE_DIR}/t/skip.sh)
 set_tests_properties(Fake.SkipsWithAReason PROPERTIES SKIP_REGULAR_EXPRESSION "\\[  SKIPPED \\]")
+add_test(NAME fake.skips_with_77 COMMAND sh ${CMAKE_SOURCE_DIR}/t/skip77.sh)
+set_tests_properties(fake.skips_with_77 PROPERTIES SKIP_RETURN_CODE 77)
 CM
     local p presets="" tests=""
     for p in ci asan; do
@@ -76,8 +82,9 @@ make_repo
 run_test_sh
 [ "$rc" != 0 ] || fail "test.sh exited 0 with failing stages"
 expect '^   ci build +passed +[0-9]+m[0-9]{2}s$'
-expect '^   ci suite +FAILED +[0-9]+m[0-9]{2}s  1 passed, 1 failed, 1 skipped \(of 3\)$'
+expect '^   ci suite +FAILED +[0-9]+m[0-9]{2}s  1 passed, 1 failed, 2 skipped \(of 4\)$'
 expect '^   Fake\.SkipsWithAReason: the fake tool is not installed \(Debian package fake-tool\)$'
+expect '^   fake\.skips_with_77: the fake module was not built \(a sanitizer build\)$'
 expect '^   asan build +FAILED +[0-9]+m[0-9]{2}s  \(exit 2\)$'
 expect '^   asan suite +not run +0m00s  \(the asan build failed\)$'
 expect '^   fuzz +not run +0m00s  \(the asan build failed\)$'
@@ -91,8 +98,8 @@ make_repo
 run_test_sh
 [ "$rc" = 0 ] || fail "test.sh exited $rc with every stage passing:
 $out"
-expect '^   ci suite +passed .* 2 passed, 0 failed, 1 skipped \(of 3\)$'
-expect '^   asan suite +passed .* 2 passed, 0 failed, 1 skipped \(of 3\)$'
+expect '^   ci suite +passed .* 2 passed, 0 failed, 2 skipped \(of 4\)$'
+expect '^   asan suite +passed .* 2 passed, 0 failed, 2 skipped \(of 4\)$'
 expect '^   fuzz +passed +[0-9]+m[0-9]{2}s  4321 runs, no crash$'
 expect '^== test.sh: every stage passed$'
 
