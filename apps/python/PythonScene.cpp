@@ -191,10 +191,14 @@ py::object PyRenderer::render(PyScene& s, const RenderArgs& a) {
     const auto& counts = renderer->device().msaaSampleCounts;
     if (std::find(counts.begin(), counts.end(), a.msaa) == counts.end()) {
         std::string supported;
-        for (int c : counts)
-            supported += (supported.empty() ? "" : ", ") + std::to_string(c);
-        throw py::value_error("msaa " + std::to_string(a.msaa) + ": " + renderer->device().name +
-                              " supports " + supported);
+        for (int c : counts) {
+            if (!supported.empty()) supported += ", ";
+            supported += std::to_string(c);
+        }
+        std::string message = "msaa " + std::to_string(a.msaa) + ": ";
+        message += renderer->device().name;
+        message += " supports " + supported;
+        throw py::value_error(message);
     }
     // The upload is kept with the scene: a loop of renders reuses it, and only a structural
     // edit (a light added or removed) or another renderer uploads again.
