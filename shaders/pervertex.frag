@@ -24,7 +24,7 @@ void main() {
     vec3 base = back ? vBackBase : vFrontBase;
     vec3 textured = back ? vBackTextured : vFrontTextured;
     float alpha = back ? vAlpha.y : vAlpha.x;
-    vec4 texel = SC_TEXTURE ? texture(baseColorTexture, vTexcoord) : vec4(1.0);
+    vec4 texel = SC_TEXTURE ? texture(baseColorTexture, baseColorUv(vTexcoord, draw.materialIndex)) : vec4(1.0);
     alpha *= texel.a;
     if (SC_ALPHA_MASK && alpha < materials[draw.materialIndex].params.x) discard;
     writeOutputs(base + texel.rgb * textured, alpha, vNormal, vEyePosition);

@@ -17,7 +17,7 @@ void main() {
     vec3 ambientM, diffuseM;
     float alpha;
     materialColours(side, vColor, ambientM, diffuseM, alpha);
-    vec4 texel = SC_TEXTURE ? texture(baseColorTexture, vTexcoord) : vec4(1.0);
+    vec4 texel = SC_TEXTURE ? texture(baseColorTexture, baseColorUv(vTexcoord, draw.materialIndex)) : vec4(1.0);
     alpha *= texel.a;
     if (SC_ALPHA_MASK && alpha < material.params.x) discard;
     LightSums sums = evaluateLighting(vEyePosition, back ? -n : n, side);

@@ -41,6 +41,8 @@ struct MaterialData {
     MaterialSideData front;
     MaterialSideData back;  // equal to front when the material has no back
     vec4 params;            // x = alpha cutoff
+    vec4 uvRow0;            // KHR_texture_transform: u' = dot(uvRow0.xyz, vec3(u, v, 1))
+    vec4 uvRow1;            //                        v' = dot(uvRow1.xyz, vec3(u, v, 1))
 };
 
 layout(set = LANTERN_SET_FRAME, binding = LANTERN_BINDING_MATERIALS, std430) readonly buffer MaterialBlock {
@@ -48,6 +50,12 @@ layout(set = LANTERN_SET_FRAME, binding = LANTERN_BINDING_MATERIALS, std430) rea
 };
 
 layout(set = LANTERN_SET_TEXTURE, binding = LANTERN_BINDING_BASE_COLOR) uniform sampler2D baseColorTexture;
+
+// The base-colour texture's coordinates after the material's KHR_texture_transform.
+vec2 baseColorUv(vec2 uv, uint materialIndex) {
+    const vec3 h = vec3(uv, 1.0);
+    return vec2(dot(materials[materialIndex].uvRow0.xyz, h), dot(materials[materialIndex].uvRow1.xyz, h));
+}
 
 // Per draw: 124 of the 128 bytes every device guarantees.
 layout(push_constant, std430) uniform DrawBlock {

@@ -192,7 +192,8 @@ TEST(GltfScene, BaseColourTexturesDecodeToRgba8WithSamplerFlags) {
     EXPECT_EQ(t.height, 1);
     EXPECT_EQ(t.rgba8, (std::vector<std::uint8_t>{255, 0, 0, 255, 0, 0, 255, 128}));
     EXPECT_TRUE(t.nearest);
-    EXPECT_TRUE(t.clampToEdge);
+    EXPECT_EQ(t.wrapS, TextureWrap::ClampToEdge);
+    EXPECT_EQ(t.wrapT, TextureWrap::Repeat);  // absent: REPEAT
     EXPECT_EQ(o.scene->materials[0].baseColorTexture, 0);
     EXPECT_EQ(o.scene->meshes[0].primitives[0].texcoords.size(), 3u);
 
@@ -224,6 +225,56 @@ TEST(GltfScene, BaseColourTexturesDecodeToRgba8WithSamplerFlags) {
     auto hugeResult = loadCapturing(bad.write(dir, "huge"));
     ASSERT_FALSE(hugeResult.scene);
     EXPECT_EQ(hugeResult.scene.error().object, "images[0]") << hugeResult.scene.error().describe();
+}
+
+// The extension's own example: offset (0, 1), rotation pi/2, scale 0.5 reads "only the lower
+// left quadrant of the source image, rotated clockwise 90 degrees".
+TEST(GltfScene, TextureTransformMatrixFollowsTheExtensionsExample) {
+    const glm::dmat3 m = gltf::textureTransform({0.0, 1.0}, 1.57079632679489661923, {0.5, 0.5});
+    auto at = [&](double u, double v) { return glm::dvec2(m * glm::dvec3(u, v, 1.0)); };
+    const std::pair<glm::dvec2, glm::dvec2> corners[] = {
+        {{0, 0}, {0.0, 1.0}}, {{1, 0}, {0.0, 0.5}}, {{0, 1}, {0.5, 1.0}}, {{1, 1}, {0.5, 0.5}}};
+    for (const auto& [uv, expected] : corners)
+        EXPECT_LT(glm::length(at(uv.x, uv.y) - expected), 1e-12) << uv.x << "," << uv.y;
+}
+
+TEST(GltfScene, TextureTransformIsReadWithItsTexCoordAndBadValuesRefused) {
+    const auto dir = testOutputDir();
+    GltfBuilder b;
+    b.addTriangle({{"material", 0}, {"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}, {"TEXCOORD_1", 2}}}});
+    b.addFloats({0, 0, 1, 0, 0, 1}, "VEC2");
+    b.addFloats({5, 5, 6, 5, 5, 6}, "VEC2");
+    b.doc["extensionsUsed"] = {"KHR_texture_transform"};
+    b.doc["images"] = json::array({{{"uri", "data:image/png;base64," + GltfBuilder::base64(tinyPng())}}});
+    b.doc["samplers"] = json::array({{{"wrapS", 33648}, {"wrapT", 33071}}});
+    b.doc["textures"] = json::array({{{"source", 0}, {"sampler", 0}}});
+    const json transform = {{"offset", {0.25, 0.5}}, {"rotation", 0.5}, {"scale", {2.0, 3.0}}, {"texCoord", 1}};
+    b.doc["materials"] = json::array(
+        {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", transform}}}}}}}}});
+    auto o = loadCapturing(b.write(dir, "transformed"));
+    ASSERT_TRUE(o.scene) << o.scene.error().describe();
+    EXPECT_FALSE(o.warned("KHR_texture_transform")) << "supported, not ignored";
+    const glm::dmat3 expected = gltf::textureTransform({0.25, 0.5}, 0.5, {2.0, 3.0});
+    const glm::dmat3& got = o.scene->materials[0].baseColorUvTransform;
+    for (int c = 0; c < 3; ++c) EXPECT_LT(glm::length(got[c] - expected[c]), 1e-12) << "column " << c;
+    // The extension's texCoord (1) overrides the reference's (0).
+    EXPECT_EQ(o.scene->meshes[0].primitives[0].texcoords.at(0), glm::vec2(5, 5));
+    EXPECT_EQ(o.scene->textures.at(0).wrapS, TextureWrap::MirroredRepeat);
+    EXPECT_EQ(o.scene->textures.at(0).wrapT, TextureWrap::ClampToEdge);
+
+    const std::string obj = "materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform";
+    const std::tuple<json, std::string, std::string> bad[] = {
+        {{{"offset", {1.0}}}, obj + ".offset", "2"},
+        {{{"rotation", "half"}}, obj + ".rotation", "number"},
+        // The document-wide number checks see these first, naming the element.
+        {{{"scale", {1e31, 1.0}}}, obj + ".scale[0]", "1e30"},
+        {{{"texCoord", -1}}, obj + ".texCoord", "0 or more"},
+    };
+    for (const auto& [value, object, fragment] : bad) {
+        GltfBuilder c = b;
+        c.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]["KHR_texture_transform"] = value;
+        EXPECT_TRUE(refusedWith(loadCapturing(c.write(dir, "bad")), object, fragment)) << value.dump();
+    }
 }
 
 TEST(GltfScene, MetallicRoughnessTexturesScaleTheFactorsByTheirMean) {

@@ -12,6 +12,7 @@
 #include <lantern/Result.h>
 
 #include <glm/gtc/quaternion.hpp>
+#include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -74,6 +75,9 @@ struct Material {
     double alphaCutoff = 0.5;  ///< for AlphaMode::Mask
     bool doubleSided = false;  ///< false: back faces are culled (glTF)
     int baseColorTexture = -1; ///< index into Scene::textures; multiplies the diffuse colour
+    /// KHR_texture_transform of the base-colour texture: the texture is read at
+    /// (M (u, v, 1)).xy, M = translation(offset) * rotation * scale (identity without it).
+    glm::dmat3 baseColorUvTransform{1.0};
     /// True when the ambient colour is the diffuse colour by definition (the PBR fallback maps
     /// ambient = diffuse): then the base-colour texture and COLOR_0 scale the ambient too.
     bool ambientFollowsDiffuse = false;
@@ -161,14 +165,18 @@ struct Skin {
     int skeleton = -1;                    ///< the skeleton's root node (a hint only), or -1
 };
 
+/// How texture coordinates outside [0, 1] are read (glTF samplers' wrapS/wrapT).
+enum class TextureWrap { Repeat, ClampToEdge, MirroredRepeat };
+
 /// An RGBA8 texture in sRGB encoding (the glTF base-colour convention), top row first.
 struct Texture {
     std::string name;
     int width = 0;
     int height = 0;
     std::vector<std::uint8_t> rgba8;
-    bool nearest = false;     ///< nearest filtering instead of linear
-    bool clampToEdge = false; ///< clamp instead of repeat
+    bool nearest = false;  ///< nearest filtering instead of linear
+    TextureWrap wrapS = TextureWrap::Repeat;  ///< along u
+    TextureWrap wrapT = TextureWrap::Repeat;  ///< along v
 };
 
 // --- Nodes and animation --------------------------------------------------------------------

@@ -67,10 +67,14 @@ struct MaterialData {
     MaterialSideData front;
     MaterialSideData back;
     Vec4 params;  // x = alpha cutoff
+    Vec4 uvRow0;  // KHR_texture_transform: u' = dot(uvRow0.xyz, (u, v, 1))
+    Vec4 uvRow1;  //                        v' = dot(uvRow1.xyz, (u, v, 1))
 };
-static_assert(sizeof(MaterialData) == 144);
+static_assert(sizeof(MaterialData) == 176);
 static_assert(offsetof(MaterialData, back) == 64);
 static_assert(offsetof(MaterialData, params) == 128);
+static_assert(offsetof(MaterialData, uvRow0) == 144);
+static_assert(offsetof(MaterialData, uvRow1) == 160);
 
 // Push constants (std430): 124 bytes of the 128 every device guarantees.
 struct DrawBlock {

@@ -414,18 +414,32 @@ Result<void> SceneBuffers::uploadTextureImages() {
     });
 }
 
-// Samplers: index = nearest * 2 + clamp.
+namespace {
+
+VkSamplerAddressMode addressMode(TextureWrap w) {
+    return w == TextureWrap::ClampToEdge      ? VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE
+           : w == TextureWrap::MirroredRepeat ? VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT
+                                              : VK_SAMPLER_ADDRESS_MODE_REPEAT;
+}
+
+// The sampler a texture asks for: nearest * 9 + wrapS * 3 + wrapT (18 in all).
+int samplerIndexOf(bool nearest, TextureWrap s, TextureWrap t) {
+    return (nearest ? 9 : 0) + int(s) * 3 + int(t);
+}
+
+} // namespace
+
 Result<void> SceneBuffers::createSamplers() {
     Context& c = *m_ctx;
-    for (int i = 0; i < 4; ++i) {
+    for (int i = 0; i < 18; ++i) {
         VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-        const bool nearest = i & 2, clamp = i & 1;
+        const bool nearest = i >= 9;
         sci.magFilter = nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR;
         sci.minFilter = sci.magFilter;
         sci.mipmapMode = nearest ? VK_SAMPLER_MIPMAP_MODE_NEAREST : VK_SAMPLER_MIPMAP_MODE_LINEAR;
-        const VkSamplerAddressMode mode =
-            clamp ? VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE : VK_SAMPLER_ADDRESS_MODE_REPEAT;
-        sci.addressModeU = sci.addressModeV = sci.addressModeW = mode;
+        sci.addressModeU = addressMode(TextureWrap((i % 9) / 3));
+        sci.addressModeV = addressMode(TextureWrap(i % 3));
+        sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
         sci.maxLod = VK_LOD_CLAMP_NONE;
         VkSampler sampler = VK_NULL_HANDLE;
         LANTERN_VK_TRY(vkCreateSampler(c.device(), &sci, nullptr, &sampler));
@@ -458,7 +472,7 @@ Result<void> SceneBuffers::createTextureSets(VkDescriptorSetLayout layout) {
         int samplerIndex = 0;
         if (i > 0) {
             const Texture& t = s.textures[i - 1];
-            samplerIndex = (t.nearest ? 2 : 0) + (t.clampToEdge ? 1 : 0);
+            samplerIndex = samplerIndexOf(t.nearest, t.wrapS, t.wrapT);
         }
         VkDescriptorImageInfo info{m_samplers[samplerIndex].get(), m_textures[i].view.get(),
                                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};

@@ -313,6 +313,11 @@ std::optional<std::vector<double>> ExtensionReader::numbers(const std::string& k
     return out;
 }
 
+glm::dvec2 ExtensionReader::vec2(const std::string& key, const glm::dvec2& fallback) const {
+    const auto v = numbers(key, 2, 0);
+    return v ? glm::dvec2((*v)[0], (*v)[1]) : fallback;
+}
+
 glm::dvec3 ExtensionReader::vec3(const std::string& key, const glm::dvec3& fallback) const {
     const auto v = numbers(key, 3, 0);
     return v ? glm::dvec3((*v)[0], (*v)[1], (*v)[2]) : fallback;

@@ -70,7 +70,7 @@ int texcoordSet(const tinygltf::Model& model, int material) {
     if (material < 0) return 0;
     const tinygltf::TextureInfo& info =
         model.materials[std::size_t(material)].pbrMetallicRoughness.baseColorTexture;
-    return info.index >= 0 ? info.texCoord : 0;
+    return info.index >= 0 ? texCoordOf(info) : 0;
 }
 
 // The accessor of the primitive's attribute `name`, or -1.

@@ -66,13 +66,23 @@ struct PhongFromPbr {
 };
 PhongFromPbr phongFromPbr(const glm::dvec3& base, double metallic, double roughness);
 
+/// The TEXCOORD set a texture reference reads: KHR_texture_transform's `texCoord` when the
+/// reference has one, else its own `texCoord`.
+int texCoordOf(const tinygltf::TextureInfo& info);
+
+/// KHR_texture_transform's matrix: uv' = (T(offset) R(rotation) S(scale) (u, v, 1)).xy, with
+/// u' = cos(r) u + sin(r) v, v' = -sin(r) u + cos(r) v for the rotation (counter-clockwise UVs,
+/// the extension's own example: offset (0, 1), rotation pi/2, scale 0.5 reads the lower left
+/// quadrant rotated).
+glm::dmat3 textureTransform(const glm::dvec2& offset, double rotation, const glm::dvec2& scale);
+
 /// Extensions the loader understands (anything else listed in extensionsRequired is refused;
 /// listed only in extensionsUsed, it is ignored with a warning).
 inline constexpr const char* kSupportedExtensions[] = {
     "KHR_lights_punctual",     "KHR_materials_unlit",     "KHR_materials_emissive_strength",
     "LANTERN_materials_phong", "LANTERN_lights_phong",    "LANTERN_lighting",
     "LANTERN_camera",          "KHR_mesh_quantization",   "EXT_meshopt_compression",
-    "KHR_meshopt_compression", "KHR_draco_mesh_compression",
+    "KHR_meshopt_compression", "KHR_draco_mesh_compression", "KHR_texture_transform",
 };
 
 /// The two names of the meshopt codec's extension: EXT_ (ratified) and KHR_ (its successor, the
@@ -341,6 +351,8 @@ public:
     bool has(const std::string& key) const { return m_value.Has(key); }
     /// A finite number; `fallback` when absent.
     double number(const std::string& key, double fallback) const;
+    /// Two finite numbers.
+    glm::dvec2 vec2(const std::string& key, const glm::dvec2& fallback) const;
     /// Three finite numbers.
     glm::dvec3 vec3(const std::string& key, const glm::dvec3& fallback) const;
     /// Four finite numbers, or three (an RGB colour given for an RGBA one: alpha 1).

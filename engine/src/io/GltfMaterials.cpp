@@ -23,6 +23,12 @@ MaterialSide readPhongSide(const ExtensionReader& r) {
     return s;
 }
 
+TextureWrap wrapOf(int glWrap) {
+    return glWrap == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE       ? TextureWrap::ClampToEdge
+           : glWrap == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT ? TextureWrap::MirroredRepeat
+                                                              : TextureWrap::Repeat;
+}
+
 /// Decodes base-colour textures on first use and maps (glTF texture) -> Scene::textures.
 class TextureTable {
 public:
@@ -47,12 +53,8 @@ public:
         if (t.sampler >= 0) {
             const tinygltf::Sampler& s = m_model.samplers[std::size_t(t.sampler)];
             tex.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
-            tex.clampToEdge = s.wrapS == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE ||
-                              s.wrapT == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
-            if (s.wrapS == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT ||
-                s.wrapT == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT)
-                m_diag.warn(at("samplers", std::size_t(t.sampler)),
-                            "MIRRORED_REPEAT is drawn as REPEAT");
+            tex.wrapS = wrapOf(s.wrapS);
+            tex.wrapT = wrapOf(s.wrapT);
         }
         m_out.push_back(std::move(tex));
         return m_done[index] = int(m_out.size()) - 1;
@@ -156,6 +158,27 @@ Result<void> checkMaterialFactors(const tinygltf::Material& src, const std::stri
     return {};
 }
 
+// KHR_texture_transform on a texture reference (identity without it); `texCoord` in it is
+// read by texCoordOf.
+Result<glm::dmat3> uvTransformOf(const tinygltf::TextureInfo& info, const std::string& obj,
+                                 const Diagnostics& diag) {
+    const tinygltf::Value* e = extension(info.extensions, "KHR_texture_transform");
+    if (!e) return glm::dmat3(1.0);
+    ExtensionReader r(*e, obj + ".extensions.KHR_texture_transform", diag);
+    r.warnUnknown({"offset", "rotation", "scale", "texCoord"});
+    const glm::dvec2 offset = r.vec2("offset", glm::dvec2(0.0));
+    const double rotation = r.number("rotation", 0.0);
+    const glm::dvec2 scale = r.vec2("scale", glm::dvec2(1.0));
+    if (r.has("texCoord") && !(e->Get("texCoord").IsInt() && e->Get("texCoord").GetNumberAsInt() >= 0))
+        r.fail("texCoord", "must be an integer >= 0");
+    // Finite is checked by the reader; so large a value would overflow in the matrix.
+    if (std::max(std::abs(offset.x), std::abs(offset.y)) > 1e30) r.fail("offset", "magnitude above 1e30");
+    if (std::abs(rotation) > 1e30) r.fail("rotation", "magnitude above 1e30");
+    if (std::max(std::abs(scale.x), std::abs(scale.y)) > 1e30) r.fail("scale", "magnitude above 1e30");
+    LANTERN_TRY(r.status());
+    return textureTransform(offset, rotation, scale);
+}
+
 // KHR_materials_emissive_strength's factor (1 without the extension).
 Result<double> emissiveStrengthOf(const tinygltf::Material& src, const std::string& obj,
                                   const Diagnostics& diag) {
@@ -247,6 +270,9 @@ Result<Material> convertMaterial(const tinygltf::Model& model, std::size_t index
         auto t = textures.get(pbr.baseColorTexture.index, obj);
         if (!t) return std::move(t).error();
         m.baseColorTexture = *t;
+        auto uv = uvTransformOf(pbr.baseColorTexture, obj + ".pbrMetallicRoughness.baseColorTexture", diag);
+        if (!uv) return std::move(uv).error();
+        m.baseColorUvTransform = *uv;
     }
     return m;
 }
@@ -263,6 +289,19 @@ Result<void> convertMaterials(const tinygltf::Model& model, const RawFacts& raw,
         scene.materials.push_back(std::move(*m));
     }
     return {};
+}
+
+int texCoordOf(const tinygltf::TextureInfo& info) {
+    if (const tinygltf::Value* e = extension(info.extensions, "KHR_texture_transform"))
+        if (e->Has("texCoord") && e->Get("texCoord").IsInt() && e->Get("texCoord").GetNumberAsInt() >= 0)
+            return e->Get("texCoord").GetNumberAsInt();
+    return info.texCoord;
+}
+
+glm::dmat3 textureTransform(const glm::dvec2& offset, double rotation, const glm::dvec2& scale) {
+    const double c = std::cos(rotation), s = std::sin(rotation);
+    // Column-major: columns are (u', v', 1) images of the unit vectors and the origin.
+    return glm::dmat3(c * scale.x, -s * scale.x, 0.0, s * scale.y, c * scale.y, 0.0, offset.x, offset.y, 1.0);
 }
 
 PhongFromPbr phongFromPbr(const glm::dvec3& base, double metallic, double roughness) {

@@ -137,6 +137,9 @@ gpu::MaterialData packMaterial(const Material& m) {
     d.back = m.back ? packSide(*m.back) : d.front;
     // A cutoff of -1 never discards: the all-features pipeline runs the mask test everywhere.
     d.params.x = m.alphaMode == AlphaMode::Mask ? float(m.alphaCutoff) : -1.0f;
+    const glm::dmat3& t = m.baseColorUvTransform;  // column-major: t[column][row]
+    d.uvRow0 = {float(t[0][0]), float(t[1][0]), float(t[2][0]), 0.0f};
+    d.uvRow1 = {float(t[0][1]), float(t[1][1]), float(t[2][1]), 0.0f};
     return d;
 }
 
