@@ -245,13 +245,8 @@ fs::path sharedDir() {
     return LANTERN_DEFAULT_SHARED_DIR;
 }
 
-// Loading and validating a glTF from ../shared/assets (skipped, saying so, when absent).
-void BM_LoadGltf(benchmark::State& state, const char* relative) {
-    const fs::path path = sharedDir() / "assets" / "gltf-samples" / relative;
-    if (!fs::exists(path)) {
-        state.SkipWithError(("not found (../shared absent): " + path.string()).c_str());
-        return;
-    }
+// The timed loop of the load benchmarks: loadGltf(path), stopping at the first error.
+void loadEachIteration(benchmark::State& state, const fs::path& path) {
     for (auto _ : state) {
         auto scene = loadGltf(path);
         if (!scene) {
@@ -260,6 +255,16 @@ void BM_LoadGltf(benchmark::State& state, const char* relative) {
         }
         benchmark::DoNotOptimize(scene);
     }
+}
+
+// Loading and validating a glTF from ../shared/assets (skipped, saying so, when absent).
+void BM_LoadGltf(benchmark::State& state, const char* relative) {
+    const fs::path path = sharedDir() / "assets" / "gltf-samples" / relative;
+    if (!fs::exists(path)) {
+        state.SkipWithError(("not found (../shared absent): " + path.string()).c_str());
+        return;
+    }
+    loadEachIteration(state, path);
 }
 BENCHMARK_CAPTURE(BM_LoadGltf, Suzanne, "Suzanne/glTF/Suzanne.gltf")
     ->Unit(benchmark::kMillisecond);
@@ -294,14 +299,7 @@ void BM_LoadCompressedGltf(benchmark::State& state) {
     static CompressedSpheres spheres;
     const auto encoding = test::Encoding(state.range(0));
     const fs::path& path = spheres.path(encoding);
-    for (auto _ : state) {
-        auto scene = loadGltf(path);
-        if (!scene) {
-            state.SkipWithError(scene.error().describe().c_str());
-            break;
-        }
-        benchmark::DoNotOptimize(scene);
-    }
+    loadEachIteration(state, path);
     state.counters["MiB"] = double(fs::file_size(path)) / (1024.0 * 1024.0);
     state.SetLabel(test::encodingName(encoding));
 }

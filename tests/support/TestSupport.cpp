@@ -191,7 +191,7 @@ ProcessResult runLantern(const std::vector<std::string>& args, const std::vector
     return runProcess(full, environment);
 }
 
-std::string missingProgram(const std::string& program, const std::string& debianPackage) {
+std::string findOnPath(const std::string& program) {
     const char* path = std::getenv("PATH");
     std::string dirs = path ? path : "/usr/bin:/bin";
     std::size_t start = 0;
@@ -199,10 +199,15 @@ std::string missingProgram(const std::string& program, const std::string& debian
         std::size_t end = dirs.find(':', start);
         if (end == std::string::npos) end = dirs.size();
         const std::string dir = dirs.substr(start, end - start);
-        if (!dir.empty() && ::access((std::filesystem::path(dir) / program).c_str(), X_OK) == 0)
-            return {};
+        const auto candidate = std::filesystem::path(dir) / program;
+        if (!dir.empty() && ::access(candidate.c_str(), X_OK) == 0) return candidate.string();
         start = end + 1;
     }
+    return {};
+}
+
+std::string missingProgram(const std::string& program, const std::string& debianPackage) {
+    if (!findOnPath(program).empty()) return {};
     return program + " is not installed (Debian package " + debianPackage + ")";
 }
 

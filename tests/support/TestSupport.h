@@ -57,6 +57,9 @@ private:
 ///
 /// An executable on $PATH (`debianPackage` installs it).
 std::string missingProgram(const std::string& program, const std::string& debianPackage);
+
+/// The path of the executable `program` in a folder of PATH, or empty.
+std::string findOnPath(const std::string& program);
 /// A Vulkan device (for tests that render through the `lantern` command or a window; GpuTest
 /// fixtures check it themselves). Creates sharedRenderer() once per process.
 std::string missingVulkanDevice();

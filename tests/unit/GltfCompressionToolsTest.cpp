@@ -15,22 +15,6 @@ using namespace lantern;
 using lantern::test::loadCapturing;
 using lantern::test::TestMesh;
 
-/// The path of `tool` on PATH, or empty.
-std::string findTool(const std::string& tool) {
-    const char* path = std::getenv("PATH");
-    std::string dirs = path ? path : "/usr/bin:/bin";
-    std::size_t start = 0;
-    while (start <= dirs.size()) {
-        std::size_t end = dirs.find(':', start);
-        if (end == std::string::npos) end = dirs.size();
-        const auto candidate = std::filesystem::path(dirs.substr(start, end - start)) / tool;
-        std::error_code ec;
-        if (std::filesystem::is_regular_file(candidate, ec)) return candidate.string();
-        start = end + 1;
-    }
-    return {};
-}
-
 /// Every drawn triangle of the default scene, in world space, positions only (the tools change
 /// normal and uv encodings, and gltfpack's uv dequantization needs KHR_texture_transform).
 TestMesh worldTriangles(const Scene& scene) {
@@ -76,7 +60,7 @@ TEST(GltfCompressionTools, CompressorOutputLoadsWithTheOriginalTriangles) {
     const char* models[] = {"Duck/glTF-Binary/Duck.glb", "BoxInterleaved/glTF-Binary/BoxInterleaved.glb"};
     int ran = 0;
     for (const ToolCase& t : tools) {
-        const std::string tool = findTool(t.tool);
+        const std::string tool = test::findOnPath(t.tool);
         if (tool.empty()) continue;
         for (const char* model : models) {
             SCOPED_TRACE(std::string(t.tool) + " " + (t.options.empty() ? "" : t.options[0]) + " " + model);
