@@ -132,8 +132,8 @@ void BM_RenderFrame(benchmark::State& state) {
 BENCHMARK(BM_RenderFrame)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // A plane of 257 x 257 vertices (131072 triangles) bent about +Y by a two-bone skin: unskinned
-// (arg 0: the same mesh without joints or skin), skinned (1), skinned with 8 influences per
-// vertex (2). The frame's pose changes every iteration, so the pre-pass runs every frame.
+// (arg 0: the same mesh without joints or skin), skinned with 4 influences per vertex (arg 4,
+// JOINTS_0 only) or 8 (arg 8, JOINTS_0 and JOINTS_1). The frame's pose changes every iteration, so the pre-pass runs every frame.
 Scene skinnedPlaneScene(int influences) {
     Scene s;
     Primitive p = makePlane(2.0, 256);
