@@ -1,7 +1,7 @@
 // deform.comp: skinning and morph targets before the draws (the GPU twin of
 // engine/src/scene/Deform.cpp, operation for operation). One invocation per vertex writes the
-// deformed position and normal; in flat mode one per triangle writes the three corners'
-// position, face normal and centroid (the flat-shading streams). The lighting shaders read
+// deformed position and normal; in flat mode one per element writes its corners' position,
+// face normal and centroid (the flat-shading streams). The lighting shaders read
 // the results as ordinary vertex streams.
 #version 460
 #extension GL_GOOGLE_include_directive : require
@@ -23,8 +23,8 @@ layout(std430, set = 0, binding = LANTERN_BINDING_DEFORM_OUTPUT) writeonly buffe
 
 // Offsets are in 32-bit words of their buffer; LANTERN_DEFORM_NONE: absent.
 layout(push_constant) uniform DeformJob {
-    uint count;         // vertices, or triangles in flat mode
-    uint flatMode;      // 1: flat-shading streams per triangle corner
+    uint count;         // vertices, or elements in flat mode
+    uint flatMode;      // 0: per vertex; 3, 2, 1: flat-shading streams per triangle, line, point corner
     uint vertexCount;
     uint position;      // src: base positions (3 floats per vertex)
     uint normal;        // src: base normals
@@ -33,7 +33,7 @@ layout(push_constant) uniform DeformJob {
     uint influences;    // 0 (not skinned), 4 or 8
     uint targets;       // src: per target 3 * vertexCount position, then normal displacements
     uint targetCount;
-    uint indices;       // src: the triangle list; LANTERN_DEFORM_NONE: vertices in threes
+    uint indices;       // src: the element list; LANTERN_DEFORM_NONE: vertices in order
     uint matrices;      // params: the skin's joint matrices
     uint morphWeights;  // params: one per target
     uint outPosition;   // dst
@@ -110,17 +110,22 @@ void main() {
         store3(job.outNormal, i, n);
         return;
     }
-    vec3 p[3];
-    for (uint c = 0u; c < 3u; ++c) {
-        const uint v = job.indices == LANTERN_DEFORM_NONE ? 3u * i + c : src.words[job.indices + 3u * i + c];
-        vec3 unused;
-        deformVertex(v, p[c], unused);
+    // Triangles: the face normal of the deformed corners; lines and points: the normalised
+    // mean of the deformed vertex normals (gpu/SceneBuffers.cpp, flatElement).
+    const uint k = job.flatMode;
+    vec3 p[3], n[3];
+    vec3 sum = vec3(0.0), normals = vec3(0.0);
+    for (uint c = 0u; c < k; ++c) {
+        const uint v = job.indices == LANTERN_DEFORM_NONE ? k * i + c : src.words[job.indices + k * i + c];
+        deformVertex(v, p[c], n[c]);
+        sum += p[c];
+        normals += n[c];
     }
-    const vec3 face = guardedNormalize(cross(p[1] - p[0], p[2] - p[0]));
-    const vec3 middle = (p[0] + p[1] + p[2]) / 3.0;
-    for (uint c = 0u; c < 3u; ++c) {
-        store3(job.outPosition, 3u * i + c, p[c]);
-        store3(job.outNormal, 3u * i + c, face);
-        store3(job.outCentroid, 3u * i + c, middle);
+    const vec3 face = guardedNormalize(k == 3u ? cross(p[1] - p[0], p[2] - p[0]) : normals);
+    const vec3 middle = sum / float(k);
+    for (uint c = 0u; c < k; ++c) {
+        store3(job.outPosition, k * i + c, p[c]);
+        store3(job.outNormal, k * i + c, face);
+        store3(job.outCentroid, k * i + c, middle);
     }
 }

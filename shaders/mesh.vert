@@ -21,4 +21,5 @@ void main() {
     vColor = inColor;
     vTexcoord = inTexcoord;
     gl_Position = frame.clipFromView * eye;
+    gl_PointSize = frame.pointSize;
 }

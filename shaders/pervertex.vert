@@ -1,7 +1,8 @@
 // pervertex.vert: the equation evaluated in the vertex stage, for three shading modes:
 //   (default)             gouraud: at each vertex with its normal; colours interpolated
-//   LANTERN_FLAT_CENTROID flat: at the triangle's centroid with its face normal (each vertex of
-//                         the de-indexed triangle carries both), one colour per triangle
+//   LANTERN_FLAT_CENTROID flat: at the element's centroid with its face normal (each vertex of
+//                         the de-indexed triangle, line or point carries both), one colour
+//                         per element (a line's normal is the mean of its vertex normals)
 //   LANTERN_FLAT_PROVOKING GL_FLAT (--gl-compat): at each vertex, the provoking (last)
 //                         vertex's colour fills the triangle
 // Both faces are lit when two-sided lighting is on; the fragment stage picks by facing.
@@ -62,4 +63,5 @@ void main() {
     vEyePosition = eye.xyz;
     vNormal = n;
     gl_Position = frame.clipFromView * eye;
+    gl_PointSize = frame.pointSize;
 }

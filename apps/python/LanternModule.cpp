@@ -25,6 +25,8 @@ py::dict summaryOf(const PyScene& s) {
     d["nodes"] = sum.nodes;
     d["meshes"] = sum.meshes;
     d["triangles"] = sum.triangles;
+    d["lines"] = sum.lines;
+    d["points"] = sum.points;
     d["vertices"] = sum.vertices;
     d["materials"] = sum.materials;
     d["lights"] = sum.lights;
@@ -130,11 +132,11 @@ void defineRenderer(py::module_& m) {
                std::optional<std::vector<double>> perspective,
                std::optional<std::vector<double>> ortho, std::optional<int> camera,
                std::optional<bool> twoSided, std::optional<bool> localViewer, bool clamp,
-               bool glCompat, bool depth, bool normal) {
+               bool glCompat, bool depth, bool normal, double pointSize, double lineWidth) {
                 RenderArgs a{time,       width,   height,      std::move(shading),
                              std::move(specular), msaa, std::move(background), std::move(lookAt),
                              std::move(perspective), std::move(ortho), camera, twoSided,
-                             localViewer, clamp, glCompat, depth, normal};
+                             localViewer, clamp, glCompat, depth, normal, pointSize, lineWidth};
                 return r.render(scene, a);
             },
             py::arg("scene"), py::kw_only(), py::arg("time") = 0.0, py::arg("width") = 1280,
@@ -145,6 +147,7 @@ void defineRenderer(py::module_& m) {
             py::arg("camera") = py::none(), py::arg("two_sided") = py::none(),
             py::arg("local_viewer") = py::none(), py::arg("clamp") = false,
             py::arg("gl_compat") = false, py::arg("depth") = false, py::arg("normal") = false,
+            py::arg("point_size") = 1.0, py::arg("line_width") = 1.0,
             "Renders `scene` at `time` seconds: a (height, width, 4) float32 array of linear, "
             "premultiplied RGBA; with depth=True and/or normal=True a tuple (rgba, depth, "
             "normal) of the planes asked for");

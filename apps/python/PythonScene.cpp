@@ -156,6 +156,12 @@ RenderOptions renderOptions(const RenderArgs& a) {
         if (!o.specular) throw py::value_error("specular \"" + *a.specular + "\": blinn or phong");
     }
     o.msaa = a.msaa;
+    if (!(a.pointSize >= 1.0 && a.pointSize <= 255.0))
+        throw py::value_error("point_size " + std::to_string(a.pointSize) + ": in [1, 255]");
+    if (!(a.lineWidth >= 1.0 && a.lineWidth <= 255.0))
+        throw py::value_error("line_width " + std::to_string(a.lineWidth) + ": in [1, 255]");
+    o.pointSize = a.pointSize;
+    o.lineWidth = a.lineWidth;
     if (a.background) {
         // As --background: R,G,B is opaque; R,G,B,A is premultiplied here.
         const auto& b = *a.background;

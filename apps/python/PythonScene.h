@@ -58,6 +58,7 @@ struct RenderArgs {
     std::optional<bool> twoSided, localViewer;
     bool clamp = false, glCompat = false;
     bool depth = false, normal = false;
+    double pointSize = 1.0, lineWidth = 1.0;  ///< pixels across points and lines
 };
 
 /// Builds the RenderOptions (ValueError naming the keyword for a bad value).

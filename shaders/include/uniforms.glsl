@@ -11,7 +11,7 @@ layout(set = LANTERN_SET_FRAME, binding = LANTERN_BINDING_FRAME, std140) uniform
     vec4 globalAmbient;   // rgb: GL_LIGHT_MODEL_AMBIENT
     uint lightCount;
     uint viewIndex;
-    uint pad0;
+    float pointSize;      // gl_PointSize of point draws (pixels)
     uint pad1;
 } frame;
 

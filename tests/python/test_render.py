@@ -66,6 +66,39 @@ def test_bad_keywords_raise_value_error(renderer, teapot):
         renderer.render(teapot, widht=64)
 
 
+def test_point_size_widens_a_point_cloud(lantern_module, renderer, out_dir):
+    """A glTF POINTS primitive without normals: unlit points, one pixel each by default."""
+    import base64
+    import json
+    import struct
+
+    points = [(-0.5, -0.5, 0.0), (0.5, -0.5, 0.0), (0.0, 0.5, 0.0)]
+    data = b"".join(struct.pack("<3f", *p) for p in points)
+    doc = {
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "mode": 0}]}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": [-0.5, -0.5, 0.0], "max": [0.5, 0.5, 0.0]}],
+        "bufferViews": [{"buffer": 0, "byteLength": len(data)}],
+        "buffers": [{"byteLength": len(data),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
+    }
+    path = out_dir / "points.gltf"
+    path.write_text(json.dumps(doc))
+    scene = lantern_module.load(str(path))
+    assert scene.summary["points"] == 3 and scene.summary["triangles"] == 0
+    lit = lambda rgba: int((rgba[..., :3].max(axis=2) > 0).sum())
+    one = renderer.render(scene, **SIZE)
+    assert lit(one) == 3, "three one-pixel points"
+    five = renderer.render(scene, point_size=5, **SIZE)
+    assert lit(five) == 75, "three 5x5 points"
+    with pytest.raises(ValueError, match="point_size"):
+        renderer.render(scene, point_size=0.5, **SIZE)
+    with pytest.raises(ValueError, match="line_width"):
+        renderer.render(scene, line_width=300, **SIZE)
+
+
 def test_msaa_the_device_lacks_names_the_ones_it_has(renderer, teapot):
     supported = renderer.device["msaa"]
     missing = [m for m in (2, 8, 16) if m not in supported]

@@ -174,7 +174,7 @@ inline constexpr InvalidCase kInvalidCases[] = {
     {"base/data/animation/channel_duplicate_targets.gltf", false, "", "a second channel animates scale of node 0; the last one wins"},
     {"base/data/animation/channel_node_no_morphs.gltf", false, "", "which draws no morph targets; channel skipped"},
     {"base/data/animation/sampler_input_no_bounds.gltf", false, "", ""},  // min/max are not needed to sample
-    {"base/data/mesh_data/joints_weights_complex.gltf", false, "", "mode POINTS is not drawn"},  // its bad joints and weights are in the skipped POINTS primitive
+    {"base/data/mesh_data/joints_weights_complex.gltf", true, "meshes[0].primitives[0].attributes.WEIGHTS_1", "weight -1.000000 of vertex 1 is negative"},  // a POINTS primitive, now read
     {"base/data/node/empty_children_array.gltf", false, "", ""},  // no children is no children
     {"base/data/node/matrix_trs.gltf", false, "", ""},  // the matrix is used (tinygltf drops the TRS unseen)
     {"base/data/node/rotation_non_unit.gltf", false, "", "quaternion length 2.000000 is not 1; normalised"},

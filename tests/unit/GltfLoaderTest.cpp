@@ -368,19 +368,65 @@ TEST(GltfLoader, StripsAndFansBecomeListsWithTheirWinding) {
     }
 }
 
-TEST(GltfLoader, OtherModesAndPartialTrianglesAreSkippedWithAWarning) {
+TEST(GltfLoader, PointAndLineModesBecomeListsAndPartialElementsAreDroppedWithAWarning) {
+    const auto dir = testOutputDir();
+    // Five vertices. LINE_STRIP: (0,1) (1,2) (2,3) (3,4); LINE_LOOP adds (4,0), so the last
+    // vertex of each line is GL's provoking vertex; LINES drops the fifth vertex.
+    struct Case {
+        int mode;
+        bool indexed;
+        Topology topology;
+        std::vector<std::uint32_t> expected;  // empty: drawn in order without indices
+        bool warnsPartial;
+    };
+    const Case cases[] = {
+        {0, false, Topology::Points, {}, false},
+        {0, true, Topology::Points, {4, 3, 2, 1, 0}, false},
+        {1, false, Topology::Lines, {0, 1, 2, 3}, true},
+        {1, true, Topology::Lines, {4, 3, 2, 1}, true},
+        {3, false, Topology::Lines, {0, 1, 1, 2, 2, 3, 3, 4}, false},
+        {3, true, Topology::Lines, {4, 3, 3, 2, 2, 1, 1, 0}, false},
+        {2, false, Topology::Lines, {0, 1, 1, 2, 2, 3, 3, 4, 4, 0}, false},
+        {2, true, Topology::Lines, {4, 3, 3, 2, 2, 1, 1, 0, 0, 4}, false},
+        {4, false, Topology::Triangles, {0, 1, 2}, true},
+    };
+    for (const Case& c : cases) {
+        GltfBuilder b;
+        const int pos = b.addFloats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 2, 0}, "VEC3");
+        json prim = {{"attributes", {{"POSITION", pos}}}, {"mode", c.mode}};
+        if (c.indexed) prim["indices"] = b.addIndices({4, 3, 2, 1, 0});
+        b.addNode({{"mesh", b.addMesh(prim)}});
+        auto o = loadCapturing(b.write(dir, "modes"));
+        ASSERT_TRUE(o.scene) << o.scene.error().describe();
+        const Primitive& p = firstPrimitive(*o.scene);
+        SCOPED_TRACE("mode " + std::to_string(c.mode) + (c.indexed ? " indexed" : ""));
+        EXPECT_EQ(p.topology, c.topology);
+        EXPECT_EQ(p.indices, c.expected);
+        EXPECT_EQ(o.warned(" are ignored"), c.warnsPartial) << o.allWarnings();
+        // Lines and points without normals are drawn unlit; triangles get computed normals.
+        EXPECT_EQ(p.normals.empty(), c.topology != Topology::Triangles);
+        EXPECT_EQ(p.unlitForWantOfNormals(), c.topology != Topology::Triangles);
+        EXPECT_TRUE(o.scene->validate());
+    }
+}
+
+TEST(GltfLoader, ModesWithoutAWholeElementAreSkippedWithAWarning) {
     const auto dir = testOutputDir();
     GltfBuilder b;
-    const int pos = b.addFloats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0}, "VEC3");
-    for (int mode : {0, 1, 2, 3}) b.addNode({{"mesh", b.addMesh({{"attributes", {{"POSITION", pos}}}, {"mode", mode}})}});
-    b.addNode({{"mesh", b.addMesh({{"attributes", {{"POSITION", pos}}}})}});  // 4 vertices: one triangle
-    auto o = loadCapturing(b.write(dir, "modes"));
+    const int one = b.addFloats({0, 0, 0}, "VEC3");
+    const int two = b.addFloats({0, 0, 0, 1, 0, 0}, "VEC3");
+    b.addNode({{"mesh", b.addMesh({{"attributes", {{"POSITION", one}}}, {"mode", 1}})}});
+    b.addNode({{"mesh", b.addMesh({{"attributes", {{"POSITION", one}}}, {"mode", 3}})}});
+    b.addNode({{"mesh", b.addMesh({{"attributes", {{"POSITION", two}}}, {"mode", 4}})}});
+    b.addNode({{"mesh", b.addMesh({{"attributes", {{"POSITION", two}}}, {"mode", 2}})}});
+    auto o = loadCapturing(b.write(dir, "partial"));
     ASSERT_TRUE(o.scene) << o.scene.error().describe();
-    for (int m = 0; m < 4; ++m) EXPECT_TRUE(o.scene->meshes[std::size_t(m)].primitives.empty());
-    for (const char* name : {"POINTS", "LINES", "LINE_LOOP", "LINE_STRIP"})
-        EXPECT_TRUE(o.warned(std::string("mode ") + name + " is not drawn")) << o.allWarnings();
-    EXPECT_EQ(o.scene->meshes[4].primitives[0].indices, (std::vector<std::uint32_t>{0, 1, 2}));
-    EXPECT_TRUE(o.warned("the last 1 are ignored")) << o.allWarnings();
+    for (int m = 0; m < 3; ++m) EXPECT_TRUE(o.scene->meshes[std::size_t(m)].primitives.empty()) << m;
+    for (const char* what : {"LINES with 1 vertices draws nothing", "LINE_STRIP with 1 vertices",
+                             "TRIANGLES with 2 vertices draws nothing"})
+        EXPECT_TRUE(o.warned(what)) << what << "\n" << o.allWarnings();
+    // A loop of two vertices is one line (not the same line twice).
+    EXPECT_EQ(o.scene->meshes[3].primitives[0].indices, (std::vector<std::uint32_t>{0, 1}));
 }
 
 TEST(GltfLoader, MissingNormalsAreAngleWeightedOverSharedVertices) {

@@ -226,6 +226,16 @@ void ShadingOptions::add(CLI::App& app) {
                  "Reproduce OpenGL's fixed-function pipeline (provoking-vertex flat, per-vertex "
                  "clamp, limits)");
     app.add_option("--msaa", msaa, help::kMsaa)->capture_default_str()->check(CLI::IsMember({1, 2, 4, 8}));
+    app.add_option("--point-size", pointSize,
+                   "Pixels across a point (glTF POINTS, GL_POINTS), 1 to 255; above 1 the device "
+                   "needs largePoints")
+        ->capture_default_str()
+        ->check(CLI::Range(1.0, 255.0));
+    app.add_option("--line-width", lineWidth,
+                   "Pixels across a line (glTF LINES, LINE_STRIP, LINE_LOOP; GL_LINES), 1 to 255; "
+                   "above 1 the device needs wideLines")
+        ->capture_default_str()
+        ->check(CLI::Range(1.0, 255.0));
 }
 
 Result<void> ShadingOptions::apply(RenderOptions& o) const {
@@ -236,6 +246,8 @@ Result<void> ShadingOptions::apply(RenderOptions& o) const {
     o.clamp = clamp;
     o.glCompat = glCompat;
     o.msaa = msaa;
+    o.pointSize = pointSize;
+    o.lineWidth = lineWidth;
     return {};
 }
 

@@ -104,6 +104,7 @@ struct ShadingOptions {
     std::string shading, specular;
     bool localViewer = false, twoSided = false, clamp = false, glCompat = false;
     int msaa = 1;
+    double pointSize = 1.0, lineWidth = 1.0;
 
     void add(CLI::App& app);
     Result<void> apply(RenderOptions& options) const;

@@ -103,7 +103,10 @@ void printRoots(const InfoArgs& a, const Scene& scene, const SceneSummary& s, in
 void printCounts(const SceneSummary& s, const Kinds& k) {
     std::cout << "nodes: " << s.nodes << "\n"
               << "meshes: " << s.meshes << " (" << s.primitives << " primitives, " << s.triangles
-              << " triangles, " << s.vertices << " vertices)\n"
+              << " triangles, "
+              << (s.lines ? std::to_string(s.lines) + " lines, " : std::string())
+              << (s.points ? std::to_string(s.points) + " points, " : std::string()) << s.vertices
+              << " vertices)\n"
               << "materials: "
               << breakdown(s.materials, {{"phong", k.phong},
                                          {"pbr", k.pbr},

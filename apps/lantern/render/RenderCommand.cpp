@@ -38,9 +38,15 @@ void printProbe(std::ostream& out, const ProbeReport& r) {
         return;
     }
     out << "  view " << r.view << ", node " << r.node << " \"" << r.nodeName << "\", mesh "
-        << r.mesh << " primitive " << r.primitive << ", triangle " << r.triangle << " (vertices "
-        << r.vertices[0] << " " << r.vertices[1] << " " << r.vertices[2] << ", barycentric "
-        << triple(r.barycentric) << ")\n";
+        << r.mesh << " primitive " << r.primitive << ", ";
+    if (r.topology == Topology::Points)
+        out << "point " << r.triangle << " (vertex " << r.vertices[0] << ")\n";
+    else if (r.topology == Topology::Lines)
+        out << "line " << r.triangle << " (vertices " << r.vertices[0] << " " << r.vertices[1]
+            << ", weights " << r.barycentric.x << " " << r.barycentric.y << ")\n";
+    else
+        out << "triangle " << r.triangle << " (vertices " << r.vertices[0] << " " << r.vertices[1]
+            << " " << r.vertices[2] << ", barycentric " << triple(r.barycentric) << ")\n";
     out << "  surface point (eye space): " << triple(r.position) << "\n";
     out << "  normal (eye space, as lit): " << triple(r.normal) << "  "
         << (r.backFacing ? "back face" : "front face")

@@ -96,6 +96,11 @@ struct RenderOptions {
     bool glCompat = false;  ///< reproduce GL fixed function: provoking-vertex flat, per-vertex
                             ///< clamp, shininess and spot exponent limited to [0,128]
     int msaa = 1;           ///< samples per pixel: 1, 2, 4 or 8 (as the device supports)
+    /// Pixels across a point (glTF POINTS, GL_POINTS) and a line (LINES, LINE_STRIP,
+    /// LINE_LOOP; GL_LINES), each in [1, 255]: 1 is GL's default. Above 1 the device needs
+    /// the largePoints / wideLines feature and its range (lavapipe has both).
+    double pointSize = 1.0;
+    double lineWidth = 1.0;
     DepthMode depth = DepthMode::ReversedZ;
     CameraSpec camera;       ///< the camera when `views` is empty
     std::vector<View> views; ///< several views in one image; empty: one full-image view

@@ -52,8 +52,9 @@ struct ProbeReport {
     bool hit = false;  ///< false: no surface covers the pixel (everything below is empty)
     int view = 0;      ///< RenderOptions::views index (0 without views)
     int node = -1, mesh = -1, primitive = -1;
-    std::uint32_t triangle = 0;      ///< index of the triangle in the primitive
-    std::uint32_t vertices[3] = {};  ///< its vertex indices
+    Topology topology = Topology::Triangles;  ///< what the primitive draws
+    std::uint32_t triangle = 0;      ///< index of the triangle (line, point) in the primitive
+    std::uint32_t vertices[3] = {};  ///< its vertex indices (a line's and a point's last repeats)
     glm::dvec3 barycentric{0.0};     ///< perspective-correct weights of the vertices at the centre
     std::string nodeName;
     glm::dvec3 position{0.0};  ///< eye space: the pixel centre's ray meets the triangle here

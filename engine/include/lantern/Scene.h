@@ -122,11 +122,19 @@ struct MorphTarget {
     std::vector<glm::vec3> normals;    ///< empty, or one displacement per vertex
 };
 
-/// A triangle list. Attributes are per vertex and object-local. Loaders convert strips and
-/// fans to lists, and fill in missing normals (angle-weighted vertex normals).
+/// What a primitive's vertex sequence draws (OpenGL's GL_TRIANGLES, GL_LINES, GL_POINTS).
+/// Loaders convert strips, fans and loops to these lists.
+enum class Topology : std::uint8_t { Triangles, Lines, Points };
+
+/// A list of triangles, lines or points. Attributes are per vertex and object-local. Loaders
+/// convert strips, fans and loops to lists, and fill in missing normals of triangles
+/// (angle-weighted vertex normals).
 struct Primitive {
+    Topology topology = Topology::Triangles;
     std::vector<glm::vec3> positions;
-    std::vector<glm::vec3> normals;    ///< same count as positions (may contain zero vectors)
+    /// Same count as positions (may contain zero vectors). Lines and points may have none:
+    /// they are then drawn unlit (base colour times vertex colour), as glTF recommends.
+    std::vector<glm::vec3> normals;
     std::vector<glm::vec4> colors;     ///< empty, or COLOR_0 per vertex (linear RGBA)
     std::vector<glm::vec2> texcoords;  ///< empty, or TEXCOORD_0 per vertex
     /// Skinning (JOINTS_0/1, WEIGHTS_0/1): up to 8 influences per vertex, indices into the
@@ -137,11 +145,26 @@ struct Primitive {
     std::vector<glm::vec4> weights0, weights1;
     /// Morph targets; every primitive of a mesh has the same number (glTF).
     std::vector<MorphTarget> targets;
-    std::vector<std::uint32_t> indices;  ///< triangle list; empty: vertices taken in threes
+    /// The list of triangles (3 per element), lines (2) or points (1); empty: the vertices
+    /// taken in order.
+    std::vector<std::uint32_t> indices;
     int material = -1;  ///< index into Scene::materials; -1: the default material
 
+    /// Vertices per element: 3, 2 or 1.
+    std::size_t verticesPerElement() const {
+        return topology == Topology::Triangles ? 3 : topology == Topology::Lines ? 2 : 1;
+    }
+    /// Triangles, lines or points drawn.
+    std::size_t elementCount() const {
+        return (indices.empty() ? positions.size() : indices.size()) / verticesPerElement();
+    }
+    /// Triangles drawn (0 for lines and points).
     std::size_t triangleCount() const {
-        return (indices.empty() ? positions.size() : indices.size()) / 3;
+        return topology == Topology::Triangles ? elementCount() : 0;
+    }
+    /// Drawn unlit: lines or points without normals.
+    bool unlitForWantOfNormals() const {
+        return topology != Topology::Triangles && normals.empty();
     }
 };
 
@@ -339,6 +362,7 @@ LANTERN_API Bounds computeBounds(const Scene& scene, const Pose& pose);
 /// What a scene contains, for `lantern info` and --explain.
 struct SceneSummary {
     std::size_t nodes = 0, meshes = 0, primitives = 0, triangles = 0, vertices = 0;
+    std::size_t lines = 0, points = 0;  ///< line and point elements (glTF's other modes)
     std::size_t materials = 0, textures = 0, lights = 0, cameras = 0, animations = 0;
     std::size_t roots = 0;
     Bounds bounds;  ///< at time 0, default root

@@ -47,12 +47,13 @@ DrawFeatures drawFeatures(const Material& mat, const Draw& d, const LightFeature
     f.twoSided = twoSidedLighting(lighting, mat);
     const bool materialSpecular =
         nonZero(mat.front.specular) || (mat.back && nonZero(mat.back->specular));
-    f.specular = lights.specular && materialSpecular && !mat.unlit;
+    const bool unlit = mat.unlit || d.unlitForWantOfNormals;
+    f.specular = lights.specular && materialSpecular && !unlit;
     f.vertexColor = d.hasColors;
     f.texture = d.texture >= 0;
     f.alphaMask = mat.alphaMode == AlphaMode::Mask;
     f.blend = mat.alphaMode == AlphaMode::Blend;
-    f.unlit = mat.unlit;
+    f.unlit = unlit;
     f.ambientFollowsDiffuse = mat.ambientFollowsDiffuse;
     return f;
 }
@@ -71,7 +72,7 @@ void addNodeDraws(const Scene& scene, const Frame& frame, std::size_t ni,
     const std::uint32_t defaultMaterial = std::uint32_t(scene.materials.size());
     for (std::size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
         const Primitive& prim = mesh.primitives[pi];
-        if (prim.triangleCount() == 0) continue;
+        if (prim.elementCount() == 0) continue;
         // Skinned vertices are in world space: the node's own transform is not applied.
         const bool skinned = isSkinned(scene, int(ni), prim);
         const glm::dmat4 viewFromModel = skinned ? viewFromWorld : nodeViewFromModel;
@@ -88,6 +89,8 @@ void addNodeDraws(const Scene& scene, const Frame& frame, std::size_t ni,
         d.normalMatrix = normals;
         d.mirrored = mirrored;
         d.cullBack = !mat.doubleSided;
+        d.topology = prim.topology;
+        d.unlitForWantOfNormals = prim.unlitForWantOfNormals();
         d.hasColors = !prim.colors.empty();
         d.hasTexcoords = !prim.texcoords.empty();
         d.deformed = isDeformed(scene, int(ni), prim);

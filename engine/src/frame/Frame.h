@@ -128,6 +128,8 @@ struct Draw {
     glm::dmat3 normalMatrix{1.0};  ///< normalMatrix(viewFromModel)
     bool mirrored = false;  ///< det(viewFromModel) < 0: clockwise triangles face the viewer
     bool cullBack = true;   ///< false for double-sided materials
+    Topology topology = Topology::Triangles;
+    bool unlitForWantOfNormals = false;  ///< lines or points without normals
     bool hasColors = false, hasTexcoords = false;
     /// Drawn with the pose's deformation (skin, morph targets: deformPrimitive()). Skinned
     /// draws are in world space: viewFromModel is then the view's viewFromWorld.

@@ -183,6 +183,7 @@ VkPhysicalDeviceFeatures Context::readOptionalFeatures() {
     VkPhysicalDeviceFeatures core{};
     core.fillModeNonSolid = supported.features.fillModeNonSolid;
     core.wideLines = supported.features.wideLines;
+    core.largePoints = supported.features.largePoints;
     core.shaderFloat64 = supported.features.shaderFloat64;
     core.independentBlend = supported.features.independentBlend;
     // The id AOV reads gl_PrimitiveID in fragment shaders: SPIR-V's Geometry capability.
@@ -190,6 +191,7 @@ VkPhysicalDeviceFeatures Context::readOptionalFeatures() {
     m_caps.primitiveIdInFragment = core.geometryShader;
     m_caps.fillModeNonSolid = core.fillModeNonSolid;
     m_caps.wideLines = core.wideLines;
+    m_caps.largePoints = core.largePoints;
     m_caps.shaderFloat64 = core.shaderFloat64;
     m_caps.provokingVertexLast = haveProvoking && provoking.provokingVertexLast;
     return core;
@@ -248,6 +250,7 @@ Result<std::shared_ptr<Context>> Context::adopt(const ExternalDevice& e, bool sw
     ctx->m_caps.primitiveIdInFragment = f.core.geometryShader && f.core.independentBlend;
     ctx->m_caps.fillModeNonSolid = f.core.fillModeNonSolid;
     ctx->m_caps.wideLines = f.core.wideLines;
+    ctx->m_caps.largePoints = f.core.largePoints;
     ctx->m_caps.shaderFloat64 = f.core.shaderFloat64;
     ctx->m_caps.provokingVertexLast =
         f.provokingVertexLast && extensionEnabled(e, VK_EXT_PROVOKING_VERTEX_EXTENSION_NAME);

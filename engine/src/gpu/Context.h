@@ -38,7 +38,8 @@ struct Capabilities {
     bool shaderFloat64 = false;
     bool primitiveIdInFragment = false;  ///< geometryShader feature: the AOV ids need it
     bool fillModeNonSolid = false;     ///< wireframe
-    bool wideLines = false;
+    bool wideLines = false;            ///< lines wider than one pixel
+    bool largePoints = false;          ///< points larger than one pixel
     bool debugUtils = false;           ///< object names and the messenger
     std::uint32_t colorDepthSampleCounts = VK_SAMPLE_COUNT_1_BIT;  ///< float colour & depth
 };

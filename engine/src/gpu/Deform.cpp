@@ -69,9 +69,9 @@ namespace {
 DeformJob planJob(const DeformCommand& c, const PrimitiveBuffers& gp, std::vector<float>& params,
                   VkDeviceSize& out, DeformStreams& st) {
     DeformJob job;
-    job.flatMode = c.flat ? 1u : 0u;
+    job.flatMode = c.flat ? gp.corners : 0u;
     job.vertexCount = gp.vertexCount;
-    job.count = c.flat ? gp.flatVertexCount / 3u : gp.vertexCount;
+    job.count = c.flat ? gp.flatVertexCount / gp.corners : gp.vertexCount;
     job.position = gp.deformPosition;
     job.normal = gp.deformNormal;
     job.joints = gp.deformJoints;

@@ -21,6 +21,7 @@ namespace lantern::gpu {
 /// LANTERN_SC_* of lantern_shared.h) and the fixed-function state that cannot be dynamic.
 struct PipelineKey {
     frame::Program program = frame::Program::Phong;
+    Topology topology = Topology::Triangles;
     std::array<std::uint32_t, LANTERN_SC_COUNT> constants{};
     bool blend = false;
     bool aov = false;  ///< the fragment stage also writes the AOV attachments
@@ -68,6 +69,8 @@ struct TargetDesc {
     AovSet aovs;              ///< AOV planes to read back (any: the AOV attachments exist)
     bool reversedZ = true;    ///< depth clears to 0 (far) instead of 1
     glm::vec4 clear{0.0f};    ///< linear, premultiplied
+    float pointSize = 1.0f;   ///< pixels across a point (GL_POINTS)
+    float lineWidth = 1.0f;   ///< pixels across a line (GL_LINES)
 };
 
 /// The display overlays (viewers), drawn after each view's shaded draws.

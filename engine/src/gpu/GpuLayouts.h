@@ -27,7 +27,7 @@ struct FrameBlock {
     Vec4 globalAmbient;
     std::uint32_t lightCount = 0;
     std::uint32_t viewIndex = 0;
-    std::uint32_t pad0 = 0;
+    float pointSize = 1.0f;  ///< gl_PointSize of point draws
     std::uint32_t pad1 = 0;
 };
 static_assert(sizeof(FrameBlock) == 96);

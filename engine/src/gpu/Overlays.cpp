@@ -103,6 +103,7 @@ void OverlayPipelines::recordView(VkCommandBuffer cmd, const SceneBuffers& scene
         vkCmdSetLineWidth(cmd, 1.0f);
         vkCmdSetDepthBias(cmd, f.depthBias * kBiasConstant, 0.0f, f.depthBias * kBiasSlope);
         for (const DrawCommand& d : view.draws) {
+            if (d.pipeline.topology != Topology::Triangles) continue;  // lines are their own wires
             const PrimitiveBuffers& gp = scene.primitive(d.mesh, d.primitive);
             vkCmdSetCullMode(cmd, d.cullBack ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE);
             vkCmdSetFrontFace(cmd, d.frontClockwise ? VK_FRONT_FACE_CLOCKWISE

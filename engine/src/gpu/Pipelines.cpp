@@ -56,7 +56,7 @@ Result<UniqueDescriptorSetLayout> makeSetLayout(Context& ctx,
 } // namespace
 
 std::size_t PipelineKeyHash::operator()(const PipelineKey& k) const noexcept {
-    std::size_t h = std::size_t(k.program) * 1000003u;
+    std::size_t h = std::size_t(k.program) * 1000003u + std::size_t(k.topology);
     for (std::uint32_t c : k.constants) h = h * 31u + c;
     h = h * 31u + (k.blend ? 1u : 0u);
     h = h * 31u + (k.aov ? 1u : 0u);
@@ -143,6 +143,9 @@ Result<VkPipeline> Pipelines::pipeline(const PipelineKey& key) {
     // GL's default depth test is strict: the first of two equal depths wins.
     d.depthCompare = key.reversedZ ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_LESS;
     d.provokingLast = key.program == Program::GlFlat;
+    d.topology = key.topology == Topology::Lines    ? VK_PRIMITIVE_TOPOLOGY_LINE_LIST
+                 : key.topology == Topology::Points ? VK_PRIMITIVE_TOPOLOGY_POINT_LIST
+                                                    : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
     d.name = std::string(frame::toString(key.program)) + " variant";
     auto p = createGraphicsPipeline(*m_ctx, d);
     if (!p) return std::move(p).error();

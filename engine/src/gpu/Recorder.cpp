@@ -148,6 +148,7 @@ void FrameRecorder::drawViews(const std::vector<VkPipeline>& pipelines) const {
                 boundTexture = tex;
             }
             vkCmdSetCullMode(cmd, d.cullBack ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE);
+            if (d.pipeline.topology == Topology::Lines) vkCmdSetLineWidth(cmd, list.target.lineWidth);
             // The y flip in clipFromView keeps GL's counter-clockwise front faces
             // counter-clockwise on screen; a mirroring transform reverses them (glTF's rule).
             vkCmdSetFrontFace(cmd, d.frontClockwise ? VK_FRONT_FACE_CLOCKWISE

@@ -1,5 +1,5 @@
 // Uploads a scene's geometry (one buffer, non-interleaved streams), builds flat-shading
-// streams on demand, and uploads textures with a mip chain.
+// streams on demand, and the skinning and morph-target inputs (textures: SceneTextures.cpp).
 #include "gpu/SceneBuffers.h"
 
 #include "lantern_shared.h"
@@ -60,109 +60,34 @@ Error tooLarge(const char* what) {
     return makeError(ErrorCode::OutOfMemory, std::string(what) + " exceeds the addressable size");
 }
 
-// Linear blits build the mip chain when the format supports them.
-bool canBlitMips(const Context& c) {
-    VkFormatProperties fp;
-    vkGetPhysicalDeviceFormatProperties(c.physicalDevice(), VK_FORMAT_R8G8B8A8_SRGB, &fp);
-    const VkFormatFeatureFlags blitNeeds = VK_FORMAT_FEATURE_BLIT_SRC_BIT |
-                                           VK_FORMAT_FEATURE_BLIT_DST_BIT |
-                                           VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
-    return (fp.optimalTilingFeatures & blitNeeds) == blitNeeds;
-}
 
-struct TextureSource {
-    int width, height;
-    const std::uint8_t* pixels;
+// What flat shading lights an element with: its centroid, its normal (a triangle's face
+// normal from its positions, zero when degenerate; the normalised mean of a line's or a point's
+// vertex normals, zero without normals) and its mean vertex colour.
+struct FlatElement {
+    glm::vec3 centroid{0.0f}, normal{0.0f};
+    glm::vec4 color{0.0f};
 };
 
-// A white 1x1 texture (for materials without one), then the scene's textures.
-std::vector<TextureSource> textureSources(const Scene& s) {
-    static const std::uint8_t kWhite[4] = {255, 255, 255, 255};
-    std::vector<TextureSource> sources{{1, 1, kWhite}};
-    for (const Texture& t : s.textures)
-        sources.push_back({t.width, t.height, t.rgba8.data()});
-    return sources;
-}
-
-// Every source's pixels in one host-visible buffer, one after the other.
-struct TextureStaging {
-    Buffer buffer;
-    std::vector<VkDeviceSize> offsets; ///< per source
-};
-
-Result<TextureStaging> stageTextures(Context& c, const std::vector<TextureSource>& sources) {
-    VkDeviceSize stagingSize = 0;
-    for (const TextureSource& src : sources)
-        stagingSize += VkDeviceSize(src.width) * src.height * 4;
-    auto staging = createBuffer(c, stagingSize, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                MemoryUsage::Upload, "texture staging");
-    if (!staging) return std::move(staging).error();
-    TextureStaging out{std::move(*staging), {}};
-    VkDeviceSize offset = 0;
-    for (const TextureSource& src : sources) {
-        out.offsets.push_back(offset);
-        const VkDeviceSize bytes = VkDeviceSize(src.width) * src.height * 4;
-        std::memcpy(static_cast<char*>(out.buffer.mapped) + offset, src.pixels, bytes);
-        offset += bytes;
+FlatElement flatElement(const Primitive& p, const std::uint32_t (&v)[3]) {
+    const std::size_t k = p.verticesPerElement();
+    FlatElement f;
+    glm::dvec3 sum(0.0), normals(0.0);
+    glm::dvec4 colors(0.0);
+    for (std::size_t c = 0; c < k; ++c) {
+        sum += glm::dvec3(p.positions[v[c]]);
+        if (!p.normals.empty()) normals += glm::dvec3(p.normals[v[c]]);
+        if (!p.colors.empty()) colors += glm::dvec4(p.colors[v[c]]);
     }
-    LANTERN_TRY(flush(c, out.buffer));
-    return out;
-}
-
-// Source `i`'s image (0 is the white texture), with a full mip chain when `canMip`.
-Result<Image> createTextureImage(Context& c, const TextureSource& src, std::size_t i, bool canMip) {
-    ImageDesc d;
-    d.format = VK_FORMAT_R8G8B8A8_SRGB;
-    d.width = std::uint32_t(src.width);
-    d.height = std::uint32_t(src.height);
-    d.mipLevels =
-        canMip ? std::uint32_t(std::floor(std::log2(std::max(d.width, d.height)))) + 1 : 1;
-    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
-              VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    d.name = i == 0 ? "white texture" : "texture " + std::to_string(i - 1);
-    return createImage(c, d);
-}
-
-// Level 0 copied from the staging buffer at `offset`, each further level blitted from the one
-// before; every level ends shader-readable.
-void recordTextureUpload(VkCommandBuffer cmd, const Image& img, VkBuffer staging,
-                         VkDeviceSize offset) {
-    const std::uint32_t mips = img.desc.mipLevels;
-    imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
-                 VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    VkBufferImageCopy region{};
-    region.bufferOffset = offset;
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {img.desc.width, img.desc.height, 1};
-    vkCmdCopyBufferToImage(cmd, staging, img.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
-                           &region);
-    std::int32_t w = std::int32_t(img.desc.width), h = std::int32_t(img.desc.height);
-    for (std::uint32_t m = 1; m < mips; ++m) {
-        imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT,
-                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                     VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                     VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, m - 1, 1);
-        const std::int32_t nw = std::max(w / 2, 1), nh = std::max(h / 2, 1);
-        VkImageBlit blit{};
-        blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m - 1, 0, 1};
-        blit.srcOffsets[1] = {w, h, 1};
-        blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m, 0, 1};
-        blit.dstOffsets[1] = {nw, nh, 1};
-        vkCmdBlitImage(cmd, img.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, img.get(),
-                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
-        imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT,
-                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                     VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
-                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
-                     m - 1, 1);
-        w = nw;
-        h = nh;
+    f.centroid = glm::vec3(sum / double(k));
+    f.color = glm::vec4(colors / double(k));
+    if (k == 3) {
+        const glm::dvec3 a(p.positions[v[0]]), b(p.positions[v[1]]), c(p.positions[v[2]]);
+        normals = glm::cross(b - a, c - a);
     }
-    imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                 VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                 VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, mips - 1, 1);
+    const double len = glm::length(normals);
+    if (len > 0.0 && std::isfinite(len)) f.normal = glm::vec3(normals / len);
+    return f;
 }
 
 } // namespace
@@ -193,6 +118,7 @@ Result<std::shared_ptr<SceneBuffers>> SceneBuffers::create(std::shared_ptr<Conte
                 p.indices.size() > std::numeric_limits<std::uint32_t>::max())
                 return tooLarge("a primitive");
             gp.vertexCount = std::uint32_t(n);
+            gp.corners = std::uint32_t(p.verticesPerElement());
             gp.indexCount = std::uint32_t(p.indices.size());
             gp.position = size;
             size = align16(size + n * 12);
@@ -232,7 +158,10 @@ Result<std::shared_ptr<SceneBuffers>> SceneBuffers::create(std::shared_ptr<Conte
         for (const Primitive& p : mesh.primitives) {
             const PrimitiveBuffers& gp = g->m_primitives[k++];
             put(dst, gp.position, p.positions);
-            put(dst, gp.normal, p.normals);
+            if (p.normals.empty())  // unlit lines and points: zero normals (the normal AOV)
+                std::memset(dst + gp.normal, 0, p.positions.size() * 12);
+            else
+                put(dst, gp.normal, p.normals);
             if (gp.color != kNoStream) put(dst, gp.color, p.colors);
             if (gp.texcoord != kNoStream) put(dst, gp.texcoord, p.texcoords);
             if (gp.index != kNoStream) put(dst, gp.index, p.indices);
@@ -252,7 +181,7 @@ Result<void> SceneBuffers::ensureFlatStreams() {
     for (const Mesh& mesh : s.meshes)
         for (const Primitive& p : mesh.primitives) {
             PrimitiveBuffers& gp = m_primitives[k++];
-            const VkDeviceSize n = VkDeviceSize(p.triangleCount()) * 3;
+            const VkDeviceSize n = VkDeviceSize(p.elementCount()) * p.verticesPerElement();
             if (n > std::numeric_limits<std::uint32_t>::max()) return tooLarge("a primitive");
             gp.flatVertexCount = std::uint32_t(n);
             gp.flatPosition = size;
@@ -288,28 +217,19 @@ Result<void> SceneBuffers::ensureFlatStreams() {
             auto* cen = reinterpret_cast<glm::vec3*>(dst + gp.flatCentroid);
             auto* col = gp.flatColor != kNoStream ? reinterpret_cast<glm::vec4*>(dst + gp.flatColor) : nullptr;
             auto* tex = gp.flatTexcoord != kNoStream ? reinterpret_cast<glm::vec2*>(dst + gp.flatTexcoord) : nullptr;
-            const std::size_t triangles = p.triangleCount();
-            for (std::size_t t = 0; t < triangles; ++t) {
-                std::uint32_t v[3];
-                for (int c = 0; c < 3; ++c)
-                    v[c] = p.indices.empty() ? std::uint32_t(t * 3 + c) : p.indices[t * 3 + c];
-                const glm::dvec3 a(p.positions[v[0]]), b(p.positions[v[1]]), cpos(p.positions[v[2]]);
-                // The face normal in object space (the normal matrix carries it to eye space);
-                // a degenerate triangle gets zero (ambient and emission only, covers no pixel).
-                const glm::dvec3 cross = glm::cross(b - a, cpos - a);
-                const double len = glm::length(cross);
-                const glm::vec3 face = (len > 0.0 && std::isfinite(len)) ? glm::vec3(cross / len) : glm::vec3(0.0f);
-                const glm::vec3 centroid((a + b + cpos) / 3.0);
-                glm::vec4 avg(0.0f);
-                if (col)
-                    avg = glm::vec4((glm::dvec4(p.colors[v[0]]) + glm::dvec4(p.colors[v[1]]) +
-                                     glm::dvec4(p.colors[v[2]])) / 3.0);
-                for (int c = 0; c < 3; ++c) {
-                    const std::size_t o = t * 3 + std::size_t(c);
+            const std::size_t corners = p.verticesPerElement(), elements = p.elementCount();
+            for (std::size_t e = 0; e < elements; ++e) {
+                std::uint32_t v[3] = {};
+                for (std::size_t c = 0; c < corners; ++c)
+                    v[c] = p.indices.empty() ? std::uint32_t(e * corners + c)
+                                             : p.indices[e * corners + c];
+                const FlatElement f = flatElement(p, v);
+                for (std::size_t c = 0; c < corners; ++c) {
+                    const std::size_t o = e * corners + c;
                     pos[o] = p.positions[v[c]];
-                    nrm[o] = face;
-                    cen[o] = centroid;
-                    if (col) col[o] = avg;
+                    nrm[o] = f.normal;
+                    cen[o] = f.centroid;
+                    if (col) col[o] = f.color;
                     if (tex) tex[o] = p.texcoords[v[c]];
                 }
             }
@@ -370,6 +290,7 @@ Result<void> SceneBuffers::uploadDeformInputs() {
             if (!gp.deformable) continue;
             const std::size_t n = p.positions.size();
             put3(gp.deformPosition, p.positions);
+            if (p.normals.empty()) std::memset(dst + gp.deformNormal, 0, n * 12);
             put3(gp.deformNormal, p.normals);
             for (std::size_t v = 0; v < n && gp.influences > 0; ++v)
                 for (std::uint32_t i = 0; i < gp.influences; ++i) {
@@ -389,102 +310,6 @@ Result<void> SceneBuffers::uploadDeformInputs() {
         }
     return endFill(*m_ctx, m_deformInput, *fill, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-}
-
-Result<void> SceneBuffers::uploadTextures(VkDescriptorSetLayout layout) {
-    LANTERN_TRY(uploadTextureImages());
-    LANTERN_TRY(createSamplers());
-    return createTextureSets(layout);
-}
-
-Result<void> SceneBuffers::uploadTextureImages() {
-    Context& c = *m_ctx;
-    const bool canMip = canBlitMips(c);
-    const std::vector<TextureSource> sources = textureSources(*m_scene);
-    auto staging = stageTextures(c, sources);
-    if (!staging) return std::move(staging).error();
-    for (std::size_t i = 0; i < sources.size(); ++i) {
-        auto img = createTextureImage(c, sources[i], i, canMip);
-        if (!img) return std::move(img).error();
-        m_textures.push_back(std::move(*img));
-    }
-    return c.submitAndWait([&](VkCommandBuffer cmd) {
-        for (std::size_t i = 0; i < m_textures.size(); ++i)
-            recordTextureUpload(cmd, m_textures[i], staging->buffer.get(), staging->offsets[i]);
-    });
-}
-
-namespace {
-
-VkSamplerAddressMode addressMode(TextureWrap w) {
-    return w == TextureWrap::ClampToEdge      ? VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE
-           : w == TextureWrap::MirroredRepeat ? VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT
-                                              : VK_SAMPLER_ADDRESS_MODE_REPEAT;
-}
-
-// The sampler a texture asks for: nearest * 9 + wrapS * 3 + wrapT (18 in all).
-int samplerIndexOf(bool nearest, TextureWrap s, TextureWrap t) {
-    return (nearest ? 9 : 0) + int(s) * 3 + int(t);
-}
-
-} // namespace
-
-Result<void> SceneBuffers::createSamplers() {
-    Context& c = *m_ctx;
-    for (int i = 0; i < 18; ++i) {
-        VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-        const bool nearest = i >= 9;
-        sci.magFilter = nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR;
-        sci.minFilter = sci.magFilter;
-        sci.mipmapMode = nearest ? VK_SAMPLER_MIPMAP_MODE_NEAREST : VK_SAMPLER_MIPMAP_MODE_LINEAR;
-        sci.addressModeU = addressMode(TextureWrap((i % 9) / 3));
-        sci.addressModeV = addressMode(TextureWrap(i % 3));
-        sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-        sci.maxLod = VK_LOD_CLAMP_NONE;
-        VkSampler sampler = VK_NULL_HANDLE;
-        LANTERN_VK_TRY(vkCreateSampler(c.device(), &sci, nullptr, &sampler));
-        m_samplers.emplace_back(c.device(), sampler);
-    }
-    return {};
-}
-
-// One descriptor set per texture, with the sampler its texture asks for.
-Result<void> SceneBuffers::createTextureSets(VkDescriptorSetLayout layout) {
-    Context& c = *m_ctx;
-    const Scene& s = *m_scene;
-    VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                  std::uint32_t(m_textures.size())};
-    VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    dpci.maxSets = std::uint32_t(m_textures.size());
-    dpci.poolSizeCount = 1;
-    dpci.pPoolSizes = &poolSize;
-    VkDescriptorPool pool = VK_NULL_HANDLE;
-    LANTERN_VK_TRY(vkCreateDescriptorPool(c.device(), &dpci, nullptr, &pool));
-    m_pool = UniqueDescriptorPool(c.device(), pool);
-    std::vector<VkDescriptorSetLayout> layouts(m_textures.size(), layout);
-    m_textureSets.resize(m_textures.size());
-    VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-    ai.descriptorPool = pool;
-    ai.descriptorSetCount = std::uint32_t(layouts.size());
-    ai.pSetLayouts = layouts.data();
-    LANTERN_VK_TRY(vkAllocateDescriptorSets(c.device(), &ai, m_textureSets.data()));
-    for (std::size_t i = 0; i < m_textures.size(); ++i) {
-        int samplerIndex = 0;
-        if (i > 0) {
-            const Texture& t = s.textures[i - 1];
-            samplerIndex = samplerIndexOf(t.nearest, t.wrapS, t.wrapT);
-        }
-        VkDescriptorImageInfo info{m_samplers[samplerIndex].get(), m_textures[i].view.get(),
-                                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        w.dstSet = m_textureSets[i];
-        w.dstBinding = LANTERN_BINDING_BASE_COLOR;
-        w.descriptorCount = 1;
-        w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-        w.pImageInfo = &info;
-        vkUpdateDescriptorSets(c.device(), 1, &w, 0, nullptr);
-    }
-    return {};
 }
 
 } // namespace lantern::gpu

@@ -26,12 +26,13 @@ struct PrimitiveBuffers {
     VkDeviceSize flatPosition = 0, flatNormal = 0, flatColor = kNoStream,
                  flatTexcoord = kNoStream, flatCentroid = 0;
     std::uint32_t flatVertexCount = 0;
+    std::uint32_t corners = 3;  ///< vertices per element: 3 triangles, 2 lines, 1 points
     // Words into the deformation-input buffer (primitives with joints or morph targets).
     bool deformable = false;
     std::uint32_t deformPosition = 0, deformNormal = 0, deformJoints = 0, deformWeights = 0;
     std::uint32_t influences = 0;  ///< 0, 4 or 8
     std::uint32_t deformTargets = 0, targetCount = 0;
-    std::uint32_t deformIndices = ~0u;  ///< the triangle list; ~0u: non-indexed
+    std::uint32_t deformIndices = ~0u;  ///< the element list; ~0u: non-indexed
 };
 
 class SceneBuffers {

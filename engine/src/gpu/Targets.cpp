@@ -50,6 +50,31 @@ struct TargetMaker {
     }
 };
 
+// Points and lines wider than a pixel need a device feature, and the size its range.
+Result<void> checkPointsAndLines(const Context& ctx, const TargetDesc& d) {
+    const auto& lim = ctx.properties().limits;
+    auto check = [](float value, bool feature, const float range[2], const char* what,
+                    const char* featureName, const char* option) -> Result<void> {
+        if (value == 1.0f) return {};
+        if (!feature)
+            return makeError(ErrorCode::Unsupported,
+                             std::string("the device lacks the ") + featureName +
+                                 " feature: " + what + " must be 1 pixel",
+                             option);
+        if (value < range[0] || value > range[1])
+            return makeError(ErrorCode::Unsupported,
+                             std::string(what) + " " + std::to_string(value) +
+                                 " is outside the device's range [" + std::to_string(range[0]) +
+                                 ", " + std::to_string(range[1]) + "]",
+                             option);
+        return {};
+    };
+    LANTERN_TRY(check(d.pointSize, ctx.capabilities().largePoints, lim.pointSizeRange,
+                      "the point size", "largePoints", "--point-size"));
+    return check(d.lineWidth, ctx.capabilities().wideLines, lim.lineWidthRange, "the line width",
+                 "wideLines", "--line-width");
+}
+
 } // namespace
 
 Result<void> checkTarget(const Context& ctx, const TargetDesc& d, std::uint32_t slots) {
@@ -76,6 +101,7 @@ Result<void> checkTarget(const Context& ctx, const TargetDesc& d, std::uint32_t 
                          "the device lacks the geometryShader feature that the AOV shaders "
                          "need (gl_PrimitiveID in the fragment stage)",
                          "--aov");
+    LANTERN_TRY(checkPointsAndLines(ctx, d));
     const double bytes = slotBytes(d) * double(slots);
     VkDeviceSize heap = 0;
     const auto& mem = ctx.memoryProperties();

@@ -1,7 +1,7 @@
 // glTF meshes -> Lantern primitives: attributes read through the checked accessor readers,
-// triangle strips and fans converted to lists (glTF's vertex order, so windings are kept),
-// point and line modes skipped with a warning, and missing normals computed as angle-weighted
-// averages of the faces sharing each vertex.
+// strips, fans and loops converted to lists (glTF's vertex order, so windings are kept), and
+// missing normals of triangles computed as angle-weighted averages of the faces sharing each
+// vertex (lines and points without normals are drawn unlit).
 #include "io/GltfInternal.h"
 
 #include <cmath>
@@ -30,16 +30,34 @@ const char* modeName(int mode) {
     }
 }
 
-/// The triangle list of a primitive given its vertex sequence (its indices, or 0..n-1).
-/// Strip triangle i is (i, i+1+i%2, i+2-i%2) and fan triangle i is (i+1, i+2, 0), as glTF 2.0
-/// specifies, which keeps every triangle's winding. A trailing partial triangle of a list is
-/// dropped, as OpenGL's glDrawArrays/glDrawElements do.
-std::vector<std::uint32_t> triangleList(int mode, const std::vector<std::uint32_t>& sequence) {
+/// The element list of a primitive given its vertex sequence (its indices, or 0..n-1), as
+/// glTF 2.0 specifies each mode. Strip triangle i is (i, i+1+i%2, i+2-i%2) and fan triangle i
+/// is (i+1, i+2, 0), which keeps every triangle's winding; strip line i is (i, i+1) and a loop
+/// adds (n-1, 0), so the last vertex of each line is GL's provoking vertex. A trailing partial
+/// triangle or line of a list is dropped, as OpenGL's glDrawArrays/glDrawElements do.
+std::vector<std::uint32_t> elementList(int mode, const std::vector<std::uint32_t>& sequence) {
     const std::size_t n = sequence.size();
     std::vector<std::uint32_t> out;
-    if (mode == TINYGLTF_MODE_TRIANGLES) {
+    switch (mode) {
+    case TINYGLTF_MODE_POINTS:
+        return sequence;
+    case TINYGLTF_MODE_LINE:
+        out.assign(sequence.begin(), sequence.begin() + std::ptrdiff_t(n - n % 2));
+        return out;
+    case TINYGLTF_MODE_LINE_STRIP:
+    case TINYGLTF_MODE_LINE_LOOP:
+        if (n < 2) return out;
+        out.reserve(2 * n);
+        for (std::size_t i = 0; i + 1 < n; ++i) out.insert(out.end(), {sequence[i], sequence[i + 1]});
+        if (mode == TINYGLTF_MODE_LINE_LOOP && n > 2) out.insert(out.end(), {sequence[n - 1], sequence[0]});
+        return out;
+    case TINYGLTF_MODE_TRIANGLES:
         out.assign(sequence.begin(), sequence.begin() + std::ptrdiff_t(n - n % 3));
-    } else if (n >= 3) {
+        return out;
+    default:
+        break;
+    }
+    if (n >= 3) {
         out.reserve((n - 2) * 3);
         for (std::size_t i = 0; i + 2 < n; ++i) {
             if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
@@ -54,6 +72,14 @@ std::vector<std::uint32_t> triangleList(int mode, const std::vector<std::uint32_
         }
     }
     return out;
+}
+
+Topology topologyOf(int mode) {
+    if (mode == TINYGLTF_MODE_POINTS) return Topology::Points;
+    if (mode == TINYGLTF_MODE_LINE || mode == TINYGLTF_MODE_LINE_LOOP ||
+        mode == TINYGLTF_MODE_LINE_STRIP)
+        return Topology::Lines;
+    return Topology::Triangles;
 }
 
 template <typename Vec>
@@ -194,23 +220,18 @@ Result<std::vector<std::uint32_t>> vertexSequence(const tinygltf::Model& model,
     return sequence;
 }
 
-// One primitive as a triangle list; nothing (after a warning) when it is skipped: points and
-// lines, no POSITION, or not one whole triangle.
+// One primitive as a list of triangles, lines or points; nothing (after a warning) when it is
+// skipped: no POSITION, or not one whole element.
 Result<std::optional<Primitive>> convertPrimitive(const tinygltf::Model& model,
                                                   const tinygltf::Primitive& prim,
                                                   const std::string& obj, const Diagnostics& diag) {
-    if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
-        prim.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-        diag.warn(obj + ".mode", std::string("mode ") + modeName(prim.mode) +
-                                     " is not drawn (only triangles); primitive skipped");
-        return std::optional<Primitive>();
-    }
     const int positionAccessor = attributeAccessor(prim, "POSITION");
     if (positionAccessor < 0) {
         diag.warn(obj + ".attributes", "no POSITION; primitive skipped");
         return std::optional<Primitive>();
     }
     Primitive out;
+    out.topology = topologyOf(prim.mode);
     out.material = prim.material;
     LANTERN_TRY(readAttributes(model, prim, positionAccessor, obj, diag, out));
     LANTERN_TRY(readSkinAttributes(model, prim, obj, diag, out));
@@ -218,21 +239,24 @@ Result<std::optional<Primitive>> convertPrimitive(const tinygltf::Model& model,
     auto sequence = vertexSequence(model, prim, out.positions.size(), obj, diag);
     if (!sequence) return std::move(sequence).error();
     const std::size_t given = sequence->size();
-    out.indices = triangleList(prim.mode, *sequence);
-    if (prim.mode == TINYGLTF_MODE_TRIANGLES && given % 3 != 0)
-        diag.warn(obj, std::to_string(given) +
-                           " vertices for TRIANGLES is not a multiple "
-                           "of 3; the last " +
-                           std::to_string(given % 3) + " are ignored");
+    out.indices = elementList(prim.mode, *sequence);
+    const std::size_t k = out.verticesPerElement();
+    const bool list = prim.mode == TINYGLTF_MODE_TRIANGLES || prim.mode == TINYGLTF_MODE_LINE;
+    if (list && given % k != 0)
+        diag.warn(obj, std::to_string(given) + " vertices for " + modeName(prim.mode) +
+                           " is not a multiple of " + std::to_string(k) + "; the last " +
+                           std::to_string(given % k) + " are ignored");
     if (out.indices.empty()) {
         diag.warn(obj, std::string(modeName(prim.mode)) + " with " + std::to_string(given) +
-                           " vertices has no triangle; primitive skipped");
+                           " vertices draws nothing; primitive skipped");
         return std::optional<Primitive>();
     }
-    // A plain non-indexed list needs no index buffer: draw the vertices in threes.
-    if (prim.indices < 0 && prim.mode == TINYGLTF_MODE_TRIANGLES && given % 3 == 0)
+    // A plain non-indexed list needs no index buffer: draw the vertices in order.
+    if (prim.indices < 0 && (list || prim.mode == TINYGLTF_MODE_POINTS) && given % k == 0)
         out.indices.clear();
-    if (out.normals.empty()) out.normals = computeSmoothNormals(out.positions, out.indices);
+    // Triangles without normals get smooth ones; lines and points without are drawn unlit.
+    if (out.normals.empty() && out.topology == Topology::Triangles)
+        out.normals = computeSmoothNormals(out.positions, out.indices);
     return std::optional<Primitive>(std::move(out));
 }
 

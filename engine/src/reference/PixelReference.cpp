@@ -11,7 +11,10 @@
 namespace lantern::ref {
 namespace {
 
+// A triangle, line or point of a draw (`corners` of the three are used; the unused repeat the
+// last, with weight 0).
 struct Triangle {
+    std::size_t corners = 3;
     std::uint32_t vertices[3] = {};
     glm::dvec3 eye[3];    ///< eye-space positions
     glm::dvec3 normal[3]; ///< normal matrix times the vertex normal (not normalised)
@@ -44,6 +47,34 @@ RayHit intersect(const Triangle& t, const glm::dvec3& origin, const glm::dvec3& 
     return h;
 }
 
+// Where a line or a point is met at the pixel centre (fx, fy) in framebuffer coordinates: a
+// line at the centre's projection onto the segment in window space, its parameter made
+// perspective-correct (the Vulkan rule for line attributes); a point at its vertex.
+RayHit intersectLineOrPoint(const Triangle& t, const glm::dmat4& clipFromView,
+                            const glm::dvec4& viewport, const glm::dvec2& centre) {
+    RayHit h;
+    h.barycentric = {1.0, 0.0, 0.0};
+    h.point = t.eye[0];
+    if (t.corners != 2) return h;
+    glm::dvec2 win[2];
+    double w[2];
+    for (int c = 0; c < 2; ++c) {
+        const glm::dvec4 clip = clipFromView * glm::dvec4(t.eye[c], 1.0);
+        w[c] = clip.w;
+        win[c] = {viewport.x + (clip.x / clip.w + 1.0) * 0.5 * viewport.z,
+                  viewport.y + (clip.y / clip.w + 1.0) * 0.5 * viewport.w};
+    }
+    const glm::dvec2 d = win[1] - win[0];
+    const double len2 = glm::dot(d, d);
+    double s = len2 > 0.0 && std::isfinite(len2) ? glm::dot(centre - win[0], d) / len2 : 0.0;
+    s = std::clamp(std::isfinite(s) ? s : 0.0, 0.0, 1.0);
+    double u = s;
+    if (w[0] > 0.0 && w[1] > 0.0) u = (s / w[1]) / ((1.0 - s) / w[0] + s / w[1]);
+    h.barycentric = {1.0 - u, u, 0.0};
+    h.point = t.eye[0] * (1.0 - u) + t.eye[1] * u;
+    return h;
+}
+
 template <class T> T interpolate(const glm::dvec3& b, const T& a0, const T& a1, const T& a2) {
     return a0 * b.x + a1 * b.y + a2 * b.z;
 }
@@ -68,9 +99,10 @@ DrawRules rulesOf(const Material& mat, const Primitive& prim, const frame::Light
     r.settings.globalAmbient = lit.model.globalAmbient;
     r.settings.localViewer = lit.model.localViewer;
     r.settings.specular = lit.model.specular;
-    r.settings.unlit = mat.unlit;
+    const bool unlit = mat.unlit || prim.unlitForWantOfNormals();
+    r.settings.unlit = unlit;
     r.vertexColor = !prim.colors.empty();
-    r.colorScales = mat.unlit || mat.ambientFollowsDiffuse;
+    r.colorScales = unlit || mat.ambientFollowsDiffuse;
     r.ambientFollowsDiffuse = mat.ambientFollowsDiffuse;
     r.glClamp = lit.clamp == frame::Clamp::Gl;
     r.fragmentClamp = lit.clamp != frame::Clamp::None;
@@ -147,17 +179,19 @@ struct Vertices {
         return deformed ? deformed->positions[v] : glm::dvec3(prim.positions[v]);
     }
     glm::dvec3 normal(std::uint32_t v) const {
-        return deformed ? deformed->normals[v] : glm::dvec3(prim.normals[v]);
+        if (deformed) return deformed->normals[v];
+        return prim.normals.empty() ? glm::dvec3(0.0) : glm::dvec3(prim.normals[v]);
     }
 };
 
-// The triangle a draw drew, in the draw's eye space.
-Triangle eyeTriangle(const Vertices& vs, const frame::Draw& d, std::uint32_t triangle) {
+// The triangle, line or point a draw drew, in the draw's eye space.
+Triangle eyeTriangle(const Vertices& vs, const frame::Draw& d, std::uint32_t element) {
     const Primitive& prim = vs.prim;
     Triangle t;
+    t.corners = prim.verticesPerElement();
     for (std::size_t c = 0; c < 3; ++c) {
-        const std::uint32_t v = prim.indices.empty() ? std::uint32_t(triangle * 3 + c)
-                                                     : prim.indices[triangle * 3 + c];
+        const std::size_t i = element * t.corners + std::min(c, t.corners - 1);
+        const std::uint32_t v = prim.indices.empty() ? std::uint32_t(i) : prim.indices[i];
         t.vertices[c] = v;
         t.eye[c] = glm::dvec3(d.viewFromModel * glm::dvec4(vs.position(v), 1.0));
         t.normal[c] = d.normalMatrix * vs.normal(v);
@@ -212,32 +246,38 @@ struct RuleEvaluator {
         add(r, "surface point", 1.0, hit.point, r.normal, color);
     }
     void perVertex(ProbeReport& r) const {
-        for (std::size_t c = 0; c < 3; ++c)
+        for (std::size_t c = 0; c < t.corners; ++c)
             add(r, "vertex " + std::to_string(t.vertices[c]), hit.barycentric[int(c)], t.eye[c],
                 sign * safeNormalize(t.normal[c]), rules.vertexColor ? colorAt(t.vertices[c]) : glm::dvec4(1.0));
     }
-    // GL_FLAT: the whole triangle takes the colour lit at its provoking (last) vertex.
+    // GL_FLAT: the whole element takes the colour lit at its provoking (last) vertex.
     void provokingVertex(ProbeReport& r) const {
-        const std::uint32_t v = t.vertices[2];
-        add(r, "provoking vertex " + std::to_string(v), 1.0, t.eye[2],
-            sign * safeNormalize(t.normal[2]), rules.vertexColor ? colorAt(v) : glm::dvec4(1.0));
+        const std::size_t last = t.corners - 1;
+        const std::uint32_t v = t.vertices[last];
+        add(r, "provoking vertex " + std::to_string(v), 1.0, t.eye[last],
+            sign * safeNormalize(t.normal[last]), rules.vertexColor ? colorAt(v) : glm::dvec4(1.0));
     }
-    // At the centroid with the face normal, both from the object-space positions as the flat
-    // streams are built (gpu/SceneBuffers.cpp); COLOR_0 averaged.
+    // At the centroid with the face normal (a line's or a point's: the normalised mean of its
+    // vertex normals), from the object-space data as the flat streams are built
+    // (gpu/SceneBuffers.cpp, flatElement); COLOR_0 averaged.
     void faceCentroid(ProbeReport& r) const {
-        glm::dvec3 p[3];
-        for (std::size_t c = 0; c < 3; ++c) p[c] = vertices.position(t.vertices[c]);
-        const glm::dvec3 cross = glm::cross(p[1] - p[0], p[2] - p[0]);
-        const double len = glm::length(cross);
-        const glm::dvec3 face = (len > 0.0 && std::isfinite(len)) ? cross / len : glm::dvec3(0.0);
-        const glm::dvec3 centroid =
-            glm::dvec3(draw.viewFromModel * glm::dvec4((p[0] + p[1] + p[2]) / 3.0, 1.0));
+        glm::dvec3 p[3], sum(0.0), normals(0.0);
+        glm::dvec4 colors(0.0);
+        for (std::size_t c = 0; c < t.corners; ++c) {
+            p[c] = vertices.position(t.vertices[c]);
+            sum += p[c];
+            normals += vertices.normal(t.vertices[c]);
+            if (rules.vertexColor) colors += colorAt(t.vertices[c]);
+        }
+        const double k = double(t.corners);
+        if (t.corners == 3) normals = glm::cross(p[1] - p[0], p[2] - p[0]);
+        const double len = glm::length(normals);
+        const glm::dvec3 face = (len > 0.0 && std::isfinite(len)) ? normals / len : glm::dvec3(0.0);
+        const glm::dvec3 centroid = glm::dvec3(draw.viewFromModel * glm::dvec4(sum / k, 1.0));
         r.normal = sign * safeNormalize(draw.normalMatrix * face);
-        const glm::dvec4 color =
-            rules.vertexColor
-                ? (colorAt(t.vertices[0]) + colorAt(t.vertices[1]) + colorAt(t.vertices[2])) / 3.0
-                : glm::dvec4(1.0);
-        add(r, "triangle centroid", 1.0, centroid, r.normal, color);
+        const glm::dvec4 color = rules.vertexColor ? colors / k : glm::dvec4(1.0);
+        const char* what[] = {"", "point", "line midpoint", "triangle centroid"};
+        add(r, what[t.corners], 1.0, centroid, r.normal, color);
     }
     void evaluateAll(ProbeReport& r, frame::Program program) const {
         switch (program) {
@@ -276,7 +316,7 @@ ProbeReport PixelReference::explain(int x, int y, std::uint32_t drawId, std::uin
     const frame::Draw* d = drawId == 0 ? nullptr : m_frame.draw(drawId - 1, &vi);
     if (!d) return r;
     const Primitive& prim = m_scene.meshes[d->mesh].primitives[d->primitive];
-    if (triangle >= prim.triangleCount()) return r;
+    if (triangle >= prim.elementCount()) return r;
     const frame::View& view = m_frame.views[vi];
     // The material as the scene gives it to the primitive (GL's limits applied by the frame).
     const std::size_t materialIndex =
@@ -288,7 +328,13 @@ ProbeReport PixelReference::explain(int x, int y, std::uint32_t drawId, std::uin
     const Triangle t = eyeTriangle(vertices, *d, triangle);
     glm::dvec3 origin, dir;
     pixelRay(view, m_imageHeight, x, y, origin, dir);
-    const RayHit hit = intersect(t, origin, dir);
+    const double top = double(m_imageHeight - view.y - view.height);
+    const RayHit hit =
+        t.corners == 3
+            ? intersect(t, origin, dir)
+            : intersectLineOrPoint(t, view.camera.clipFromView,
+                                   glm::dvec4(view.x, top, view.width, view.height),
+                                   glm::dvec2(x + 0.5, y + 0.5));
 
     r.hit = true;
     r.view = int(vi);
@@ -296,23 +342,25 @@ ProbeReport PixelReference::explain(int x, int y, std::uint32_t drawId, std::uin
     r.nodeName = m_scene.nodes[d->node].name;
     r.mesh = int(d->mesh);
     r.primitive = int(d->primitive);
+    r.topology = prim.topology;
     r.triangle = triangle;
     for (std::size_t c = 0; c < 3; ++c) r.vertices[c] = t.vertices[c];
     r.barycentric = hit.barycentric;
     r.position = hit.point;
     // A mirroring transform makes clockwise triangles the front ones (glTF's rule).
-    r.backFacing = d->mirrored ? hit.counterClockwise : !hit.counterClockwise;
+    // Lines and points are always front-facing (Vulkan and GL).
+    r.backFacing = t.corners == 3 && (d->mirrored ? hit.counterClockwise : !hit.counterClockwise);
     r.twoSided = rules.twoSided;
     r.backMaterial = r.backFacing && rules.twoSided;
     const double sign = r.backMaterial ? -1.0 : 1.0;
     r.material = prim.material;
     r.materialName = mat.name;
     r.materialSide = r.backMaterial && mat.back ? *mat.back : mat.front;
-    r.unlit = mat.unlit;
+    r.unlit = mat.unlit || prim.unlitForWantOfNormals();
     r.textured = rules.textured;
     bool lightSpecular = false;
     for (const EyeLight& l : view.lights) lightSpecular |= nonZero(l.specular);
-    r.specularPresent = !mat.unlit && lightSpecular && nonZero(r.materialSide.specular);
+    r.specularPresent = !r.unlit && lightSpecular && nonZero(r.materialSide.specular);
     r.normal = sign * safeNormalize(interpolate(hit.barycentric, t.normal[0], t.normal[1], t.normal[2]));
 
     const RuleEvaluator evaluator{prim, vertices, *d, t, hit, rules, view.lights, perLight, sign};

@@ -59,6 +59,7 @@ gpu::ViewCommands packView(const frame::Frame& frame, std::size_t vi, const Rend
     out.frame.clipFromView = toMat4(v.camera.clipFromView);
     out.frame.globalAmbient = vec4(frame.lighting.model.globalAmbient);
     out.frame.viewIndex = std::uint32_t(vi);
+    out.frame.pointSize = float(o.pointSize);
     for (const frame::EyeLight& l : v.lights) out.lights.push_back(packLight(l));
     out.frame.lightCount = std::uint32_t(out.lights.size());
     for (const frame::Draw& d : v.draws) {
@@ -80,6 +81,8 @@ gpu::ViewCommands packView(const frame::Frame& frame, std::size_t vi, const Rend
                      [](const gpu::DrawCommand& a, const gpu::DrawCommand& b) {
                          if (a.pipeline.program != b.pipeline.program)
                              return a.pipeline.program < b.pipeline.program;
+                         if (a.pipeline.topology != b.pipeline.topology)
+                             return a.pipeline.topology < b.pipeline.topology;
                          return a.pipeline.constants < b.pipeline.constants;
                      });
     return out;
@@ -151,6 +154,8 @@ gpu::TargetDesc targetFor(const RenderOptions& o) {
     t.aovs = o.aovs;
     t.reversedZ = o.depth == DepthMode::ReversedZ;
     t.clear = o.background;
+    t.pointSize = float(o.pointSize);
+    t.lineWidth = float(o.lineWidth);
     return t;
 }
 

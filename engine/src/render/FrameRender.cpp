@@ -25,6 +25,14 @@ Result<void> checkOptions(const gpu::Device& device, const RenderOptions& o) {
     if (o.normals && !(o.normalLength >= 0.0 && o.normalLength < 1e300))
         return makeError(ErrorCode::InvalidInput, "the normal length must be finite and >= 0",
                          "options.normalLength");
+    if (!(o.pointSize >= 1.0 && o.pointSize <= 255.0))
+        return makeError(ErrorCode::InvalidInput,
+                         "point size " + std::to_string(o.pointSize) + " is not in [1, 255]",
+                         "--point-size");
+    if (!(o.lineWidth >= 1.0 && o.lineWidth <= 255.0))
+        return makeError(ErrorCode::InvalidInput,
+                         "line width " + std::to_string(o.lineWidth) + " is not in [1, 255]",
+                         "--line-width");
     // Signed values first: the device's check reads sizes and sample counts as unsigned.
     if (o.width < 1 || o.height < 1)
         return makeError(ErrorCode::InvalidInput,

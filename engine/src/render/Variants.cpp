@@ -35,6 +35,7 @@ gpu::PipelineKey pipelineKey(const frame::Frame& frame, const frame::Draw& d,
     const bool all = o.features == FeatureMode::AllFeatures;
     gpu::PipelineKey k;
     k.program = lit.program;
+    k.topology = d.topology;
     k.blend = f.blend;
     k.aov = o.aovs.any();
     k.samples = std::uint32_t(o.msaa);
@@ -90,6 +91,8 @@ std::string describe(const gpu::PipelineKey& k) {
     const char* clamps[] = {"", " clamp", " gl-clamp"};
     s << clamps[std::min<std::uint32_t>(k.constants[LANTERN_SC_CLAMP], 2)];
     s << (k.constants[LANTERN_SC_OPAQUE] ? " opaque" : "");
+    if (k.topology == Topology::Lines) s << " lines";
+    if (k.topology == Topology::Points) s << " points";
     if (k.blend) s << " blend";
     if (k.aov) s << " aov";
     if (k.samples > 1) s << " msaa=" << k.samples;

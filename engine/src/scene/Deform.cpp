@@ -60,7 +60,7 @@ DeformedPrimitive deformPrimitive(const Scene& scene, const Pose& pose, int node
     out.normals.resize(n);
     for (std::size_t v = 0; v < n; ++v) {
         out.positions[v] = glm::dvec3(prim.positions[v]);
-        out.normals[v] = glm::dvec3(prim.normals[v]);
+        out.normals[v] = prim.normals.empty() ? glm::dvec3(0.0) : glm::dvec3(prim.normals[v]);
     }
     const std::vector<double>* weights =
         std::size_t(node) < pose.morphWeights.size() ? &pose.morphWeights[std::size_t(node)]

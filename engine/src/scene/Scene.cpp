@@ -242,6 +242,8 @@ SceneSummary summarize(const Scene& scene) {
         for (const Primitive& p : m.primitives) {
             ++s.primitives;
             s.triangles += p.triangleCount();
+            if (p.topology == Topology::Lines) s.lines += p.elementCount();
+            if (p.topology == Topology::Points) s.points += p.elementCount();
             s.vertices += p.positions.size();
         }
     if (!scene.roots.empty()) s.bounds = computeBounds(scene, evaluatePose(scene, -1, 0.0));
@@ -263,7 +265,7 @@ std::optional<std::string> nothingToDraw(const Scene& scene, int root) {
         const int mesh = scene.nodes[i].mesh;
         if (!pose.visible[i] || mesh < 0) continue;
         for (const Primitive& p : scene.meshes[std::size_t(mesh)].primitives)
-            if (p.triangleCount() > 0) return std::nullopt;
+            if (p.elementCount() > 0) return std::nullopt;
     }
     return "no node of " + name + " draws a mesh with anything in it";
 }

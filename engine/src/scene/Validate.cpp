@@ -92,7 +92,7 @@ Result<void> validateDeformation(const Primitive& prim, const std::string& obj) 
 Result<void> validatePrimitive(const Primitive& prim, const std::string& obj,
                                std::size_t materialCount) {
     const std::size_t n = prim.positions.size();
-    if (prim.normals.size() != n)
+    if (prim.normals.size() != n && !prim.unlitForWantOfNormals())
         return invalid(obj, "has " + std::to_string(prim.normals.size()) + " normals for " +
                                 std::to_string(n) + " positions");
     if (!prim.colors.empty() && prim.colors.size() != n)
@@ -101,12 +101,16 @@ Result<void> validatePrimitive(const Primitive& prim, const std::string& obj,
     if (!prim.texcoords.empty() && prim.texcoords.size() != n)
         return invalid(obj, "has " + std::to_string(prim.texcoords.size()) +
                                 " texture coordinates for " + std::to_string(n) + " positions");
-    if (prim.indices.empty() && n % 3 != 0)
-        return invalid(obj, "non-indexed triangle list with " + std::to_string(n) +
-                                " vertices (not a multiple of 3)");
-    if (prim.indices.size() % 3 != 0)
+    const std::size_t k = prim.verticesPerElement();
+    const char* list = k == 3 ? "triangle" : k == 2 ? "line" : "point";
+    if (prim.indices.empty() && n % k != 0)
+        return invalid(obj, "non-indexed " + std::string(list) + " list with " +
+                                std::to_string(n) + " vertices (not a multiple of " +
+                                std::to_string(k) + ")");
+    if (prim.indices.size() % k != 0)
         return invalid(obj + ".indices", "index count " + std::to_string(prim.indices.size()) +
-                                             " is not a multiple of 3");
+                                             " is not a multiple of " + std::to_string(k) +
+                                             " (a " + list + " list)");
     for (std::size_t i = 0; i < prim.indices.size(); ++i)
         if (prim.indices[i] >= n)
             return invalid(obj + "." + at("indices", i),
@@ -115,7 +119,7 @@ Result<void> validatePrimitive(const Primitive& prim, const std::string& obj,
     for (std::size_t i = 0; i < n; ++i)
         if (!finite(prim.positions[i]))
             return invalid(obj + "." + at("positions", i), "non-finite position");
-    for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t i = 0; i < prim.normals.size(); ++i)
         if (!finite(prim.normals[i]))
             return invalid(obj + "." + at("normals", i), "non-finite normal");
     for (std::size_t i = 0; i < prim.colors.size(); ++i)

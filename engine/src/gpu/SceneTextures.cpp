@@ -1,0 +1,216 @@
+// A scene's textures on the GPU: each uploaded with a mip chain (linear blits where the format
+// allows), the samplers their glTF samplers ask for, one descriptor set per texture.
+#include "gpu/SceneBuffers.h"
+
+#include "lantern_shared.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace lantern::gpu {
+namespace {
+
+// Linear blits build the mip chain when the format supports them.
+bool canBlitMips(const Context& c) {
+    VkFormatProperties fp;
+    vkGetPhysicalDeviceFormatProperties(c.physicalDevice(), VK_FORMAT_R8G8B8A8_SRGB, &fp);
+    const VkFormatFeatureFlags blitNeeds = VK_FORMAT_FEATURE_BLIT_SRC_BIT |
+                                           VK_FORMAT_FEATURE_BLIT_DST_BIT |
+                                           VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+    return (fp.optimalTilingFeatures & blitNeeds) == blitNeeds;
+}
+
+struct TextureSource {
+    int width, height;
+    const std::uint8_t* pixels;
+};
+
+// A white 1x1 texture (for materials without one), then the scene's textures.
+std::vector<TextureSource> textureSources(const Scene& s) {
+    static const std::uint8_t kWhite[4] = {255, 255, 255, 255};
+    std::vector<TextureSource> sources{{1, 1, kWhite}};
+    for (const Texture& t : s.textures)
+        sources.push_back({t.width, t.height, t.rgba8.data()});
+    return sources;
+}
+
+// Every source's pixels in one host-visible buffer, one after the other.
+struct TextureStaging {
+    Buffer buffer;
+    std::vector<VkDeviceSize> offsets; ///< per source
+};
+
+Result<TextureStaging> stageTextures(Context& c, const std::vector<TextureSource>& sources) {
+    VkDeviceSize stagingSize = 0;
+    for (const TextureSource& src : sources)
+        stagingSize += VkDeviceSize(src.width) * src.height * 4;
+    auto staging = createBuffer(c, stagingSize, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                MemoryUsage::Upload, "texture staging");
+    if (!staging) return std::move(staging).error();
+    TextureStaging out{std::move(*staging), {}};
+    VkDeviceSize offset = 0;
+    for (const TextureSource& src : sources) {
+        out.offsets.push_back(offset);
+        const VkDeviceSize bytes = VkDeviceSize(src.width) * src.height * 4;
+        std::memcpy(static_cast<char*>(out.buffer.mapped) + offset, src.pixels, bytes);
+        offset += bytes;
+    }
+    LANTERN_TRY(flush(c, out.buffer));
+    return out;
+}
+
+// Source `i`'s image (0 is the white texture), with a full mip chain when `canMip`.
+Result<Image> createTextureImage(Context& c, const TextureSource& src, std::size_t i, bool canMip) {
+    ImageDesc d;
+    d.format = VK_FORMAT_R8G8B8A8_SRGB;
+    d.width = std::uint32_t(src.width);
+    d.height = std::uint32_t(src.height);
+    d.mipLevels =
+        canMip ? std::uint32_t(std::floor(std::log2(std::max(d.width, d.height)))) + 1 : 1;
+    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+              VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    d.name = i == 0 ? "white texture" : "texture " + std::to_string(i - 1);
+    return createImage(c, d);
+}
+
+// Level 0 copied from the staging buffer at `offset`, each further level blitted from the one
+// before; every level ends shader-readable.
+void recordTextureUpload(VkCommandBuffer cmd, const Image& img, VkBuffer staging,
+                         VkDeviceSize offset) {
+    const std::uint32_t mips = img.desc.mipLevels;
+    imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
+                 VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    VkBufferImageCopy region{};
+    region.bufferOffset = offset;
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {img.desc.width, img.desc.height, 1};
+    vkCmdCopyBufferToImage(cmd, staging, img.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                           &region);
+    std::int32_t w = std::int32_t(img.desc.width), h = std::int32_t(img.desc.height);
+    for (std::uint32_t m = 1; m < mips; ++m) {
+        imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT,
+                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                     VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, m - 1, 1);
+        const std::int32_t nw = std::max(w / 2, 1), nh = std::max(h / 2, 1);
+        VkImageBlit blit{};
+        blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m - 1, 0, 1};
+        blit.srcOffsets[1] = {w, h, 1};
+        blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m, 0, 1};
+        blit.dstOffsets[1] = {nw, nh, 1};
+        vkCmdBlitImage(cmd, img.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, img.get(),
+                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+        imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT,
+                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                     VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
+                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
+                     m - 1, 1);
+        w = nw;
+        h = nh;
+    }
+    imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                 VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                 VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, mips - 1, 1);
+}
+
+} // namespace
+
+Result<void> SceneBuffers::uploadTextures(VkDescriptorSetLayout layout) {
+    LANTERN_TRY(uploadTextureImages());
+    LANTERN_TRY(createSamplers());
+    return createTextureSets(layout);
+}
+
+Result<void> SceneBuffers::uploadTextureImages() {
+    Context& c = *m_ctx;
+    const bool canMip = canBlitMips(c);
+    const std::vector<TextureSource> sources = textureSources(*m_scene);
+    auto staging = stageTextures(c, sources);
+    if (!staging) return std::move(staging).error();
+    for (std::size_t i = 0; i < sources.size(); ++i) {
+        auto img = createTextureImage(c, sources[i], i, canMip);
+        if (!img) return std::move(img).error();
+        m_textures.push_back(std::move(*img));
+    }
+    return c.submitAndWait([&](VkCommandBuffer cmd) {
+        for (std::size_t i = 0; i < m_textures.size(); ++i)
+            recordTextureUpload(cmd, m_textures[i], staging->buffer.get(), staging->offsets[i]);
+    });
+}
+
+namespace {
+
+VkSamplerAddressMode addressMode(TextureWrap w) {
+    return w == TextureWrap::ClampToEdge      ? VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE
+           : w == TextureWrap::MirroredRepeat ? VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT
+                                              : VK_SAMPLER_ADDRESS_MODE_REPEAT;
+}
+
+// The sampler a texture asks for: nearest * 9 + wrapS * 3 + wrapT (18 in all).
+int samplerIndexOf(bool nearest, TextureWrap s, TextureWrap t) {
+    return (nearest ? 9 : 0) + int(s) * 3 + int(t);
+}
+
+} // namespace
+
+Result<void> SceneBuffers::createSamplers() {
+    Context& c = *m_ctx;
+    for (int i = 0; i < 18; ++i) {
+        VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+        const bool nearest = i >= 9;
+        sci.magFilter = nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR;
+        sci.minFilter = sci.magFilter;
+        sci.mipmapMode = nearest ? VK_SAMPLER_MIPMAP_MODE_NEAREST : VK_SAMPLER_MIPMAP_MODE_LINEAR;
+        sci.addressModeU = addressMode(TextureWrap((i % 9) / 3));
+        sci.addressModeV = addressMode(TextureWrap(i % 3));
+        sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+        sci.maxLod = VK_LOD_CLAMP_NONE;
+        VkSampler sampler = VK_NULL_HANDLE;
+        LANTERN_VK_TRY(vkCreateSampler(c.device(), &sci, nullptr, &sampler));
+        m_samplers.emplace_back(c.device(), sampler);
+    }
+    return {};
+}
+
+// One descriptor set per texture, with the sampler its texture asks for.
+Result<void> SceneBuffers::createTextureSets(VkDescriptorSetLayout layout) {
+    Context& c = *m_ctx;
+    const Scene& s = *m_scene;
+    VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                  std::uint32_t(m_textures.size())};
+    VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    dpci.maxSets = std::uint32_t(m_textures.size());
+    dpci.poolSizeCount = 1;
+    dpci.pPoolSizes = &poolSize;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkCreateDescriptorPool(c.device(), &dpci, nullptr, &pool));
+    m_pool = UniqueDescriptorPool(c.device(), pool);
+    std::vector<VkDescriptorSetLayout> layouts(m_textures.size(), layout);
+    m_textureSets.resize(m_textures.size());
+    VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    ai.descriptorPool = pool;
+    ai.descriptorSetCount = std::uint32_t(layouts.size());
+    ai.pSetLayouts = layouts.data();
+    LANTERN_VK_TRY(vkAllocateDescriptorSets(c.device(), &ai, m_textureSets.data()));
+    for (std::size_t i = 0; i < m_textures.size(); ++i) {
+        int samplerIndex = 0;
+        if (i > 0) {
+            const Texture& t = s.textures[i - 1];
+            samplerIndex = samplerIndexOf(t.nearest, t.wrapS, t.wrapT);
+        }
+        VkDescriptorImageInfo info{m_samplers[samplerIndex].get(), m_textures[i].view.get(),
+                                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        w.dstSet = m_textureSets[i];
+        w.dstBinding = LANTERN_BINDING_BASE_COLOR;
+        w.descriptorCount = 1;
+        w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        w.pImageInfo = &info;
+        vkUpdateDescriptorSets(c.device(), 1, &w, 0, nullptr);
+    }
+    return {};
+}
+
+} // namespace lantern::gpu
