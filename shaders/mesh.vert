@@ -13,6 +13,8 @@ layout(location = 0) out vec3 vEyePosition;
 layout(location = 1) out vec3 vNormal;
 layout(location = 2) out vec4 vColor;
 layout(location = 3) out vec2 vTexcoord;
+layout(location = 4) out vec3 vEyeCentre;      // the same two at the pixel centre, for
+layout(location = 5) out vec2 vTexcoordCentre; // derivatives (phong.frag)
 
 void main() {
     vec4 eye = draw.viewFromModel * vec4(inPosition, 1.0);
@@ -20,6 +22,8 @@ void main() {
     vNormal = drawNormalMatrix() * inNormal;
     vColor = inColor;
     vTexcoord = inTexcoord;
+    vEyeCentre = eye.xyz;
+    vTexcoordCentre = inTexcoord;
     gl_Position = frame.clipFromView * eye;
     gl_PointSize = frame.pointSize;
 }

@@ -32,6 +32,7 @@ layout(location = 4) LIT out vec2 vAlpha;  // front, back
 layout(location = 5) centroid out vec2 vTexcoord;
 layout(location = 6) centroid out vec3 vEyePosition;
 layout(location = 7) LIT out vec3 vNormal;
+layout(location = 8) out vec2 vTexcoordCentre;  // at the pixel centre, for derivatives
 
 void main() {
     vec4 eye = draw.viewFromModel * vec4(inPosition, 1.0);
@@ -60,6 +61,7 @@ void main() {
         vAlpha.y = vAlpha.x;
     }
     vTexcoord = inTexcoord;
+    vTexcoordCentre = inTexcoord;
     vEyePosition = eye.xyz;
     vNormal = n;
     gl_Position = frame.clipFromView * eye;

@@ -11,6 +11,11 @@
 #define LANTERN_BINDING_MATERIALS 2  // buffer MaterialBlock
 #define LANTERN_SET_TEXTURE 1
 #define LANTERN_BINDING_BASE_COLOR 0 // sampler2D, the material's base-colour texture
+#define LANTERN_BINDING_METALLIC_ROUGHNESS 1  // sampler2D: B metallic, G roughness (linear)
+#define LANTERN_BINDING_NORMAL 2     // sampler2D: tangent-space normal map (linear)
+#define LANTERN_BINDING_OCCLUSION 3  // sampler2D: R ambient occlusion (linear)
+#define LANTERN_BINDING_EMISSIVE 4   // sampler2D: emissive colour (sRGB)
+#define LANTERN_TEXTURE_BINDINGS 5
 
 // The deformation pre-pass (shaders/deform.comp): its own set, used by no graphics pipeline.
 #define LANTERN_BINDING_DEFORM_INPUT 0   // buffer: the scene's deformation inputs
@@ -49,7 +54,15 @@
 #define LANTERN_SC_UNLIT 11
 #define LANTERN_SC_AMBIENT_FOLLOWS_DIFFUSE 12
 #define LANTERN_SC_OPAQUE 13         // write alpha 1 (glTF OPAQUE and MASK)
-#define LANTERN_SC_COUNT 14
+#define LANTERN_SC_MAPS 14           // bit mask of LANTERN_MAP_*: the material maps compiled in
+#define LANTERN_SC_COUNT 15
+
+// Material maps (MaterialData.params.y holds the material's, as a float).
+#define LANTERN_MAP_METALLIC_ROUGHNESS 1u
+#define LANTERN_MAP_NORMAL 2u
+#define LANTERN_MAP_OCCLUSION 4u
+#define LANTERN_MAP_EMISSIVE 8u
+#define LANTERN_MAP_ALL 15u
 
 #define LANTERN_LIGHT_BIT_DIRECTIONAL 1
 #define LANTERN_LIGHT_BIT_POINT 2
@@ -77,6 +90,10 @@
 #define LANTERN_MIN_ATTENUATION_DENOMINATOR 1e-30
 // glTF falloff 1/max(d^2, this) (scene-format.md section 1).
 #define LANTERN_MIN_GLTF_DISTANCE_SQUARED 1e-4
+
+// The metallic-roughness mapping's shininess range (scene-format-support.md, Materials).
+#define LANTERN_PBR_MIN_SHININESS 1.0
+#define LANTERN_PBR_MAX_SHININESS 1e4
 
 // Limits.
 #define LANTERN_MAX_LIGHTS 65536

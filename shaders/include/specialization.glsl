@@ -22,5 +22,6 @@ layout(constant_id = LANTERN_SC_CLAMP) const uint SC_CLAMP = 0u;
 layout(constant_id = LANTERN_SC_UNLIT) const bool SC_UNLIT = false;
 layout(constant_id = LANTERN_SC_AMBIENT_FOLLOWS_DIFFUSE) const bool SC_AMBIENT_FOLLOWS_DIFFUSE = false;
 layout(constant_id = LANTERN_SC_OPAQUE) const bool SC_OPAQUE = true;
+layout(constant_id = LANTERN_SC_MAPS) const uint SC_MAPS = 15u;
 
 #endif

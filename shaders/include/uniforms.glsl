@@ -5,6 +5,7 @@
 #define LANTERN_UNIFORMS_GLSL
 
 #include "lantern_shared.h"
+#include "specialization.glsl"
 
 layout(set = LANTERN_SET_FRAME, binding = LANTERN_BINDING_FRAME, std140) uniform FrameBlock {
     mat4 clipFromView;    // Vulkan clip space (y down, depth 0..1, reversed or not)
@@ -43,6 +44,9 @@ struct MaterialData {
     vec4 params;            // x = alpha cutoff
     vec4 uvRow0;            // KHR_texture_transform: u' = dot(uvRow0.xyz, vec3(u, v, 1))
     vec4 uvRow1;            //                        v' = dot(uvRow1.xyz, vec3(u, v, 1))
+    vec4 pbrBase;           // the metallic-roughness factors' base colour
+    vec4 pbrParams;         // metallic, roughness, normal scale, occlusion strength
+    vec4 mapUv[8];          // uv rows of the metallic-roughness, normal, occlusion, emissive maps
 };
 
 layout(set = LANTERN_SET_FRAME, binding = LANTERN_BINDING_MATERIALS, std430) readonly buffer MaterialBlock {
@@ -50,11 +54,47 @@ layout(set = LANTERN_SET_FRAME, binding = LANTERN_BINDING_MATERIALS, std430) rea
 };
 
 layout(set = LANTERN_SET_TEXTURE, binding = LANTERN_BINDING_BASE_COLOR) uniform sampler2D baseColorTexture;
+layout(set = LANTERN_SET_TEXTURE, binding = LANTERN_BINDING_METALLIC_ROUGHNESS) uniform sampler2D metallicRoughnessTexture;
+layout(set = LANTERN_SET_TEXTURE, binding = LANTERN_BINDING_NORMAL) uniform sampler2D normalTexture;
+layout(set = LANTERN_SET_TEXTURE, binding = LANTERN_BINDING_OCCLUSION) uniform sampler2D occlusionTexture;
+layout(set = LANTERN_SET_TEXTURE, binding = LANTERN_BINDING_EMISSIVE) uniform sampler2D emissiveTexture;
 
-// The base-colour texture's coordinates after the material's KHR_texture_transform.
-vec2 baseColorUv(vec2 uv, uint materialIndex) {
-    const vec3 h = vec3(uv, 1.0);
-    return vec2(dot(materials[materialIndex].uvRow0.xyz, h), dot(materials[materialIndex].uvRow1.xyz, h));
+
+// A fragment's texture coordinates: `uv` where the fragment is shaded (the centroid), `dx` and
+// `dy` their screen derivatives taken from a copy interpolated at the pixel centre. Derivatives
+// of centroid inputs are inaccurate where a 2x2 quad straddles a triangle edge (GLSL 4.60,
+// 8.14.1): on lavapipe they picked coarse mip levels along every edge. Taken in main(), in
+// uniform control flow.
+struct SurfaceUv {
+    vec2 uv;
+    vec2 dx;
+    vec2 dy;
+};
+
+// `s` read at (row0, row1) * (uv, 1), a KHR_texture_transform, with the derivatives carried
+// through its linear part.
+vec4 sampleTransformed(sampler2D s, vec4 row0, vec4 row1, SurfaceUv u) {
+    vec2 st = vec2(dot(row0.xyz, vec3(u.uv, 1.0)), dot(row1.xyz, vec3(u.uv, 1.0)));
+    vec2 gx = vec2(dot(row0.xy, u.dx), dot(row1.xy, u.dx));
+    vec2 gy = vec2(dot(row0.xy, u.dy), dot(row1.xy, u.dy));
+    return textureGrad(s, st, gx, gy);
+}
+
+// The base-colour texture at the fragment.
+vec4 baseColorTexel(SurfaceUv u, uint materialIndex) {
+    return sampleTransformed(baseColorTexture, materials[materialIndex].uvRow0,
+                             materials[materialIndex].uvRow1, u);
+}
+
+// Map `k` (0 metallic-roughness, 1 normal, 2 occlusion, 3 emissive) at the fragment.
+vec4 mapTexel(sampler2D s, SurfaceUv u, uint materialIndex, int k) {
+    return sampleTransformed(s, materials[materialIndex].mapUv[2 * k],
+                             materials[materialIndex].mapUv[2 * k + 1], u);
+}
+
+// The material's maps (LANTERN_MAP_*) that this variant compiles in.
+uint materialMaps(uint materialIndex) {
+    return SC_MAPS & uint(materials[materialIndex].params.y);
 }
 
 // Per draw: 124 of the 128 bytes every device guarantees.

@@ -8,12 +8,17 @@
 #include "LightingCompare.h"
 
 #include "io/GltfInternal.h"
+#include "lantern_shared.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+
+// The shaders' per-texel mapping (shaders/include/maps.glsl) uses the loader's range.
+static_assert(lantern::gltf::kMinPbrShininess == LANTERN_PBR_MIN_SHININESS);
+static_assert(lantern::gltf::kMaxPbrShininess == LANTERN_PBR_MAX_SHININESS);
 
 namespace {
 

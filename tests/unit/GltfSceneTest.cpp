@@ -299,7 +299,58 @@ TEST(GltfScene, MetallicRoughnessTexturesScaleTheFactorsByTheirMean) {
     const double f0 = 0.04 * (1 - metallic) + 0.5 * metallic, w = roughness * roughness;
     expectNear(glm::dvec3(m.front.diffuse), glm::dvec3(0.5 * (1 - metallic) + f0 * w * metallic), "diffuse");
     EXPECT_NEAR(m.front.shininess, 2.0 / std::pow(roughness, 4) - 2.0, 1e-9);
-    EXPECT_TRUE(o.scene->textures.empty());  // averaged, not kept as a texture
+    // Kept as linear data for phong's per-texel mapping, from the unscaled factors.
+    ASSERT_EQ(o.scene->textures.size(), 1u);
+    EXPECT_FALSE(o.scene->textures[0].srgb);
+    EXPECT_EQ(m.metallicRoughnessMap.texture, 0);
+    ASSERT_TRUE(m.pbr);
+    EXPECT_EQ(m.pbr->metallic, 0.5);
+    EXPECT_EQ(m.pbr->roughness, 1.0);
+}
+
+TEST(GltfScene, NormalOcclusionAndEmissiveTexturesAreReadAsMapsWithTheirEncoding) {
+    GltfBuilder b;
+    b.addTriangle({{"material", 0}});
+    b.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = b.addFloats({0, 0, 1, 0, 0, 1}, "VEC2");
+    const std::vector<unsigned char> png = {  // the 1x1 PNG of the test above
+        0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44, 0x52, 0x00, 0x00,
+        0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x06, 0x00, 0x00, 0x00, 0x1f, 0x15, 0xc4, 0x89, 0x00, 0x00, 0x00,
+        0x0d, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9c, 0x63, 0x60, 0x68, 0xf8, 0xff, 0x1f, 0x00, 0x04, 0x82, 0x02, 0x7f,
+        0xe7, 0xd8, 0x5a, 0x6c, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
+    b.doc["images"] = json::array({{{"uri", "data:image/png;base64," + GltfBuilder::base64(png)}}});
+    b.doc["textures"] = json::array({{{"source", 0}}});
+    // Texture 0 is the emissive map (colour) and the normal and occlusion maps (data); the
+    // occlusion map carries a transform.
+    b.doc["materials"] = json::array({{
+        {"normalTexture", {{"index", 0}, {"scale", 0.5}}},
+        {"occlusionTexture", {{"index", 0}, {"strength", 0.25},
+                              {"extensions", {{"KHR_texture_transform", {{"offset", {0.5, 0}}}}}}}},
+        {"emissiveTexture", {{"index", 0}}},
+        {"emissiveFactor", {1, 1, 1}}}});
+    b.doc["extensionsUsed"] = {"KHR_texture_transform"};
+    auto o = loadCapturing(b.write(testOutputDir(), "maps"));
+    ASSERT_TRUE(o.scene) << o.scene.error().describe();
+    const Material& m = o.scene->materials[0];
+    ASSERT_EQ(o.scene->textures.size(), 2u) << "one linear and one sRGB copy";
+    EXPECT_EQ(m.normalMap.texture, m.occlusionMap.texture);
+    EXPECT_FALSE(o.scene->textures[std::size_t(m.normalMap.texture)].srgb);
+    EXPECT_TRUE(o.scene->textures[std::size_t(m.emissiveMap.texture)].srgb);
+    EXPECT_EQ(m.normalScale, 0.5);
+    EXPECT_EQ(m.occlusionStrength, 0.25);
+    EXPECT_EQ(m.occlusionMap.uvTransform[2][0], 0.5);
+    EXPECT_EQ(m.normalMap.uvTransform, glm::dmat3(1.0));
+    EXPECT_FALSE(o.scene->meshes[0].primitives[0].texcoords.empty()) << "TEXCOORD_0 read for the maps";
+
+    // A map on another TEXCOORD set than the others is left out with a warning; a strength
+    // outside [0, 1] is refused with its path.
+    b.doc["materials"][0]["emissiveTexture"]["texCoord"] = 1;
+    auto other = loadCapturing(b.write(testOutputDir(), "maps_set1"));
+    ASSERT_TRUE(other.scene) << other.scene.error().describe();
+    EXPECT_EQ(other.scene->materials[0].emissiveMap.texture, -1);
+    EXPECT_TRUE(other.warned("reads TEXCOORD_1 where the material's other textures read TEXCOORD_0")) << other.allWarnings();
+    b.doc["materials"][0]["occlusionTexture"]["strength"] = 2.0;
+    EXPECT_TRUE(refusedWith(loadCapturing(b.write(testOutputDir(), "maps_bad")),
+                            "materials[0].occlusionTexture.strength", "[0, 1]"));
 }
 
 // --- Lights ---------------------------------------------------------------------------------

@@ -83,7 +83,9 @@ TEST(GpuLayouts, MirrorsMatchTheShippedSpirv) {
         LANTERN_ROW(MaterialSideData, specular), LANTERN_ROW(MaterialSideData, emission),
         LANTERN_ROW(MaterialData, front),        LANTERN_ROW(MaterialData, back),
         LANTERN_ROW(MaterialData, params),       LANTERN_ROW(MaterialData, uvRow0),
-        LANTERN_ROW(MaterialData, uvRow1),       LANTERN_ROW(DrawBlock, viewFromModel),
+        LANTERN_ROW(MaterialData, uvRow1),       LANTERN_ROW(MaterialData, pbrBase),
+        LANTERN_ROW(MaterialData, pbrParams),    LANTERN_ROW(MaterialData, mapUv),
+        LANTERN_ROW(DrawBlock, viewFromModel),
         LANTERN_ROW(DrawBlock, normalMatrix),    LANTERN_ROW(DrawBlock, materialIndex),
         LANTERN_ROW(DrawBlock, drawIndex),       LANTERN_ROW(DrawBlock, flags),
         LANTERN_ROW(DeformJob, count),           LANTERN_ROW(DeformJob, flatMode),
@@ -108,7 +110,7 @@ TEST(GpuLayouts, MirrorsMatchTheShippedSpirv) {
 TEST(GpuLayouts, EveryShaderMemberIsMirrored) {
     // A member added to a shader block but not to the C++ mirror is caught here.
     const std::map<std::string, std::size_t> expectedCounts = {
-        {"FrameBlock", 6}, {"LightData", 8}, {"MaterialSideData", 4}, {"MaterialData", 5}, {"DrawBlock", 5},
+        {"FrameBlock", 6}, {"LightData", 8}, {"MaterialSideData", 4}, {"MaterialData", 8}, {"DrawBlock", 5},
         {"DeformJob", 16}};
     const Layouts layouts = allLayouts();
     for (const auto& [type, count] : expectedCounts) {

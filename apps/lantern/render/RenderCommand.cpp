@@ -63,8 +63,8 @@ void printProbe(std::ostream& out, const ProbeReport& r) {
         << (r.twoSided ? "two-sided" : "one-sided") << (r.clamped ? ", clamped to [0,1]" : "")
         << "\n";
     if (r.textured)
-        out << "  note: a base-colour texture modulates this pixel; the probe assumes a white "
-               "texel\n";
+        out << "  note: textures (base colour or maps) modulate this pixel; the probe evaluates "
+               "the material without them\n";
     for (const ProbeEvaluation& e : r.evaluations) {
         out << "  evaluated at the " << e.where << " (weight " << e.weight << "): point "
             << triple(e.position) << ", normal " << triple(e.normal) << "\n";

@@ -66,8 +66,8 @@ struct ProbeReport {
     std::string materialName;
     MaterialSide materialSide; ///< the side used, after GL-compat limits
     bool unlit = false;
-    bool textured = false;  ///< a base-colour texture modulates the pixel; the probe does not
-                            ///< sample it (colour assumes a white texel)
+    bool textured = false;  ///< textures (base colour, maps) modulate the pixel; the probe does not
+                            ///< sample them (colour is the material without its textures)
     ShadingMode shading = ShadingMode::Phong;
     SpecularModel specular = SpecularModel::Blinn;
     bool specularPresent = false;  ///< the pipeline variant has a specular term

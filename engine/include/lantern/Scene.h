@@ -66,6 +66,22 @@ struct MaterialSide {
 
 enum class AlphaMode { Opaque, Mask, Blend };
 
+/// A texture a material reads besides its base colour, with its KHR_texture_transform. It
+/// reads the primitive's texture coordinates (Primitive::texcoords).
+struct TextureMap {
+    int texture = -1;             ///< Scene::textures index; -1: none
+    glm::dmat3 uvTransform{1.0};  ///< as Material::baseColorUvTransform
+};
+
+/// The glTF metallic-roughness factors a material's classic colours were mapped from (see
+/// docs/scene-format-support.md, Materials), kept so that a metallic-roughness texture can be
+/// mapped per texel.
+struct PbrFactors {
+    glm::dvec4 baseColor{1.0};
+    double metallic = 1.0;
+    double roughness = 1.0;
+};
+
 struct Material {
     std::string name;
     MaterialSide front;
@@ -81,6 +97,18 @@ struct Material {
     /// True when the ambient colour is the diffuse colour by definition (the PBR fallback maps
     /// ambient = diffuse): then the base-colour texture and COLOR_0 scale the ambient too.
     bool ambientFollowsDiffuse = false;
+    /// glTF's other textures (phong shading; docs/gl-differences.md says what gouraud and flat
+    /// do). Metallic-roughness (B metallic, G roughness) scales `pbr`'s factors per texel and
+    /// needs `pbr`; the normal map (tangent space, +Y up) is scaled in X and Y by normalScale;
+    /// occlusion (R) scales the ambient term by 1 + occlusionStrength (R - 1); the emissive map
+    /// (sRGB) multiplies the emission.
+    std::optional<PbrFactors> pbr;
+    TextureMap metallicRoughnessMap;
+    TextureMap normalMap;
+    double normalScale = 1.0;
+    TextureMap occlusionMap;
+    double occlusionStrength = 1.0;  ///< [0, 1]
+    TextureMap emissiveMap;
 
     const MaterialSide& side(bool backFace) const { return backFace && back ? *back : front; }
 };
@@ -191,12 +219,14 @@ struct Skin {
 /// How texture coordinates outside [0, 1] are read (glTF samplers' wrapS/wrapT).
 enum class TextureWrap { Repeat, ClampToEdge, MirroredRepeat };
 
-/// An RGBA8 texture in sRGB encoding (the glTF base-colour convention), top row first.
+/// An RGBA8 texture, top row first: colour in sRGB encoding (base colour, emissive: glTF's
+/// convention) or linear data (metallic-roughness, normal and occlusion maps).
 struct Texture {
     std::string name;
     int width = 0;
     int height = 0;
     std::vector<std::uint8_t> rgba8;
+    bool srgb = true;      ///< false: the bytes are linear (data, not colour)
     bool nearest = false;  ///< nearest filtering instead of linear
     TextureWrap wrapS = TextureWrap::Repeat;  ///< along u
     TextureWrap wrapT = TextureWrap::Repeat;  ///< along v

@@ -20,6 +20,15 @@ bool twoSidedLighting(const Lighting& lighting, const Material& material) noexce
     return lighting.model.twoSided.value_or(material.doubleSided);
 }
 
+std::uint32_t materialMaps(const Material& m) noexcept {
+    std::uint32_t bits = 0;
+    if (m.metallicRoughnessMap.texture >= 0 && m.pbr) bits |= kMapMetallicRoughness;
+    if (m.normalMap.texture >= 0) bits |= kMapNormal;
+    if (m.occlusionMap.texture >= 0) bits |= kMapOcclusion;
+    if (m.emissiveMap.texture >= 0) bits |= kMapEmissive;
+    return bits;
+}
+
 Lighting resolveLighting(const Scene& scene, int root, const RenderOptions& o) {
     Lighting r;
     const int ri = root < 0 ? scene.defaultRoot : root;

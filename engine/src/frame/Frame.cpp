@@ -45,9 +45,17 @@ DrawFeatures drawFeatures(const Material& mat, const Draw& d, const LightFeature
                           const Lighting& lighting) {
     DrawFeatures f;
     f.twoSided = twoSidedLighting(lighting, mat);
-    const bool materialSpecular =
-        nonZero(mat.front.specular) || (mat.back && nonZero(mat.back->specular));
     const bool unlit = mat.unlit || d.unlitForWantOfNormals;
+    // Maps need texture coordinates and a surface (lines and points have no tangent frame);
+    // gouraud and flat shading apply only the emissive map (docs/gl-differences.md).
+    if (d.hasTexcoords && d.topology == Topology::Triangles && !unlit)
+        f.maps = materialMaps(mat) &
+                 (lighting.program == Program::Phong ? kMapAll : kMapEmissive);
+    // A metallic-roughness map gives specular colour per texel even where the factors give
+    // none (a rough metal: specular 0).
+    const bool materialSpecular = nonZero(mat.front.specular) ||
+                                  (mat.back && nonZero(mat.back->specular)) ||
+                                  (f.maps & kMapMetallicRoughness) != 0;
     f.specular = lights.specular && materialSpecular && !unlit;
     f.vertexColor = d.hasColors;
     f.texture = d.texture >= 0;

@@ -54,6 +54,18 @@ Lighting resolveLighting(const Scene& scene, int root, const RenderOptions& opti
 /// reversed").
 bool twoSidedLighting(const Lighting& lighting, const Material& material) noexcept;
 
+/// Material maps as bits (the values of LANTERN_MAP_*, checked where render/ maps them).
+enum MapBit : std::uint32_t {
+    kMapMetallicRoughness = 1,
+    kMapNormal = 2,
+    kMapOcclusion = 4,
+    kMapEmissive = 8,
+    kMapAll = 15,
+};
+
+/// The maps a material has (MapBit): a metallic-roughness map only with `pbr`.
+std::uint32_t materialMaps(const Material& material) noexcept;
+
 /// A camera resolved for one view, in double precision.
 struct ViewCamera {
     glm::dmat4 viewFromWorld{1.0};
@@ -114,6 +126,7 @@ struct DrawFeatures {
     bool blend = false;
     bool unlit = false;
     bool ambientFollowsDiffuse = false;
+    std::uint32_t maps = 0;  ///< MapBit: the maps the draw applies (all in phong shading)
     /// Back faces lit with the reversed normal and the back material: the scene's two-sided
     /// lighting model (GL_LIGHT_MODEL_TWO_SIDE), or a double-sided material (glTF's rule).
     bool twoSided = false;

@@ -38,7 +38,8 @@ struct PipelineKeyHash {
 struct DrawCommand {
     PipelineKey pipeline;
     std::uint32_t mesh = 0, primitive = 0;  ///< Scene::meshes[mesh].primitives[primitive]
-    int texture = -1;           ///< Scene::textures index; -1: the white default
+    /// The material whose textures are bound (Scene::materials index); -1: white defaults
+    int textureSet = -1;
     bool cullBack = true;
     bool frontClockwise = false;  ///< a mirroring transform: clockwise triangles are front
     DrawBlock block{};            ///< push constants

@@ -69,12 +69,17 @@ struct MaterialData {
     Vec4 params;  // x = alpha cutoff
     Vec4 uvRow0;  // KHR_texture_transform: u' = dot(uvRow0.xyz, (u, v, 1))
     Vec4 uvRow1;  //                        v' = dot(uvRow1.xyz, (u, v, 1))
+    Vec4 pbrBase;   // PbrFactors::baseColor (metallic-roughness map)
+    Vec4 pbrParams; // metallic, roughness, normal scale, occlusion strength
+    Vec4 mapUv[8];  // uv rows of the metallic-roughness, normal, occlusion and emissive maps
 };
-static_assert(sizeof(MaterialData) == 176);
+static_assert(sizeof(MaterialData) == 336);
 static_assert(offsetof(MaterialData, back) == 64);
 static_assert(offsetof(MaterialData, params) == 128);
 static_assert(offsetof(MaterialData, uvRow0) == 144);
 static_assert(offsetof(MaterialData, uvRow1) == 160);
+static_assert(offsetof(MaterialData, pbrBase) == 176);
+static_assert(offsetof(MaterialData, mapUv) == 208);
 
 // Push constants (std430): 124 bytes of the 128 every device guarantees.
 struct DrawBlock {

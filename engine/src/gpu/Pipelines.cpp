@@ -75,9 +75,11 @@ Result<Pipelines> Pipelines::create(Context& ctx) {
               {LANTERN_BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, both, nullptr}});
     if (!frameLayout) return std::move(frameLayout).error();
     p.m_frameLayout = std::move(*frameLayout);
-    auto textureLayout =
-        makeSetLayout(ctx, {{LANTERN_BINDING_BASE_COLOR, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                             1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}});
+    std::vector<VkDescriptorSetLayoutBinding> textureBindings;
+    for (std::uint32_t b = 0; b < LANTERN_TEXTURE_BINDINGS; ++b)
+        textureBindings.push_back({b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+                                   VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+    auto textureLayout = makeSetLayout(ctx, textureBindings);
     if (!textureLayout) return std::move(textureLayout).error();
     p.m_textureLayout = std::move(*textureLayout);
 

@@ -141,7 +141,7 @@ void FrameRecorder::drawViews(const std::vector<VkPipeline>& pipelines) const {
                                             LANTERN_SET_FRAME, 1, &slot.frameSet, 2, dynamicOffsets);
                 bound = p;
             }
-            const VkDescriptorSet tex = scene.textureSet(d.texture);
+            const VkDescriptorSet tex = scene.textureSet(d.textureSet);
             if (tex != boundTexture) {
                 vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout,
                                         LANTERN_SET_TEXTURE, 1, &tex, 0, nullptr);

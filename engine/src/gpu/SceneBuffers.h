@@ -58,6 +58,8 @@ public:
     VkDeviceSize defaultColorOffset() const { return m_defaultColor; }
     VkDeviceSize defaultTexcoordOffset() const { return m_defaultTexcoord; }
     /// The descriptor set of texture `index` (-1: a white 1x1 texture).
+    /// The texture set of material `index` (its base colour and maps, white where it has
+    /// none); -1: every binding white.
     VkDescriptorSet textureSet(int index) const {
         return m_textureSets[std::size_t(index + 1)];
     }

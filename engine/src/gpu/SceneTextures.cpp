@@ -11,9 +11,9 @@ namespace lantern::gpu {
 namespace {
 
 // Linear blits build the mip chain when the format supports them.
-bool canBlitMips(const Context& c) {
+bool canBlitMips(const Context& c, VkFormat format) {
     VkFormatProperties fp;
-    vkGetPhysicalDeviceFormatProperties(c.physicalDevice(), VK_FORMAT_R8G8B8A8_SRGB, &fp);
+    vkGetPhysicalDeviceFormatProperties(c.physicalDevice(), format, &fp);
     const VkFormatFeatureFlags blitNeeds = VK_FORMAT_FEATURE_BLIT_SRC_BIT |
                                            VK_FORMAT_FEATURE_BLIT_DST_BIT |
                                            VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
@@ -23,14 +23,16 @@ bool canBlitMips(const Context& c) {
 struct TextureSource {
     int width, height;
     const std::uint8_t* pixels;
+    VkFormat format;  ///< sRGB colour or linear data
 };
 
 // A white 1x1 texture (for materials without one), then the scene's textures.
 std::vector<TextureSource> textureSources(const Scene& s) {
     static const std::uint8_t kWhite[4] = {255, 255, 255, 255};
-    std::vector<TextureSource> sources{{1, 1, kWhite}};
+    std::vector<TextureSource> sources{{1, 1, kWhite, VK_FORMAT_R8G8B8A8_SRGB}};
     for (const Texture& t : s.textures)
-        sources.push_back({t.width, t.height, t.rgba8.data()});
+        sources.push_back({t.width, t.height, t.rgba8.data(),
+                           t.srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM});
     return sources;
 }
 
@@ -59,10 +61,11 @@ Result<TextureStaging> stageTextures(Context& c, const std::vector<TextureSource
     return out;
 }
 
-// Source `i`'s image (0 is the white texture), with a full mip chain when `canMip`.
-Result<Image> createTextureImage(Context& c, const TextureSource& src, std::size_t i, bool canMip) {
+// Source `i`'s image (0 is the white texture), with a full mip chain where its format blits.
+Result<Image> createTextureImage(Context& c, const TextureSource& src, std::size_t i) {
+    const bool canMip = canBlitMips(c, src.format);
     ImageDesc d;
-    d.format = VK_FORMAT_R8G8B8A8_SRGB;
+    d.format = src.format;
     d.width = std::uint32_t(src.width);
     d.height = std::uint32_t(src.height);
     d.mipLevels =
@@ -125,12 +128,11 @@ Result<void> SceneBuffers::uploadTextures(VkDescriptorSetLayout layout) {
 
 Result<void> SceneBuffers::uploadTextureImages() {
     Context& c = *m_ctx;
-    const bool canMip = canBlitMips(c);
     const std::vector<TextureSource> sources = textureSources(*m_scene);
     auto staging = stageTextures(c, sources);
     if (!staging) return std::move(staging).error();
     for (std::size_t i = 0; i < sources.size(); ++i) {
-        auto img = createTextureImage(c, sources[i], i, canMip);
+        auto img = createTextureImage(c, sources[i], i);
         if (!img) return std::move(img).error();
         m_textures.push_back(std::move(*img));
     }
@@ -174,41 +176,61 @@ Result<void> SceneBuffers::createSamplers() {
     return {};
 }
 
-// One descriptor set per texture, with the sampler its texture asks for.
+// One descriptor set per material (its base colour and maps; white where it has none), and
+// one all white (set 0) for draws without textures; each texture with the sampler it asks for.
 Result<void> SceneBuffers::createTextureSets(VkDescriptorSetLayout layout) {
     Context& c = *m_ctx;
     const Scene& s = *m_scene;
+    const std::size_t sets = s.materials.size() + 1;
     VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                  std::uint32_t(m_textures.size())};
+                                  std::uint32_t(sets * LANTERN_TEXTURE_BINDINGS)};
     VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    dpci.maxSets = std::uint32_t(m_textures.size());
+    dpci.maxSets = std::uint32_t(sets);
     dpci.poolSizeCount = 1;
     dpci.pPoolSizes = &poolSize;
     VkDescriptorPool pool = VK_NULL_HANDLE;
     LANTERN_VK_TRY(vkCreateDescriptorPool(c.device(), &dpci, nullptr, &pool));
     m_pool = UniqueDescriptorPool(c.device(), pool);
-    std::vector<VkDescriptorSetLayout> layouts(m_textures.size(), layout);
-    m_textureSets.resize(m_textures.size());
+    std::vector<VkDescriptorSetLayout> layouts(sets, layout);
+    m_textureSets.resize(sets);
     VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     ai.descriptorPool = pool;
     ai.descriptorSetCount = std::uint32_t(layouts.size());
     ai.pSetLayouts = layouts.data();
     LANTERN_VK_TRY(vkAllocateDescriptorSets(c.device(), &ai, m_textureSets.data()));
-    for (std::size_t i = 0; i < m_textures.size(); ++i) {
+    // Scene texture t is m_textures[t + 1]; -1 (none) is the white texture.
+    auto info = [&](int t) {
         int samplerIndex = 0;
-        if (i > 0) {
-            const Texture& t = s.textures[i - 1];
-            samplerIndex = samplerIndexOf(t.nearest, t.wrapS, t.wrapT);
+        if (t >= 0) {
+            const Texture& tex = s.textures[std::size_t(t)];
+            samplerIndex = samplerIndexOf(tex.nearest, tex.wrapS, tex.wrapT);
         }
-        VkDescriptorImageInfo info{m_samplers[samplerIndex].get(), m_textures[i].view.get(),
-                                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        w.dstSet = m_textureSets[i];
-        w.dstBinding = LANTERN_BINDING_BASE_COLOR;
-        w.descriptorCount = 1;
-        w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-        w.pImageInfo = &info;
-        vkUpdateDescriptorSets(c.device(), 1, &w, 0, nullptr);
+        return VkDescriptorImageInfo{m_samplers[samplerIndex].get(),
+                                     m_textures[std::size_t(t + 1)].view.get(),
+                                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    };
+    for (std::size_t set = 0; set < sets; ++set) {
+        int bound[LANTERN_TEXTURE_BINDINGS] = {-1, -1, -1, -1, -1};
+        if (set > 0) {
+            const Material& m = s.materials[set - 1];
+            bound[LANTERN_BINDING_BASE_COLOR] = m.baseColorTexture;
+            bound[LANTERN_BINDING_METALLIC_ROUGHNESS] = m.metallicRoughnessMap.texture;
+            bound[LANTERN_BINDING_NORMAL] = m.normalMap.texture;
+            bound[LANTERN_BINDING_OCCLUSION] = m.occlusionMap.texture;
+            bound[LANTERN_BINDING_EMISSIVE] = m.emissiveMap.texture;
+        }
+        VkDescriptorImageInfo infos[LANTERN_TEXTURE_BINDINGS];
+        VkWriteDescriptorSet writes[LANTERN_TEXTURE_BINDINGS];
+        for (std::uint32_t b = 0; b < LANTERN_TEXTURE_BINDINGS; ++b) {
+            infos[b] = info(bound[b]);
+            writes[b] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            writes[b].dstSet = m_textureSets[set];
+            writes[b].dstBinding = b;
+            writes[b].descriptorCount = 1;
+            writes[b].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+            writes[b].pImageInfo = &infos[b];
+        }
+        vkUpdateDescriptorSets(c.device(), LANTERN_TEXTURE_BINDINGS, writes, 0, nullptr);
     }
     return {};
 }

@@ -91,12 +91,19 @@ std::vector<Vec> toVectors(const std::vector<float>& flat, std::size_t component
     return out;
 }
 
-/// Which TEXCOORD set the primitive's base-colour texture reads (0 without one).
+/// Which TEXCOORD set the primitive's material's textures read (0 without any).
 int texcoordSet(const tinygltf::Model& model, int material) {
-    if (material < 0) return 0;
-    const tinygltf::TextureInfo& info =
-        model.materials[std::size_t(material)].pbrMetallicRoughness.baseColorTexture;
-    return info.index >= 0 ? texCoordOf(info) : 0;
+    return material < 0 ? 0 : materialTexcoordSet(model.materials[std::size_t(material)]);
+}
+
+/// Whether the primitive's material has any texture.
+bool hasTextures(const tinygltf::Model& model, int material) {
+    if (material < 0) return false;
+    const tinygltf::Material& m = model.materials[std::size_t(material)];
+    return m.pbrMetallicRoughness.baseColorTexture.index >= 0 ||
+           m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 ||
+           m.normalTexture.index >= 0 || m.occlusionTexture.index >= 0 ||
+           m.emissiveTexture.index >= 0;
 }
 
 // The accessor of the primitive's attribute `name`, or -1.
@@ -135,11 +142,9 @@ Result<void> readAttributes(const tinygltf::Model& model, const tinygltf::Primit
         auto uv = readFloats(model, a, obj + ".attributes." + texcoordName, diag);
         if (!uv) return std::move(uv).error();
         out.texcoords = toVectors<glm::vec2>(*uv, 2);
-    } else if (prim.material >= 0 && model.materials[std::size_t(prim.material)]
-                                             .pbrMetallicRoughness.baseColorTexture.index >= 0) {
+    } else if (hasTextures(model, prim.material)) {
         diag.warn(obj + ".attributes", "no " + texcoordName +
-                                           " for the material's base colour texture; the "
-                                           "texture is not applied");
+                                           " for the material's textures; they are not applied");
     }
     return {};
 }

@@ -52,11 +52,11 @@ inline constexpr int kMaxTextureSide = 16384;
 /// The finite ceiling of the PBR roughness -> shininess mapping 2/r^4 - 2 (reached for
 /// roughness <= 0.1189). Above ~1e4 float32 pow(n.h, s) loses accuracy (numerics.md 3.3), and
 /// the lobe (half-width 0.68 degrees at 1e4) is already narrower than a pixel in most views.
-inline constexpr double kMaxPbrShininess = 1.0e4;
+inline constexpr double kMaxPbrShininess = 1.0e4;  // LANTERN_PBR_MAX_SHININESS in the shaders
 
 /// The floor of that mapping: at 1 the lobe (n.h)^s still falls off across the surface, where
 /// 2/r^4 - 2 = 0 at roughness 1 would make the specular term a constant over the lit side.
-inline constexpr double kMinPbrShininess = 1.0;
+inline constexpr double kMinPbrShininess = 1.0;  // LANTERN_PBR_MIN_SHININESS
 
 /// A metallic-roughness material in the classic equation's terms (see mapPbr in
 /// GltfMaterials.cpp and docs/scene-format-support.md for the formula and its reasons).
@@ -69,6 +69,9 @@ PhongFromPbr phongFromPbr(const glm::dvec3& base, double metallic, double roughn
 /// The TEXCOORD set a texture reference reads: KHR_texture_transform's `texCoord` when the
 /// reference has one, else its own `texCoord`.
 int texCoordOf(const tinygltf::TextureInfo& info);
+/// The TEXCOORD set a material's textures read: the base colour's, else the first of the
+/// metallic-roughness, normal, occlusion and emissive textures' (0 without textures).
+int materialTexcoordSet(const tinygltf::Material& material);
 
 /// KHR_texture_transform's matrix: uv' = (T(offset) R(rotation) S(scale) (u, v, 1)).xy, with
 /// u' = cos(r) u + sin(r) v, v' = -sin(r) u + cos(r) v for the rotation (counter-clockwise UVs,

@@ -37,19 +37,22 @@ public:
         : m_model(model), m_images(images), m_raw(raw), m_options(options), m_diag(diag),
           m_out(out) {}
 
-    /// The Scene::textures index for glTF texture `index`, -1 when it has no image we read.
-    Result<int> get(int index, const std::string& usedBy) {
-        if (auto it = m_done.find(index); it != m_done.end()) return it->second;
+    /// The Scene::textures index for glTF texture `index` read as sRGB colour or as linear
+    /// data (a texture used both ways is kept twice), -1 when it has no image we read.
+    Result<int> get(int index, const std::string& usedBy, bool srgb = true) {
+        const auto key = std::pair{index, srgb};
+        if (auto it = m_done.find(key); it != m_done.end()) return it->second;
         const tinygltf::Texture& t = m_model.textures[std::size_t(index)];
         if (t.source < 0) {
             m_diag.warn(at("textures", std::size_t(index)),
                         "no source image (an extension's image format?); " + usedBy +
                             " is drawn without it");
-            return m_done[index] = -1;
+            return m_done[key] = -1;
         }
         auto decoded = decode(t.source);
         if (!decoded) return std::move(decoded).error();
         Texture tex = std::move(*decoded);
+        tex.srgb = srgb;
         if (t.sampler >= 0) {
             const tinygltf::Sampler& s = m_model.samplers[std::size_t(t.sampler)];
             tex.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
@@ -57,7 +60,7 @@ public:
             tex.wrapT = wrapOf(s.wrapT);
         }
         m_out.push_back(std::move(tex));
-        return m_done[index] = int(m_out.size()) - 1;
+        return m_done[key] = int(m_out.size()) - 1;
     }
 
     /// The mean metallic (blue) and roughness (green) of a metallicRoughnessTexture, or
@@ -136,7 +139,7 @@ private:
     const LoadOptions& m_options;
     const Diagnostics& m_diag;
     std::vector<Texture>& m_out;
-    std::map<int, int> m_done;
+    std::map<std::pair<int, bool>, int> m_done;
 };
 
 // The factors and the alpha cutoff are numbers in range.
@@ -192,6 +195,54 @@ Result<double> emissiveStrengthOf(const tinygltf::Material& src, const std::stri
     return emissiveStrength;
 }
 
+// A glTF texture reference of any kind (normal and occlusion textures have their own types).
+tinygltf::TextureInfo infoOf(int index, int texCoord, const tinygltf::ExtensionMap& extensions) {
+    tinygltf::TextureInfo info;
+    info.index = index;
+    info.texCoord = texCoord;
+    info.extensions = extensions;
+    return info;
+}
+
+// The metallic-roughness, normal, occlusion and emissive maps (phong shading; gouraud and
+// flat apply the emissive map and the factors). A map that reads another TEXCOORD set than
+// the material's (materialTexcoordSet) is left out with a warning: a primitive keeps one set.
+Result<void> readMaps(const tinygltf::Material& src, const std::string& obj,
+                      TextureTable& textures, const Diagnostics& diag, Material& m) {
+    const int set = materialTexcoordSet(src);
+    auto read = [&](const tinygltf::TextureInfo& info, const std::string& name, bool srgb,
+                    TextureMap& out) -> Result<void> {
+        if (info.index < 0) return {};
+        const std::string where = obj + "." + name;
+        if (texCoordOf(info) != set) {
+            diag.warn(where, "reads TEXCOORD_" + std::to_string(texCoordOf(info)) +
+                                 " where the material's other textures read TEXCOORD_" +
+                                 std::to_string(set) + "; not applied");
+            return {};
+        }
+        auto t = textures.get(info.index, where, srgb);
+        if (!t) return std::move(t).error();
+        auto uv = uvTransformOf(info, where, diag);
+        if (!uv) return std::move(uv).error();
+        out = TextureMap{*t, *uv};
+        return {};
+    };
+    const tinygltf::PbrMetallicRoughness& pbr = src.pbrMetallicRoughness;
+    if (m.pbr)
+        LANTERN_TRY(read(pbr.metallicRoughnessTexture, "pbrMetallicRoughness.metallicRoughnessTexture",
+                         false, m.metallicRoughnessMap));
+    const auto& n = src.normalTexture;
+    LANTERN_TRY(read(infoOf(n.index, n.texCoord, n.extensions), "normalTexture", false, m.normalMap));
+    if (!std::isfinite(n.scale)) return diag.error(obj + ".normalTexture.scale", "must be finite");
+    m.normalScale = n.scale;
+    const auto& o = src.occlusionTexture;
+    LANTERN_TRY(read(infoOf(o.index, o.texCoord, o.extensions), "occlusionTexture", false, m.occlusionMap));
+    if (!(o.strength >= 0.0 && o.strength <= 1.0))
+        return diag.error(obj + ".occlusionTexture.strength", "must be in [0, 1]");
+    m.occlusionStrength = o.strength;
+    return read(src.emissiveTexture, "emissiveTexture", true, m.emissiveMap);
+}
+
 // LANTERN_materials_phong: the front side and, when given, the back side.
 Result<void> readPhongMaterial(const tinygltf::Value& e, const std::string& obj,
                                const Diagnostics& diag, Material& m) {
@@ -239,6 +290,7 @@ Result<void> mapPbr(const tinygltf::Material& src, const glm::dvec4& baseColor,
     m.front.ambient = p.diffuse;
     m.front.emission = vec3(src.emissiveFactor) * emissiveStrength;
     m.ambientFollowsDiffuse = true;
+    m.pbr = PbrFactors{baseColor, pbr.metallicFactor, pbr.roughnessFactor};
     return {};
 }
 
@@ -266,6 +318,7 @@ Result<Material> convertMaterial(const tinygltf::Model& model, std::size_t index
         makeUnlit(baseColor, m);
     else
         LANTERN_TRY(mapPbr(src, baseColor, *emissiveStrength, textures, m));
+    if (!m.unlit) LANTERN_TRY(readMaps(src, obj, textures, diag, m));
     if (pbr.baseColorTexture.index >= 0) {
         auto t = textures.get(pbr.baseColorTexture.index, obj);
         if (!t) return std::move(t).error();
@@ -289,6 +342,17 @@ Result<void> convertMaterials(const tinygltf::Model& model, const RawFacts& raw,
         scene.materials.push_back(std::move(*m));
     }
     return {};
+}
+
+int materialTexcoordSet(const tinygltf::Material& m) {
+    const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
+    if (pbr.baseColorTexture.index >= 0) return texCoordOf(pbr.baseColorTexture);
+    if (pbr.metallicRoughnessTexture.index >= 0) return texCoordOf(pbr.metallicRoughnessTexture);
+    for (const auto& [index, texCoord, extensions] :
+         {std::tuple{m.normalTexture.index, m.normalTexture.texCoord, &m.normalTexture.extensions},
+          std::tuple{m.occlusionTexture.index, m.occlusionTexture.texCoord, &m.occlusionTexture.extensions}})
+        if (index >= 0) return texCoordOf(infoOf(index, texCoord, *extensions));
+    return m.emissiveTexture.index >= 0 ? texCoordOf(m.emissiveTexture) : 0;
 }
 
 int texCoordOf(const tinygltf::TextureInfo& info) {

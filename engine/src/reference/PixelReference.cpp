@@ -108,7 +108,8 @@ DrawRules rulesOf(const Material& mat, const Primitive& prim, const frame::Light
     r.fragmentClamp = lit.clamp != frame::Clamp::None;
     r.opaque = mat.alphaMode != AlphaMode::Blend;
     r.twoSided = frame::twoSidedLighting(lit, mat);
-    r.textured = mat.baseColorTexture >= 0 && !prim.texcoords.empty();
+    r.textured = (mat.baseColorTexture >= 0 || frame::materialMaps(mat) != 0) &&
+                 !prim.texcoords.empty();
     return r;
 }
 

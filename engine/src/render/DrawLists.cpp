@@ -67,7 +67,7 @@ gpu::ViewCommands packView(const frame::Frame& frame, std::size_t vi, const Rend
         c.pipeline = pipelineKey(frame, d, o);
         c.mesh = d.mesh;
         c.primitive = d.primitive;
-        c.texture = d.texture;
+        c.textureSet = (d.texture >= 0 || d.features.maps != 0) ? int(d.material) : -1;
         c.cullBack = d.cullBack;
         c.frontClockwise = d.mirrored;
         c.block = packDraw(d);
@@ -140,9 +140,21 @@ gpu::MaterialData packMaterial(const Material& m) {
     d.back = m.back ? packSide(*m.back) : d.front;
     // A cutoff of -1 never discards: the all-features pipeline runs the mask test everywhere.
     d.params.x = m.alphaMode == AlphaMode::Mask ? float(m.alphaCutoff) : -1.0f;
-    const glm::dmat3& t = m.baseColorUvTransform;  // column-major: t[column][row]
-    d.uvRow0 = {float(t[0][0]), float(t[1][0]), float(t[2][0]), 0.0f};
-    d.uvRow1 = {float(t[0][1]), float(t[1][1]), float(t[2][1]), 0.0f};
+    auto rows = [](const glm::dmat3& t, gpu::Vec4& row0, gpu::Vec4& row1) {
+        // column-major: t[column][row]
+        row0 = {float(t[0][0]), float(t[1][0]), float(t[2][0]), 0.0f};
+        row1 = {float(t[0][1]), float(t[1][1]), float(t[2][1]), 0.0f};
+    };
+    rows(m.baseColorUvTransform, d.uvRow0, d.uvRow1);
+    const TextureMap* maps[4] = {&m.metallicRoughnessMap, &m.normalMap, &m.occlusionMap, &m.emissiveMap};
+    for (int k = 0; k < 4; ++k) rows(maps[k]->uvTransform, d.mapUv[2 * k], d.mapUv[2 * k + 1]);
+    d.params.y = float(frame::materialMaps(m));
+    if (m.pbr) {
+        d.pbrBase = vec4(m.pbr->baseColor);
+        d.pbrParams = {float(m.pbr->metallic), float(m.pbr->roughness), 0.0f, 0.0f};
+    }
+    d.pbrParams.z = float(m.normalScale);
+    d.pbrParams.w = float(m.occlusionStrength);
     return d;
 }
 

@@ -8,6 +8,10 @@
 namespace lantern::render {
 namespace {
 
+static_assert(frame::kMapMetallicRoughness == LANTERN_MAP_METALLIC_ROUGHNESS &&
+              frame::kMapNormal == LANTERN_MAP_NORMAL && frame::kMapOcclusion == LANTERN_MAP_OCCLUSION &&
+              frame::kMapEmissive == LANTERN_MAP_EMISSIVE && frame::kMapAll == LANTERN_MAP_ALL);
+
 std::uint32_t lightTypeBits(const frame::LightFeatures& l) {
     std::uint32_t bits = 0;
     if (l.directional) bits |= LANTERN_LIGHT_BIT_DIRECTIONAL;
@@ -57,6 +61,7 @@ gpu::PipelineKey pipelineKey(const frame::Frame& frame, const frame::Draw& d,
     sc[LANTERN_SC_UNLIT] = f.unlit;
     sc[LANTERN_SC_AMBIENT_FOLLOWS_DIFFUSE] = f.ambientFollowsDiffuse;
     sc[LANTERN_SC_OPAQUE] = !f.blend;
+    sc[LANTERN_SC_MAPS] = all ? LANTERN_MAP_ALL : f.maps;
     return k;
 }
 
@@ -88,6 +93,12 @@ std::string describe(const gpu::PipelineKey& k) {
     flag(LANTERN_SC_ALPHA_MASK, "alpha-mask");
     flag(LANTERN_SC_UNLIT, "unlit");
     flag(LANTERN_SC_AMBIENT_FOLLOWS_DIFFUSE, "ambient=diffuse");
+    const std::uint32_t maps = k.constants[LANTERN_SC_MAPS];
+    for (auto [bit, name] : {std::pair{LANTERN_MAP_METALLIC_ROUGHNESS, "metallic-roughness-map"},
+                             std::pair{LANTERN_MAP_NORMAL, "normal-map"},
+                             std::pair{LANTERN_MAP_OCCLUSION, "occlusion-map"},
+                             std::pair{LANTERN_MAP_EMISSIVE, "emissive-map"}})
+        if (maps & bit) s << " " << name;
     const char* clamps[] = {"", " clamp", " gl-clamp"};
     s << clamps[std::min<std::uint32_t>(k.constants[LANTERN_SC_CLAMP], 2)];
     s << (k.constants[LANTERN_SC_OPAQUE] ? " opaque" : "");

@@ -1,5 +1,7 @@
 // Scene::validate: every object of a scene checked before it is drawn, each refusal naming the
 // object by its path (meshes[2].primitives[0].material) and what is wrong with it.
+#include "scene/ValidateSupport.h"
+
 #include <lantern/Scene.h>
 
 #include <glm/geometric.hpp>
@@ -12,33 +14,7 @@
 namespace lantern {
 namespace {
 
-std::string at(const char* array, std::size_t i) {
-    return std::string(array) + "[" + std::to_string(i) + "]";
-}
-
-bool finite(double v) { return std::isfinite(v); }
-bool finite(const glm::dvec3& v) { return finite(v.x) && finite(v.y) && finite(v.z); }
-bool finite(const glm::dvec4& v) { return finite(glm::dvec3(v)) && finite(v.w); }
-bool finite(const glm::vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-Error invalid(const std::string& object, const std::string& message) {
-    return makeError(ErrorCode::InvalidInput, message, object);
-}
-
-Result<void> validateSide(const MaterialSide& s, const std::string& object) {
-    if (!finite(s.ambient)) return invalid(object + ".ambient", "non-finite colour");
-    if (!finite(s.diffuse)) return invalid(object + ".diffuse", "non-finite colour");
-    if (!finite(s.specular)) return invalid(object + ".specular", "non-finite colour");
-    if (!finite(s.emission)) return invalid(object + ".emission", "non-finite colour");
-    if (!finite(s.shininess))
-        return invalid(object + ".shininess", "shininess must be a finite number");
-    if (s.shininess < 0.0)
-        return invalid(object + ".shininess",
-                       "shininess must be >= 0, got " + std::to_string(s.shininess));
-    return {};
-}
+using namespace validation;
 
 // Skin attributes (counts, set 1 only with set 0, weights finite and >= 0) and morph targets
 // (counts, finite displacements).
@@ -234,73 +210,6 @@ Result<void> validateNodeDeformation(const Scene& scene, const Node& nd, const s
     return {};
 }
 
-Result<void> validateMaterials(const Scene& scene) {
-    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
-        const Material& mat = scene.materials[i];
-        const std::string obj = at("materials", i);
-        LANTERN_TRY(validateSide(mat.front, obj));
-        if (mat.back) LANTERN_TRY(validateSide(*mat.back, obj + ".back"));
-        if (!finite(mat.alphaCutoff) || mat.alphaCutoff < 0.0)
-            return invalid(obj + ".alphaCutoff", "alpha cutoff must be a finite number >= 0");
-        if (mat.baseColorTexture < -1 || mat.baseColorTexture >= int(scene.textures.size()))
-            return invalid(obj + ".baseColorTexture",
-                           "texture " + std::to_string(mat.baseColorTexture) + " does not exist");
-    }
-    return {};
-}
-
-Result<void> validateTextures(const Scene& scene) {
-    for (std::size_t i = 0; i < scene.textures.size(); ++i) {
-        const Texture& t = scene.textures[i];
-        if (t.width <= 0 || t.height <= 0 ||
-            t.rgba8.size() != std::size_t(t.width) * std::size_t(t.height) * 4)
-            return invalid(at("textures", i), "texture size and pixel data do not match");
-    }
-    return {};
-}
-
-Result<void> validateLight(const Light& l, const std::string& obj) {
-    if (!finite(l.ambient) || !finite(l.diffuse) || !finite(l.specular))
-        return invalid(obj, "non-finite light colour");
-    if (!finite(l.attenuation))
-        return invalid(obj + ".attenuation", "non-finite attenuation coefficient");
-    if (l.attenuation.x < 0 || l.attenuation.y < 0 || l.attenuation.z < 0)
-        return invalid(obj + ".attenuation", "attenuation coefficients must be >= 0");
-    if (l.attenuation.x == 0 && l.attenuation.y == 0 && l.attenuation.z == 0)
-        return invalid(obj + ".attenuation",
-                       "attenuation coefficients are all zero (infinite light)");
-    if (!finite(l.spotExponent) || l.spotExponent < 0)
-        return invalid(obj + ".spotExponent", "spot exponent must be a finite number >= 0");
-    if (!finite(l.spotCutoffDeg) ||
-        !((l.spotCutoffDeg >= 0 && l.spotCutoffDeg <= 90) || l.spotCutoffDeg == 180))
-        return invalid(obj + ".spotCutoffDeg",
-                       "spot cutoff " + std::to_string(l.spotCutoffDeg) +
-                           " is outside [0, 90] and not 180 (GL's no-cone value): a cone "
-                           "wider than a half-space is not a spot light");
-    if (std::isnan(l.range) || !(l.range > 0)) return invalid(obj + ".range", "range must be > 0");
-    if (!finite(l.innerConeAngle) || !finite(l.outerConeAngle) || l.innerConeAngle < 0 ||
-        !(l.innerConeAngle < l.outerConeAngle) || l.outerConeAngle > 1.5707963267948966)
-        return invalid(obj, "spot cone angles must satisfy 0 <= inner < outer <= pi/2");
-    return {};
-}
-
-Result<void> validateLights(const Scene& scene) {
-    for (std::size_t i = 0; i < scene.lights.size(); ++i)
-        LANTERN_TRY(validateLight(scene.lights[i], at("lights", i)));
-    return {};
-}
-
-Result<void> validateCameras(const Scene& scene) {
-    for (std::size_t i = 0; i < scene.cameras.size(); ++i) {
-        const std::string obj = at("cameras", i);
-        LANTERN_TRY(checkProjection(scene.cameras[i].projection, obj));
-        if (scene.cameras[i].lookAt)
-            LANTERN_TRY(checkLookAt(*scene.cameras[i].lookAt, obj + ".lookAt"));
-    }
-    return {};
-}
-
-// One node's references and transform; its children are checked by validateNodes.
 Result<void> validateNode(const Scene& scene, const Node& nd, const std::string& obj) {
     if (nd.mesh < -1 || nd.mesh >= int(scene.meshes.size()))
         return invalid(obj + ".mesh", "mesh " + std::to_string(nd.mesh) + " does not exist");
@@ -472,10 +381,7 @@ Result<void> validateRoots(const Scene& scene, const std::vector<int>& parent) {
 
 Result<void> Scene::validate() const {
     LANTERN_TRY(validateMeshes(*this));
-    LANTERN_TRY(validateMaterials(*this));
-    LANTERN_TRY(validateTextures(*this));
-    LANTERN_TRY(validateLights(*this));
-    LANTERN_TRY(validateCameras(*this));
+    LANTERN_TRY(validation::validateAppearance(*this));
     LANTERN_TRY(validateSkins(*this));
     Result<std::vector<int>> parent = validateNodes(*this);
     if (!parent) return std::move(parent).error();
