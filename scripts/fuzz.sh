@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Fuzzes the glTF/GLB loader for a bounded time: builds the asan preset (clang, AddressSanitizer
-# + UndefinedBehaviorSanitizer + libFuzzer), seeds a corpus from ../shared/assets (the samples
-# and the glTF-Validator's invalid files) and the regression inputs, runs, and prints
-# libFuzzer's totals. Usage: scripts/fuzz.sh [SECONDS] (default 120). Exit non-zero on a crash;
+# Fuzzes the glTF/GLB loader for a bounded time with two libFuzzer targets (bytes, and the
+# document structure): builds the asan preset (clang, AddressSanitizer + UndefinedBehavior-
+# Sanitizer + libFuzzer), seeds a corpus from ../shared/assets (the samples and the
+# glTF-Validator's invalid files), the regression inputs and tests/fuzz/seeds/, runs each for
+# half the time, and prints libFuzzer's totals. Usage: scripts/fuzz.sh [SECONDS] (default 120). Exit non-zero on a crash;
 # the input that crashed is left in build/asan/fuzz-findings/ (add it to
 # tests/fuzz/regressions/ with the fix).
 set -euo pipefail
@@ -22,12 +23,32 @@ fi
 cp -f tests/fuzz/regressions/* "$corpus/" 2>/dev/null || true
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0
-# -jobs/-workers 1: the 2-core CI machine; -timeout: a hang (one input over 10 s) is a finding.
+# Two targets share the time: the byte fuzzer (GltfFuzz.cpp: any bytes as .gltf/.glb) and the
+# structure fuzzer (GltfStructureFuzz.cpp: valid documents mutated as JSON trees, seeded also
+# with tests/fuzz/seeds/). -jobs/-workers 1: the 2-core CI machine; -timeout: a hang (one input
+# over 10 s) is a finding.
 log=build/asan/fuzz.log
+: >"$log"
 status=0
-build/asan/tests/fuzz/lantern_fuzz_gltf "$corpus" -max_total_time="$seconds" -timeout=10 \
-    -rss_limit_mb=2048 -max_len=65536 -artifact_prefix="$findings/" -print_final_stats=1 \
-    >"$log" 2>&1 || status=$?
-grep -E '^(#[0-9]+ +(INITED|DONE)|Done|stat::|==[0-9]+==ERROR|SUMMARY|Test unit written)' "$log" || true
+total=0
+for target in gltf structure; do
+    dirs=("$corpus")
+    if [ "$target" = structure ]; then
+        mkdir -p "$corpus-structure"
+        cp -f tests/fuzz/seeds/*.gltf "$corpus-structure/" 2>/dev/null || true
+        dirs=("$corpus-structure" "$corpus")
+    fi
+    one=build/asan/fuzz-$target.log
+    build/asan/tests/fuzz/lantern_fuzz_$target "${dirs[@]}" -max_total_time="$(( (seconds + 1) / 2 ))" \
+        -timeout=10 -rss_limit_mb=2048 -max_len=65536 -artifact_prefix="$findings/$target-" \
+        -print_final_stats=1 >"$one" 2>&1 || status=$?
+    cat "$one" >>"$log"
+    echo "fuzz: $target" >&2
+    grep -E '^(#[0-9]+ +(INITED|DONE)|Done|stat::|==[0-9]+==ERROR|SUMMARY|Test unit written)' "$one" || true
+    runs=$(sed -n 's/^Done \([0-9]*\) runs.*/\1/p' "$one" | tail -n 1)
+    total=$((total + ${runs:-0}))
+    [ "$status" = 0 ] || break
+done
 [ "$status" = 0 ] || echo "fuzz: libFuzzer exited with $status; see $log and $findings/" >&2
+echo "Done $total runs of both fuzzers (bytes and structure)" | tee -a "$log"
 exit "$status"

@@ -363,6 +363,20 @@ struct ScriptedRow {
     const char* why;
 };
 
+TEST_F(ViewerTest, AScriptedScreenshotOfANonFiniteFrameIsRefusedWithExit3) {
+    // The readback hook of test builds plants a NaN at pixel (10, 10), as a shader bug would.
+    const fs::path png = m_dir / "nonfinite.png";
+    std::vector<std::string> args{cliPath().string(), "view", "builtin:spheres", "--width", "64",
+                                  "--height", "48", "--after-frames", "2", "--screenshot", png.string()};
+    std::vector<std::string> env = m_server->environment();
+    env.push_back("LANTERN_TEST_NONFINITE_PIXEL=10,10");
+    const ProcessResult r = runProcess(args, env, 120.0);
+    EXPECT_EQ(r.exitCode, 3) << r.err;
+    EXPECT_FALSE(fs::exists(png)) << "a frame with NaN was saved";
+    EXPECT_NE(r.err.find("screenshot not written: the frame holds 1 non-finite values"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("lantern render builtin:spheres"), std::string::npos) << r.err;
+}
+
 TEST_F(ViewerTest, ScriptedRunsWriteTheScreenshotAndExit) {
     const ScriptedRow rows[] = {
         {"plain", {}, true, "the default view of the scene, as render gives it"},

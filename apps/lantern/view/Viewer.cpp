@@ -294,7 +294,18 @@ std::optional<int> Viewer::runFrame() {
     m_stats.add(now, *frame);
     if (frame->capture) {
         m_captureNext = false;
-        if (int c = writeCapture(*frame->capture); c != kOk) return c;
+        // A frame that held NaN or Inf (shown with those values as 0) is never saved: as
+        // `lantern render`, the screenshot is refused; a scripted run exits 3.
+        if (frame->stats.nonFinite > 0) {
+            std::cerr << "lantern: error: screenshot not written: the frame holds "
+                      << frame->stats.nonFinite
+                      << " non-finite values (shown as 0); this command names the object drawn "
+                         "there: "
+                      << renderCommand("out/nonfinite.exr") << "\n";
+            if (scripted) return kFailed;
+        } else if (int c = writeCapture(*frame->capture); c != kOk) {
+            return c;
+        }
     }
     updateTitle();
     if (scripted) return kOk;
