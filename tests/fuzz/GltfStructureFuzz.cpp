@@ -2,23 +2,18 @@
 // as JSON and changes one value of the tree the way a hostile or broken exporter would (an
 // index one past the end or far beyond it, a count of 2^32, a huge or negative number, an
 // empty or duplicated array, a missing or transplanted member, a subtree copied from another
-// place), then the loader and everything a render does before the GPU run on the result, as
-// in GltfFuzz.cpp. Inputs that are not JSON fall back to libFuzzer's byte mutations, so GLB
+// place), then the loader and everything a render does before the GPU run on the result
+// (FuzzLoad.h, as in GltfFuzz.cpp). Inputs that are not JSON fall back to libFuzzer's byte mutations, so GLB
 // and garbage seeds still work. Seeds: tests/fuzz/seeds/ (small valid scenes with every
 // feature, buffers in data: URIs) and what scripts/fuzz.sh adds.
-#include "io/GltfLoad.h"
-#include "frame/Frame.h"
-
-#include <lantern/Scene.h>
+#include "FuzzLoad.h"
 
 #include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <filesystem>
 #include <random>
-#include <unistd.h>
 #include <vector>
 
 extern "C" std::size_t LLVMFuzzerMutate(std::uint8_t* data, std::size_t size, std::size_t maxSize);
@@ -26,16 +21,6 @@ extern "C" std::size_t LLVMFuzzerMutate(std::uint8_t* data, std::size_t size, st
 namespace {
 
 using json = nlohmann::json;
-
-const std::filesystem::path& emptyFolder() {
-    static const std::filesystem::path folder = [] {
-        auto dir = std::filesystem::temp_directory_path() /
-                   ("lantern-structure-fuzz-" + std::to_string(::getpid()));
-        std::filesystem::create_directories(dir);
-        return dir;
-    }();
-    return folder;
-}
 
 // Every value of the tree, depth first (the root included).
 void collect(json& v, std::vector<json*>& out) {
@@ -148,21 +133,6 @@ extern "C" std::size_t LLVMFuzzerCustomMutator(std::uint8_t* data, std::size_t s
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    using namespace lantern;
-    LoadOptions options;
-    options.maxBytes = std::uint64_t(4) << 20;
-    const bool glb = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
-    auto scene = gltf::loadGltfBytes(std::vector<unsigned char>(data, data + size),
-                                     emptyFolder() / (glb ? "input.glb" : "input.gltf"), options);
-    if (!scene) return 0;
-    (void)summarize(*scene);
-    RenderOptions render;
-    render.width = 64;
-    render.height = 48;
-    for (double time : {0.0, 0.5, 1e6})
-        for (int root = 0; root < int(scene->roots.size()) && root < 4; ++root) {
-            render.root = root;
-            (void)frame::buildFrame(*scene, render, time);
-        }
+    lantern::fuzz::loadAndPlan(data, size);
     return 0;
 }

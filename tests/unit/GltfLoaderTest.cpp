@@ -341,8 +341,18 @@ TEST(GltfLoader, BoundsIndexAndCountViolationsAreRefusedWithTheObjectPath) {
 
 // --- Geometry -------------------------------------------------------------------------------
 
+// Five vertices (0,0) (1,0) (0,1) (1,1) (0,2) drawn with `mode`, through the indices 4,3,2,1,0
+// when `indexed`: the file, loaded.
+test::LoadOutcome loadFiveVertices(int mode, bool indexed, const std::string& name) {
+    GltfBuilder b;
+    const int pos = b.addFloats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 2, 0}, "VEC3");
+    json prim = {{"attributes", {{"POSITION", pos}}}, {"mode", mode}};
+    if (indexed) prim["indices"] = b.addIndices({4, 3, 2, 1, 0});
+    b.addNode({{"mesh", b.addMesh(prim)}});
+    return loadCapturing(b.write(testOutputDir(), name));
+}
+
 TEST(GltfLoader, StripsAndFansBecomeListsWithTheirWinding) {
-    const auto dir = testOutputDir();
     // Five vertices: strip triangles (0,1,2) (1,3,2) (2,3,4); fan (1,2,0) (2,3,0) (3,4,0)
     // (glTF 2.0 section 3.7.2.1: strip p_i, p_{i+(1+i%2)}, p_{i+(2-i%2)}; fan p_{i+1}, p_{i+2}, p_0).
     struct Case {
@@ -357,19 +367,13 @@ TEST(GltfLoader, StripsAndFansBecomeListsWithTheirWinding) {
         {6, true, {3, 2, 4, 2, 1, 4, 1, 0, 4}},
     };
     for (const Case& c : cases) {
-        GltfBuilder b;
-        const int pos = b.addFloats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 2, 0}, "VEC3");
-        json prim = {{"attributes", {{"POSITION", pos}}}, {"mode", c.mode}};
-        if (c.indexed) prim["indices"] = b.addIndices({4, 3, 2, 1, 0});
-        b.addNode({{"mesh", b.addMesh(prim)}});
-        auto o = loadCapturing(b.write(dir, "strip"));
+        auto o = loadFiveVertices(c.mode, c.indexed, "strip");
         ASSERT_TRUE(o.scene) << o.scene.error().describe();
         EXPECT_EQ(firstPrimitive(*o.scene).indices, c.expected) << "mode " << c.mode << " indexed " << c.indexed;
     }
 }
 
 TEST(GltfLoader, PointAndLineModesBecomeListsAndPartialElementsAreDroppedWithAWarning) {
-    const auto dir = testOutputDir();
     // Five vertices. LINE_STRIP: (0,1) (1,2) (2,3) (3,4); LINE_LOOP adds (4,0), so the last
     // vertex of each line is GL's provoking vertex; LINES drops the fifth vertex.
     struct Case {
@@ -391,12 +395,7 @@ TEST(GltfLoader, PointAndLineModesBecomeListsAndPartialElementsAreDroppedWithAWa
         {4, false, Topology::Triangles, {0, 1, 2}, true},
     };
     for (const Case& c : cases) {
-        GltfBuilder b;
-        const int pos = b.addFloats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 2, 0}, "VEC3");
-        json prim = {{"attributes", {{"POSITION", pos}}}, {"mode", c.mode}};
-        if (c.indexed) prim["indices"] = b.addIndices({4, 3, 2, 1, 0});
-        b.addNode({{"mesh", b.addMesh(prim)}});
-        auto o = loadCapturing(b.write(dir, "modes"));
+        auto o = loadFiveVertices(c.mode, c.indexed, "modes");
         ASSERT_TRUE(o.scene) << o.scene.error().describe();
         const Primitive& p = firstPrimitive(*o.scene);
         SCOPED_TRACE("mode " + std::to_string(c.mode) + (c.indexed ? " indexed" : ""));
