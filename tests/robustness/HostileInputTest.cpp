@@ -280,6 +280,46 @@ TEST(HostileFolder, ASymlinkLeadingOutsideIsRefusedAndNoByteQuoted) {
     EXPECT_TRUE(ok.scene) << (ok.scene ? "" : ok.scene.error().describe());
 }
 
+TEST(HostileFolder, AnAllowedFolderAdmitsParentUrisAndLinksIntoItAndNothingElse) {
+    const fs::path root = test::testOutputDir();
+    const fs::path shared = root / "shared", dir = root / "scene", other = root / "other";
+    for (const fs::path& d : {shared, dir, other}) fs::create_directories(d);
+    GltfBuilder b;
+    b.addTriangle();
+    const fs::path written = b.write(shared, "tri", GltfBuilder::Storage::External);
+    fs::copy_file(shared / "tri.bin", other / "tri.bin");
+    fs::create_symlink(shared / "tri.bin", dir / "link.bin");
+    auto sceneWithUri = [&](const std::string& uri) {
+        json doc = json::parse(readText(written));
+        doc["buffers"][0]["uri"] = uri;
+        writeText(dir / "scene.gltf", doc.dump());
+        return dir / "scene.gltf";
+    };
+    LoadOptions allow;
+    allow.allowedFolders = {shared};
+    // By default neither "../" nor a link may leave the scene's folder.
+    EXPECT_TRUE(refusedWith(loadCapturing(sceneWithUri("../shared/tri.bin")), "buffers[0].uri", "contains \"..\""));
+    EXPECT_TRUE(refusedWith(loadCapturing(sceneWithUri("link.bin")), "buffers[0].uri", "leads outside"));
+    // Allowed: both reach the shared folder.
+    for (const char* uri : {"../shared/tri.bin", "link.bin"}) {
+        auto loaded = loadGltf(sceneWithUri(uri), allow);
+        EXPECT_TRUE(loaded) << uri << ": " << (loaded ? "" : loaded.error().describe());
+    }
+    // ... and nowhere else: not a sibling folder, not through "..", not the secret of Confined.
+    auto sibling = loadGltf(sceneWithUri("../other/tri.bin"), allow);
+    ASSERT_FALSE(sibling);
+    EXPECT_NE(sibling.error().message.find("leads outside the scene's folder and the allowed folders"), std::string::npos)
+        << sibling.error().describe();
+    EXPECT_FALSE(loadGltf(sceneWithUri("../shared/../other/tri.bin"), allow));
+    EXPECT_FALSE(loadGltf(sceneWithUri("/etc/hostname"), allow)) << "absolute paths stay refused";
+    // The command line: --allow-folder on render, view and info.
+    const fs::path scene = sceneWithUri("../shared/tri.bin");
+    EXPECT_EQ(test::runLantern({"info", scene.string()}).exitCode, 1);
+    const auto r = test::runLantern({"info", scene.string(), "--allow-folder", shared.string()});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(test::runLantern({"info", scene.string(), "--allow-folder", (root / "missing").string()}).exitCode, 1);
+}
+
 TEST(HostileFolder, FoldersFifosAndDevicesAreRefusedWithoutWaiting) {
     Confined c(test::testOutputDir());
     fs::create_directory(c.dir / "folder.bin");

@@ -330,6 +330,13 @@ RendererDesc DeviceOptions::desc() const {
     return d;
 }
 
+void addAllowFolderOption(CLI::App& app, std::vector<std::string>& folders) {
+    app.add_option("--allow-folder", folders,
+                   "A folder besides the scene's own that its external buffers and images may "
+                   "come from (repeat for several; URIs may then contain \"..\")")
+        ->check(CLI::ExistingDirectory);
+}
+
 void addMaxSizeOption(CLI::App& app, std::uint64_t& maxSize) {
     app.add_option("--max-size", maxSize,
                    "Largest file, buffer or image accepted, and the most one scene may decode in "

@@ -24,6 +24,7 @@ struct InfoArgs {
     int sceneIndex = -1;
     double time = 0.0;
     std::uint64_t maxSize = std::uint64_t(1) << 30;
+    std::vector<std::string> allowFolders;
 };
 
 /// "3 (a 2, b 1)": a total and its non-zero parts in a fixed order.
@@ -211,6 +212,7 @@ int run(const InfoArgs& a) {
         if (int code = runDevices(a); code != kOk) return code;
     LoadOptions load;
     load.maxBytes = a.maxSize;
+    load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
     load.log = stderrSink(false);
     auto loaded = loadScene(a.scene, load);
     if (!loaded) return report(loaded.error());
@@ -247,6 +249,7 @@ Runner addInfoCommand(CLI::App& app) {
     cmd->add_option("--time", args->time, "Animation time in seconds for bounds and features")
         ->capture_default_str();
     addMaxSizeOption(*cmd, args->maxSize);
+    addAllowFolderOption(*cmd, args->allowFolders);
     return [args, cmd]() { return cmd->parsed() ? run(*args) : -1; };
 }
 

@@ -108,6 +108,7 @@ struct RenderArgs {
     std::string probe;
     std::string compression = "zip";
     std::uint64_t maxSize = std::uint64_t(1) << 30;
+    std::vector<std::string> allowFolders;
     std::string background;
     std::string frames;
     std::string frameList; // --frame-list: explicit frames, e.g. those a farm job is missing
@@ -375,6 +376,7 @@ int run(const RenderArgs& a) {
 
     LoadOptions load;
     load.maxBytes = a.maxSize;
+    load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
     load.log = stderrSink(a.device.verbose);
     auto scene = loadScene(a.scene, load);
     if (!scene) return report(scene.error());
@@ -448,6 +450,7 @@ Runner addRenderCommand(CLI::App& app) {
                     "X,Y: print the lighting equation term by term at pixel X,Y (x from the left, "
                     "y from the top)");
     addMaxSizeOption(*cmd, args->maxSize);
+    addAllowFolderOption(*cmd, args->allowFolders);
     args->camera.add(*cmd);
     args->shading.add(*cmd);
     args->device.add(*cmd);

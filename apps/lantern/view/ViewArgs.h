@@ -27,6 +27,7 @@ struct ViewArgs {
     bool headlight = false, wireframe = false, normals = false;
     std::string background;
     std::uint64_t maxSize = std::uint64_t(1) << 30;
+    std::vector<std::string> allowFolders;  ///< --allow-folder
     CameraOptions camera;
     ShadingOptions shading;
     DeviceOptions device;

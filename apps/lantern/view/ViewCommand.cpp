@@ -36,6 +36,7 @@ int runView(const ViewArgs& a) {
 
     LoadOptions load;
     load.maxBytes = a.maxSize;
+    load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
     load.log = stderrSink(a.device.verbose);
     auto scene = loadScene(a.scene, load);
     if (!scene) return report(scene.error());
@@ -126,6 +127,7 @@ Runner addViewCommand(CLI::App& app) {
     cmd->add_flag("--normals", args->normals, "Start with the normals displayed (N)");
     cmd->add_flag("--stats", args->stats, "Print frame-time statistics when the viewer exits");
     addMaxSizeOption(*cmd, args->maxSize);
+    addAllowFolderOption(*cmd, args->allowFolders);
     args->camera.add(*cmd);
     args->shading.add(*cmd);
     args->device.add(*cmd);

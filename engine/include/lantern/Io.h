@@ -24,6 +24,10 @@ struct LoadOptions {
     /// Largest accepted file, buffer or image, in bytes (--max-size). Larger ones are refused.
     std::uint64_t maxBytes = std::uint64_t(1) << 30;
     LogSink log;  ///< warnings about things skipped or repaired
+    /// Folders besides the scene's own that external buffers and images may come from
+    /// (--allow-folder): a URI may then contain ".." and a symbolic link may lead there. Each
+    /// file is still resolved to its real path and refused unless that lies inside one of them.
+    std::vector<std::filesystem::path> allowedFolders;
 };
 
 /// Loads a .gltf or .glb file (external buffers and images may not leave the file's folder),

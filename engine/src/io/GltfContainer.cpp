@@ -263,7 +263,8 @@ Result<std::vector<unsigned char>> readRegularFile(const std::filesystem::path& 
 
 Result<std::filesystem::path> resolveConfined(const std::filesystem::path& folder,
                                               const std::string& relative,
-                                              std::uint64_t maxBytes) {
+                                              std::uint64_t maxBytes,
+                                              const std::vector<std::filesystem::path>& allowed) {
     const std::string shown = "\"" + printable(relative) + "\"";
     auto realOf = [](const std::filesystem::path& p) -> std::optional<std::filesystem::path> {
         char buf[PATH_MAX];
@@ -282,10 +283,19 @@ Result<std::filesystem::path> resolveConfined(const std::filesystem::path& folde
     if (!real)
         return makeError(ErrorCode::InvalidInput,
                          shown + " cannot be resolved (a broken or looping symbolic link?)");
-    const std::string inside = realFolder->string() == "/" ? "/" : realFolder->string() + "/";
-    if (real->string().compare(0, inside.size(), inside) != 0)
+    auto within = [&](const std::filesystem::path& realRoot) {
+        const std::string inside = realRoot.string() == "/" ? "/" : realRoot.string() + "/";
+        return real->string().compare(0, inside.size(), inside) == 0;
+    };
+    bool confined = within(*realFolder);
+    for (const std::filesystem::path& a : allowed)
+        if (const auto realAllowed = realOf(a); realAllowed && within(*realAllowed)) confined = true;
+    if (!confined)
         return makeError(ErrorCode::InvalidInput,
-                         shown + " is a symbolic link that leads outside the scene's folder");
+                         shown + (allowed.empty()
+                                      ? " is a symbolic link that leads outside the scene's folder"
+                                      : " leads outside the scene's folder and the allowed "
+                                        "folders (--allow-folder)"));
     if (::stat(real->c_str(), &st) != 0 || !S_ISREG(st.st_mode))
         return makeError(ErrorCode::InvalidInput,
                          shown + " is " + fileKind(st.st_mode) + ", not a regular file");
@@ -296,7 +306,7 @@ Result<std::filesystem::path> resolveConfined(const std::filesystem::path& folde
 }
 
 Result<std::string> checkRelativeUri(std::string_view uri, const std::string& object,
-                                     const Diagnostics& diag) {
+                                     const Diagnostics& diag, bool allowParent) {
     const std::string path = percentDecode(uri);
     const std::string shown = "\"" + printable(uri) + "\"";
     if (path.empty()) return diag.error(object, "URI is empty");
@@ -314,13 +324,13 @@ Result<std::string> checkRelativeUri(std::string_view uri, const std::string& ob
                                       "scene's folder");
     // ".." anywhere as a path component (either separator) could leave the folder.
     std::size_t start = 0;
-    while (start <= path.size()) {
+    while (!allowParent && start <= path.size()) {
         std::size_t end = path.find_first_of("/\\", start);
         if (end == std::string::npos) end = path.size();
         if (path.compare(start, end - start, "..") == 0)
             return diag.error(object, "URI " + shown +
                                           " contains \"..\"; external files must lie in the "
-                                          "scene's folder");
+                                          "scene's folder (or one given with --allow-folder)");
         start = end + 1;
     }
     return path;

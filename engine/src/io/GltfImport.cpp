@@ -19,6 +19,7 @@ namespace {
 /// and the first reason a read was refused (reported instead of tinygltf's "file not found").
 struct FsContext {
     std::string folder; ///< absolute, without a trailing separator
+    std::vector<std::filesystem::path> allowed;  ///< LoadOptions::allowedFolders
     std::uint64_t maxBytes = 0;
     std::string refusal;
 };
@@ -29,7 +30,7 @@ std::optional<std::string> insideFolder(const FsContext& ctx, const std::string&
     if (path.compare(0, prefix.size(), prefix) != 0) return std::nullopt;
     const std::string rest = path.substr(prefix.size());
     Diagnostics quiet("", {});
-    if (!checkRelativeUri(rest, "", quiet)) return std::nullopt;
+    if (!checkRelativeUri(rest, "", quiet, !ctx.allowed.empty())) return std::nullopt;
     return rest;
 }
 
@@ -38,7 +39,7 @@ bool fileExists(const std::string& path, void* user) {
     // tinygltf also tries the working directory ("./uri"): never let it. (URIs that leave
     // the folder were refused with their object path before tinygltf ran.)
     const auto rest = insideFolder(ctx, path);
-    return rest && resolveConfined(ctx.folder, *rest, ctx.maxBytes);
+    return rest && resolveConfined(ctx.folder, *rest, ctx.maxBytes, ctx.allowed);
 }
 
 std::string expandFilePath(const std::string& path, void*) {
@@ -67,7 +68,7 @@ bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std:
     }
     // Resolved to its real path inside the folder, then opened without following a link
     // there (a link swapped in meanwhile is refused) and checked to be a regular file.
-    auto real = resolveConfined(ctx.folder, *rest, ctx.maxBytes);
+    auto real = resolveConfined(ctx.folder, *rest, ctx.maxBytes, ctx.allowed);
     auto bytes = real ? readRegularFile(*real, ctx.maxBytes, true)
                       : Result<std::vector<unsigned char>>(std::move(real).error());
     if (!bytes) {
@@ -203,6 +204,8 @@ Result<Scene> loadBytes(std::vector<unsigned char> bytes, const std::filesystem:
     Source source;
     source.folder = absolute.parent_path();
     source.maxBytes = options.maxBytes;
+    for (const std::filesystem::path& a : options.allowedFolders)
+        source.allowed.push_back(std::filesystem::absolute(a, ec).lexically_normal());
     source.glb = bool(in->glb);
     source.glbHasBin = in->glb && in->glb->hasBin;
     LANTERN_TRY(checkJsonNesting(in->json, diag));
@@ -215,6 +218,7 @@ Result<Scene> loadBytes(std::vector<unsigned char> bytes, const std::filesystem:
     FsContext fs;
     fs.folder = source.folder.string();
     fs.maxBytes = options.maxBytes;
+    fs.allowed = source.allowed;
     ImageStore images;
     auto model = parseModel(*in, fs, images, diag);
     if (!model) return std::move(model).error();

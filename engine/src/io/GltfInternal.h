@@ -159,11 +159,12 @@ Result<void> checkJsonNesting(std::string_view json, const Diagnostics& diag);
 /// Decodes %XX escapes (as tinygltf does before opening a file).
 std::string percentDecode(std::string_view text);
 
-/// Checks an external (non-data) URI: it must be a relative path inside the scene's folder
-/// (no scheme, no absolute path, no ".." component). Returns the decoded relative path, or
-/// the reason it is refused as the error message.
+/// Checks an external (non-data) URI: it must be a relative path (no scheme, no absolute path)
+/// inside the scene's folder: no ".." component, unless `allowParent` (the user allowed other
+/// folders; resolveConfined then decides). Returns the decoded relative path, or the reason it
+/// is refused as the error message.
 Result<std::string> checkRelativeUri(std::string_view uri, const std::string& object,
-                                     const Diagnostics& diag);
+                                     const Diagnostics& diag, bool allowParent = false);
 
 /// Text from a file made safe to quote in a message: control and non-ASCII bytes as \xNN, and
 /// cut after `limit` bytes ("..."). A message never carries a file's raw bytes.
@@ -171,11 +172,13 @@ std::string printable(std::string_view text, std::size_t limit = 80);
 
 /// An external file a URI names, resolved and confined: `relative` (a checked relative path)
 /// is resolved to its real path (every symlink followed) and refused unless that lies inside
-/// the scene's real folder and is a regular file (not a folder, FIFO, socket or device) of at
-/// most `maxBytes`. The error message names the URI and the reason, never the file's bytes.
+/// the scene's real folder or one of the `allowed` folders' and is a regular file (not a
+/// folder, FIFO, socket or device) of at most `maxBytes`. The error message names the URI and
+/// the reason, never the file's bytes.
 Result<std::filesystem::path> resolveConfined(const std::filesystem::path& folder,
                                               const std::string& relative,
-                                              std::uint64_t maxBytes);
+                                              std::uint64_t maxBytes,
+                                              const std::vector<std::filesystem::path>& allowed = {});
 
 /// Reads a regular file of at most `maxBytes`: opened with O_NONBLOCK (a FIFO or device never
 /// blocks) and, when `noFollow`, O_NOFOLLOW (the last component may not be a symlink); the
@@ -206,6 +209,7 @@ struct RawFacts {
 /// Where the JSON came from, for the checks on buffers and external files.
 struct Source {
     std::filesystem::path folder; ///< the scene's folder (absolute)
+    std::vector<std::filesystem::path> allowed;  ///< LoadOptions::allowedFolders
     bool glb = false;
     bool glbHasBin = false;
     std::uint64_t maxBytes = 0;

@@ -89,7 +89,7 @@ Result<void> checkBufferWithoutUri(const json& buffer, std::size_t i, const std:
 // Why the external file `relative` cannot be read (missing, outside the folder through a
 // symlink, not a regular file, over the size bound); empty when it can.
 std::string externalFileProblem(const std::string& relative, const Source& source) {
-    auto resolved = resolveConfined(source.folder, relative, source.maxBytes);
+    auto resolved = resolveConfined(source.folder, relative, source.maxBytes, source.allowed);
     return resolved ? std::string() : resolved.error().message;
 }
 
@@ -115,7 +115,7 @@ Result<void> checkExternalItem(const json& item, const char* kind, std::size_t i
                               "application/gltf-buffer or an image type)");
         return {};
     }
-    auto relative = checkRelativeUri(value, object + ".uri", diag);
+    auto relative = checkRelativeUri(value, object + ".uri", diag, !source.allowed.empty());
     if (!relative) return std::move(relative).error();
     const std::string problem = externalFileProblem(*relative, source);
     if (problem.empty()) return {};
