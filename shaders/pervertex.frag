@@ -23,7 +23,11 @@ layout(location = 7) LIT in vec3 vNormal;
 layout(location = 8) in vec2 vTexcoordCentre;
 
 void main() {
-    const SurfaceUv u = SurfaceUv(vTexcoord, dFdx(vTexcoordCentre), dFdy(vTexcoordCentre));
+    SurfaceUv u = SurfaceUv(vTexcoord, vec2(0.0), vec2(0.0));
+    if (SC_TEXTURE || (SC_MAPS & LANTERN_MAP_EMISSIVE) != 0u) {  // on constants: uniform flow
+        u.dx = dFdx(vTexcoordCentre);
+        u.dy = dFdy(vTexcoordCentre);
+    }
     bool back = SC_TWO_SIDED && !gl_FrontFacing;
     vec3 base = back ? vBackBase : vFrontBase;
     vec3 textured = back ? vBackTextured : vFrontTextured;

@@ -14,8 +14,18 @@ layout(location = 4) in vec3 vEyeCentre;
 layout(location = 5) in vec2 vTexcoordCentre;
 
 void main() {
-    const SurfaceUv u = SurfaceUv(vTexcoord, dFdx(vTexcoordCentre), dFdy(vTexcoordCentre));
-    const vec3 dp1 = dFdx(vEyeCentre), dp2 = dFdy(vEyeCentre);
+    // Derivatives only in the variants that sample (the branches are on constants, so control
+    // flow stays uniform): an untextured scene pays nothing for them.
+    SurfaceUv u = SurfaceUv(vTexcoord, vec2(0.0), vec2(0.0));
+    if (SC_TEXTURE || SC_MAPS != 0u) {
+        u.dx = dFdx(vTexcoordCentre);
+        u.dy = dFdy(vTexcoordCentre);
+    }
+    vec3 dp1 = vec3(0.0), dp2 = vec3(0.0);
+    if ((SC_MAPS & LANTERN_MAP_NORMAL) != 0u) {
+        dp1 = dFdx(vEyeCentre);
+        dp2 = dFdy(vEyeCentre);
+    }
     MaterialData material = materials[draw.materialIndex];
     const uint maps = materialMaps(draw.materialIndex);
     bool back = SC_TWO_SIDED && !gl_FrontFacing;

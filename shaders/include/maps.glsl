@@ -38,9 +38,8 @@ MaterialSideData mappedPbrSide(MaterialSideData side, MaterialData material, Sur
 // frame's handedness. The texel's X and Y are scaled by the material's normal scale. Where no
 // frame can be built (the map's coordinates do not change across the pixel) n is kept.
 vec3 mappedNormal(vec3 n, vec3 dp1, vec3 dp2, SurfaceUv u, MaterialData material) {
-    const vec4 row0 = material.mapUv[2], row1 = material.mapUv[3];
-    vec2 duv1 = vec2(dot(row0.xy, u.dx), dot(row1.xy, u.dx));
-    vec2 duv2 = vec2(dot(row0.xy, u.dy), dot(row1.xy, u.dy));
+    vec2 duv1 = transformedGradient(material.mapUv[2], material.mapUv[3], u.dx);
+    vec2 duv2 = transformedGradient(material.mapUv[2], material.mapUv[3], u.dy);
     vec3 dp2perp = cross(dp2, n), dp1perp = cross(n, dp1);
     vec3 t = dp2perp * duv1.x + dp1perp * duv2.x;
     vec3 b = dp2perp * duv1.y + dp1perp * duv2.y;

@@ -71,13 +71,17 @@ struct SurfaceUv {
     vec2 dy;
 };
 
+// A derivative of (u, v) carried through the linear part of the transform (row0, row1).
+vec2 transformedGradient(vec4 row0, vec4 row1, vec2 d) {
+    return vec2(dot(row0.xy, d), dot(row1.xy, d));
+}
+
 // `s` read at (row0, row1) * (uv, 1), a KHR_texture_transform, with the derivatives carried
 // through its linear part.
 vec4 sampleTransformed(sampler2D s, vec4 row0, vec4 row1, SurfaceUv u) {
     vec2 st = vec2(dot(row0.xyz, vec3(u.uv, 1.0)), dot(row1.xyz, vec3(u.uv, 1.0)));
-    vec2 gx = vec2(dot(row0.xy, u.dx), dot(row1.xy, u.dx));
-    vec2 gy = vec2(dot(row0.xy, u.dy), dot(row1.xy, u.dy));
-    return textureGrad(s, st, gx, gy);
+    return textureGrad(s, st, transformedGradient(row0, row1, u.dx),
+                       transformedGradient(row0, row1, u.dy));
 }
 
 // The base-colour texture at the fragment.

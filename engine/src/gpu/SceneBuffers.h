@@ -57,7 +57,6 @@ public:
     VkDeviceSize deformInputBytes() const { return m_deformInput.size; }
     VkDeviceSize defaultColorOffset() const { return m_defaultColor; }
     VkDeviceSize defaultTexcoordOffset() const { return m_defaultTexcoord; }
-    /// The descriptor set of texture `index` (-1: a white 1x1 texture).
     /// The texture set of material `index` (its base colour and maps, white where it has
     /// none); -1: every binding white.
     VkDescriptorSet textureSet(int index) const {

@@ -1,5 +1,5 @@
 // A scene's textures on the GPU: each uploaded with a mip chain (linear blits where the format
-// allows), the samplers their glTF samplers ask for, one descriptor set per texture.
+// allows), the samplers their glTF samplers ask for, one descriptor set per material.
 #include "gpu/SceneBuffers.h"
 
 #include "lantern_shared.h"

@@ -64,17 +64,18 @@ public:
     }
 
     /// The mean metallic (blue) and roughness (green) of a metallicRoughnessTexture, or
-    /// nothing when the texture has no image Lantern reads.
-    Result<std::optional<glm::dvec2>> meanMetallicRoughness(int index) {
-        const tinygltf::Texture& t = m_model.textures[std::size_t(index)];
-        if (t.source < 0) return std::optional<glm::dvec2>{};
-        auto decoded = decode(t.source);
-        if (!decoded) return std::move(decoded).error();
+    /// nothing when the texture has no image Lantern reads. The texture is decoded once, as
+    /// the linear data phong shading reads per texel (get(index, usedBy, false)).
+    Result<std::optional<glm::dvec2>> meanMetallicRoughness(int index, const std::string& usedBy) {
+        auto t = get(index, usedBy, false);
+        if (!t) return std::move(t).error();
+        if (*t < 0) return std::optional<glm::dvec2>{};
+        const std::vector<std::uint8_t>& rgba = m_out[std::size_t(*t)].rgba8;
         double metallic = 0.0, roughness = 0.0;
-        const std::size_t pixels = decoded->rgba8.size() / 4;
+        const std::size_t pixels = rgba.size() / 4;
         for (std::size_t i = 0; i < pixels; ++i) {
-            roughness += decoded->rgba8[i * 4 + 1];
-            metallic += decoded->rgba8[i * 4 + 2];
+            roughness += rgba[i * 4 + 1];
+            metallic += rgba[i * 4 + 2];
         }
         const double scale = 1.0 / (255.0 * double(std::max<std::size_t>(pixels, 1)));
         return std::optional<glm::dvec2>(glm::dvec2(metallic * scale, roughness * scale));
@@ -271,12 +272,14 @@ void makeUnlit(const glm::dvec4& baseColor, Material& m) {
 // least 1 so the lobe always falls off); specular = f0 (1 - w m) (s+8)/8, the lobe normalised
 // so that a rougher surface has a wider and dimmer highlight. A metallicRoughnessTexture
 // scales the factors; the Phong material is uniform, so it takes the texture's mean.
-Result<void> mapPbr(const tinygltf::Material& src, const glm::dvec4& baseColor,
-                    double emissiveStrength, TextureTable& textures, Material& m) {
+Result<void> mapPbr(const tinygltf::Material& src, const std::string& obj,
+                    const glm::dvec4& baseColor, double emissiveStrength, TextureTable& textures,
+                    Material& m) {
     const tinygltf::PbrMetallicRoughness& pbr = src.pbrMetallicRoughness;
     double metallic = pbr.metallicFactor, roughness = pbr.roughnessFactor;
     if (pbr.metallicRoughnessTexture.index >= 0) {
-        auto mean = textures.meanMetallicRoughness(pbr.metallicRoughnessTexture.index);
+        auto mean = textures.meanMetallicRoughness(pbr.metallicRoughnessTexture.index,
+                                                   obj + ".pbrMetallicRoughness.metallicRoughnessTexture");
         if (!mean) return std::move(mean).error();
         if (*mean) {
             metallic *= (*mean)->x;
@@ -317,7 +320,7 @@ Result<Material> convertMaterial(const tinygltf::Model& model, std::size_t index
     else if (m.unlit)
         makeUnlit(baseColor, m);
     else
-        LANTERN_TRY(mapPbr(src, baseColor, *emissiveStrength, textures, m));
+        LANTERN_TRY(mapPbr(src, obj, baseColor, *emissiveStrength, textures, m));
     if (!m.unlit) LANTERN_TRY(readMaps(src, obj, textures, diag, m));
     if (pbr.baseColorTexture.index >= 0) {
         auto t = textures.get(pbr.baseColorTexture.index, obj);

@@ -357,7 +357,7 @@ ProbeReport PixelReference::explain(int x, int y, std::uint32_t drawId, std::uin
     r.material = prim.material;
     r.materialName = mat.name;
     r.materialSide = r.backMaterial && mat.back ? *mat.back : mat.front;
-    r.unlit = mat.unlit || prim.unlitForWantOfNormals();
+    r.unlit = rules.settings.unlit;
     r.textured = rules.textured;
     bool lightSpecular = false;
     for (const EyeLight& l : view.lights) lightSpecular |= nonZero(l.specular);
