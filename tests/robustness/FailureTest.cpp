@@ -182,6 +182,37 @@ TEST_F(Limits, AnImageTooLargeForMemoryIsRefusedBeforeAllocating) {
     EXPECT_LT(seconds, 5.0) << "it should be refused from an estimate, not by trying";
 }
 
+TEST_F(Limits, FlatStreamsBeyondTheDevicesLargestAllocationAreRefusedBeforeAllocating) {
+    // 60M indices on three vertices (240 MB of scene): flat shading would need 60 bytes per
+    // corner, 3.6 GB, beyond lavapipe's 2 GiB maxMemoryAllocationSize. Refused with the sizes
+    // named; the same scene still renders in Phong, which needs no flat streams.
+    auto scene = builtinScene("spheres");
+    ASSERT_TRUE(scene);
+    Primitive& p = scene->meshes.at(0).primitives.at(0);
+    p.positions = {{0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}};
+    p.normals.assign(3, glm::vec3(0.0f, 0.0f, 1.0f));
+    p.colors.assign(3, glm::vec4(1.0f));
+    p.texcoords.assign(3, glm::vec2(0.0f));
+    p.indices.resize(60'000'000);
+    for (std::size_t i = 0; i < p.indices.size(); ++i) p.indices[i] = std::uint32_t(i % 3);
+    RenderOptions o;
+    o.width = 8;
+    o.height = 8;
+    o.shading = ShadingMode::Flat;
+    const auto t0 = std::chrono::steady_clock::now();
+    auto flat = renderer().render(*scene, o, 0.0);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    ASSERT_FALSE(flat);
+    EXPECT_EQ(flat.error().code, ErrorCode::OutOfMemory) << flat.error().describe();
+    EXPECT_NE(flat.error().message.find("flat geometry needs"), std::string::npos)
+        << flat.error().describe();
+    EXPECT_NE(flat.error().message.find("largest allocation"), std::string::npos)
+        << flat.error().describe();
+    EXPECT_LT(seconds, 20.0) << "refused from the size, before the streams are built";
+    o.shading = ShadingMode::Phong;
+    EXPECT_TRUE(renderer().render(*scene, o, 0.0));
+}
+
 TEST(SynchronizationValidation, OffscreenSequenceIsClean) {
     RendererDesc desc;
     desc.synchronizationValidation = true;

@@ -292,26 +292,27 @@ TEST(GltfCompressionHostile, TheCommandExitsWith1NamingFileAndObject) {
 }
 
 TEST(GltfCompressionHostile, DecodedDataCountsAgainstTheByteLimit) {
-    // A sphere whose decoded data (about 30 KB) exceeds a 20 KB limit that its file fits.
-    const test::TestMesh sphere = test::makeSphere(24, 48);
+    // A sphere whose decoded data (about 900 KB) exceeds a 500 KB limit that its file (and
+    // the parsed JSON and models, some tens of KB) fits.
+    const test::TestMesh sphere = test::makeSphere(96, 192);
     for (Encoding e : {Encoding::MeshoptQuantized, Encoding::Draco}) {
         SCOPED_TRACE(test::encodingName(e));
         GltfBuilder b;
         test::addEncodedMesh(b, sphere, e);
         const auto path = b.write(testOutputDir(), "limit-" + test::encodingName(e),
                                   GltfBuilder::Storage::Glb);
-        ASSERT_LT(std::filesystem::file_size(path), 20000u);
-        const auto o = loadCapturing(path, 20000);
+        ASSERT_LT(std::filesystem::file_size(path), 500000u);
+        const auto o = loadCapturing(path, 500000);
         ASSERT_FALSE(o.scene);
         // The decoding step is refused (not a later one), against the load's whole budget.
         EXPECT_NE(o.scene.error().message.find(e == Encoding::Draco ? "decoding the Draco stream"
                                                                     : "decoding the compressed view"),
                   std::string::npos)
             << o.scene.error().describe();
-        EXPECT_NE(o.scene.error().message.find("(--max-size, 20000 bytes in all)"),
+        EXPECT_NE(o.scene.error().message.find("(--max-size, 500000 bytes in all)"),
                   std::string::npos)
             << o.scene.error().describe();
-        EXPECT_TRUE(loadCapturing(path, 200000).scene);
+        EXPECT_TRUE(loadCapturing(path, 4000000).scene);
     }
 }
 

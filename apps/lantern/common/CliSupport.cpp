@@ -339,8 +339,9 @@ void addAllowFolderOption(CLI::App& app, std::vector<std::string>& folders) {
 
 void addMaxSizeOption(CLI::App& app, std::uint64_t& maxSize) {
     app.add_option("--max-size", maxSize,
-                   "Largest file, buffer or image accepted, and the most one scene may decode in "
-                   "all (accessors, images), in bytes (1 to " + std::to_string(kMaxMaxSize) + ")")
+                   "Largest file, buffer or image accepted, and the most memory one scene's load "
+                   "may hold (parsed JSON, buffers, accessors, images), in bytes (1 to " +
+                       std::to_string(kMaxMaxSize) + ")")
         ->capture_default_str()
         ->check(CLI::Range(std::uint64_t(1), kMaxMaxSize));
 }

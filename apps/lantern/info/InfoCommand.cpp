@@ -23,7 +23,7 @@ struct InfoArgs {
     std::string deviceName;
     int sceneIndex = -1;
     double time = 0.0;
-    std::uint64_t maxSize = std::uint64_t(1) << 30;
+    std::uint64_t maxSize = kDefaultMaxBytes;
     std::vector<std::string> allowFolders;
 };
 

@@ -107,7 +107,7 @@ struct RenderArgs {
     bool explain = false;
     std::string probe;
     std::string compression = "zip";
-    std::uint64_t maxSize = std::uint64_t(1) << 30;
+    std::uint64_t maxSize = kDefaultMaxBytes;
     std::vector<std::string> allowFolders;
     std::string background;
     std::string frames;

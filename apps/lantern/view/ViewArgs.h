@@ -26,7 +26,7 @@ struct ViewArgs {
     bool noPanel = false, showHelp = false, stats = false;
     bool headlight = false, wireframe = false, normals = false;
     std::string background;
-    std::uint64_t maxSize = std::uint64_t(1) << 30;
+    std::uint64_t maxSize = kDefaultMaxBytes;
     std::vector<std::string> allowFolders;  ///< --allow-folder
     CameraOptions camera;
     ShadingOptions shading;

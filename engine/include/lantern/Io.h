@@ -20,9 +20,16 @@ namespace lantern {
 
 // --- Scenes ---------------------------------------------------------------------------------
 
+/// The default of LoadOptions::maxBytes (--max-size): 2 GiB. A load's parsed JSON counts against
+/// it, and a 1,000,000-node chain holds about 1 GB while tinygltf builds its model.
+inline constexpr std::uint64_t kDefaultMaxBytes = std::uint64_t(2) << 30;
+
 struct LoadOptions {
-    /// Largest accepted file, buffer or image, in bytes (--max-size). Larger ones are refused.
-    std::uint64_t maxBytes = std::uint64_t(1) << 30;
+    /// Largest accepted file, buffer or image, in bytes (--max-size), and the most memory one
+    /// load may hold for what the file decides: the parsed JSON and the models built from it,
+    /// buffers, decoded accessors and images. Each is charged before it is allocated; a file
+    /// that would go beyond is refused with the object named.
+    std::uint64_t maxBytes = kDefaultMaxBytes;
     LogSink log;  ///< warnings about things skipped or repaired
     /// Folders besides the scene's own that external buffers and images may come from
     /// (--allow-folder): a URI may then contain ".." and a symbolic link may lead there. Each

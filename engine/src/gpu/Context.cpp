@@ -262,9 +262,12 @@ Result<void> Context::finishSetup() {
     vkGetPhysicalDeviceProperties(m_physical, &m_properties);
     vkGetPhysicalDeviceMemoryProperties(m_physical, &m_memory);
     VkPhysicalDeviceVulkan12Properties p12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_PROPERTIES};
-    VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &p12, {}};
+    VkPhysicalDeviceVulkan11Properties p11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_PROPERTIES,
+                                           &p12};
+    VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &p11, {}};
     vkGetPhysicalDeviceProperties2(m_physical, &props2);
     m_driverInfo = std::string(p12.driverName) + " " + p12.driverInfo;
+    m_maxAllocation = p11.maxMemoryAllocationSize;
     const auto& lim = m_properties.limits;
     // The integer AOV attachments are never multisampled (the AOV pass is single-sampled), so
     // only float colour and depth bound the sample counts.

@@ -64,6 +64,8 @@ public:
     VkPipelineCache pipelineCache() const { return m_pipelineCache.get(); }
     const VkPhysicalDeviceProperties& properties() const { return m_properties; }
     const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return m_memory; }
+    /// The largest single allocation the device accepts (Vulkan 1.1 maxMemoryAllocationSize).
+    VkDeviceSize maxAllocation() const { return m_maxAllocation; }
     const Capabilities& capabilities() const { return m_caps; }
     bool validationEnabled() const { return m_validation; }
     /// True when the instance and device are the host's (adopt()).
@@ -124,6 +126,7 @@ private:
     bool m_validation = false;
     bool m_external = false;
     std::string m_driverInfo;
+    VkDeviceSize m_maxAllocation = 0;
     UniquePipelineCache m_pipelineCache;
     UniqueCommandPool m_oneShotPool;
     std::mutex m_oneShotMutex;

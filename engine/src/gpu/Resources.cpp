@@ -8,6 +8,13 @@ namespace lantern::gpu {
 
 Result<Buffer> createBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage,
                             MemoryUsage memory, const std::string& name) {
+    // Sizes come from scenes (flat streams, geometry): refused before anything is created when
+    // the device could never hold them, with the sizes named, instead of a driver failure.
+    if (ctx.maxAllocation() != 0 && size > ctx.maxAllocation())
+        return makeError(ErrorCode::OutOfMemory,
+                         "buffer " + name + " needs " + std::to_string(size) +
+                             " bytes, more than the device's largest allocation (" +
+                             std::to_string(ctx.maxAllocation()) + " bytes)");
     Buffer b;
     b.size = size;
     VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
@@ -44,6 +51,13 @@ Result<Buffer> createBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags 
     if (type < 0)
         return makeError(ErrorCode::Unsupported, "no suitable memory type for buffer " + name);
     const VkMemoryPropertyFlags flags = ctx.memoryProperties().memoryTypes[type].propertyFlags;
+    const VkMemoryHeap& heap =
+        ctx.memoryProperties().memoryHeaps[ctx.memoryProperties().memoryTypes[type].heapIndex];
+    if (req.size > heap.size)
+        return makeError(ErrorCode::OutOfMemory, "buffer " + name + " needs " +
+                                                     std::to_string(req.size) +
+                                                     " bytes, more than its memory heap (" +
+                                                     std::to_string(heap.size) + " bytes)");
 
     VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     mai.allocationSize = req.size;

@@ -3,6 +3,7 @@
 // scene's folder (the JSON document's own checks are in GltfJson.cpp).
 #include "io/GltfInternal.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -145,9 +146,12 @@ Result<GlbLayout> parseGlb(const std::vector<unsigned char>& bytes, const Diagno
     return layout;
 }
 
-Result<void> checkJsonNesting(std::string_view json, const Diagnostics& diag) {
+Result<JsonShape> scanJson(std::string_view json, const Diagnostics& diag) {
+    JsonShape shape;
     int depth = 0;
     bool inString = false, escaped = false;
+    std::size_t stringStart = 0;
+    char previous = 0; // the last character outside strings that is not white space
     for (std::size_t i = 0; i < json.size(); ++i) {
         const char c = json[i];
         if (inString) {
@@ -155,21 +159,53 @@ Result<void> checkJsonNesting(std::string_view json, const Diagnostics& diag) {
                 escaped = false;
             else if (c == '\\')
                 escaped = true;
-            else if (c == '"')
+            else if (c == '"') {
                 inString = false;
+                const std::uint64_t length = i - stringStart - 1;
+                if (length > 15) shape.longStringBytes += length + 24; // heap block, rounded
+            }
             continue;
         }
-        if (c == '"')
+        if (c == ' ' || c == '\n' || c == '\r' || c == '\t') continue;
+        if (c == '"') {
             inString = true;
-        else if (c == '{' || c == '[') {
+            stringStart = i;
+            ++shape.strings;
+        } else if (c == '{' || c == '[') {
+            ++(c == '{' ? shape.objects : shape.arrays);
             if (++depth > kMaxJsonDepth)
                 return diag.error("JSON", "nested more than " + std::to_string(kMaxJsonDepth) +
                                               " levels deep (at byte " + std::to_string(i) + ")");
         } else if (c == '}' || c == ']') {
             --depth;
+        } else if (c == ':') {
+            ++shape.members;
+        } else if (previous == 0 || previous == '[' || previous == ',' || previous == ':') {
+            ++shape.scalars; // the first character of a number, true, false or null
         }
+        previous = c;
     }
-    return {};
+    return shape;
+}
+
+std::uint64_t JsonShape::values() const {
+    return objects + arrays + scalars + (strings - std::min(strings, members));
+}
+
+std::uint64_t JsonShape::documentBytes() const {
+    // nlohmann::json (std::map objects) on libstdc++ and glibc malloc, in heap blocks: an
+    // object's map 64, a member's tree node (key and value) 96, an array's vector 32 and its
+    // element slots 16 each, doubled for the vector's spare capacity; a string value's
+    // std::string 48; long strings their bytes (counted by the scan).
+    const std::uint64_t elements = values() - std::min(values(), members + 1);
+    return 64 * objects + 96 * members + 32 * arrays + 32 * elements +
+           48 * (strings - std::min(strings, members)) + longStringBytes + 64;
+}
+
+std::uint64_t JsonShape::contentBytes() const {
+    // What a model built from the document holds beyond its objects' fixed size: a heap block
+    // per array (index lists, matrices), 8 bytes per number, a std::string per string.
+    return 32 * arrays + 8 * scalars + 32 * strings + longStringBytes;
 }
 
 std::string percentDecode(std::string_view text) {

@@ -370,6 +370,12 @@ Result<Scene> convertModel(const tinygltf::Model& model, const RawFacts& raw,
     scene.sourcePath = diag.file();
 
     LANTERN_TRY(convertMaterials(model, raw, images, options, diag, scene));
+    // Exactly as many as the model has (loadBytes charged these sizes to the budget).
+    scene.meshes.reserve(model.meshes.size());
+    scene.lights.reserve(model.lights.size());
+    scene.cameras.reserve(model.cameras.size());
+    scene.nodes.reserve(model.nodes.size());
+    scene.skins.reserve(model.skins.size());
     for (std::size_t i = 0; i < model.meshes.size(); ++i) {
         auto m = convertMesh(model, i, diag);
         if (!m) return std::move(m).error();

@@ -185,6 +185,21 @@ Result<void> useRewrittenJson(const std::vector<unsigned char>& bytes, const std
     return {};
 }
 
+// The bytes of the scene's objects convertModel will make from `model` (their fixed size; the
+// geometry is charged as each accessor is read).
+std::uint64_t sceneBytes(const tinygltf::Model& model) {
+    std::uint64_t primitives = 0, animations = 0;
+    for (const tinygltf::Mesh& m : model.meshes) primitives += m.primitives.size();
+    for (const tinygltf::Animation& a : model.animations)
+        animations += sizeof(Animation) + a.channels.size() * sizeof(AnimationChannel) +
+                      a.samplers.size() * sizeof(AnimationSampler);
+    return model.nodes.size() * sizeof(Node) + model.meshes.size() * sizeof(Mesh) +
+           2 * primitives * sizeof(Primitive) + model.materials.size() * sizeof(Material) +
+           model.lights.size() * sizeof(Light) + model.cameras.size() * sizeof(Camera) +
+           model.skins.size() * sizeof(Skin) + model.textures.size() * sizeof(Texture) +
+           model.scenes.size() * sizeof(SceneRoot) + animations;
+}
+
 Result<Scene> loadBytes(std::vector<unsigned char> bytes, const std::filesystem::path& path,
                         const LoadOptions& options) {
     const Diagnostics diag(path.string(), options.log, options.maxBytes);
@@ -208,12 +223,27 @@ Result<Scene> loadBytes(std::vector<unsigned char> bytes, const std::filesystem:
         source.allowed.push_back(std::filesystem::absolute(a, ec).lexically_normal());
     source.glb = bool(in->glb);
     source.glbHasBin = in->glb && in->glb->hasBin;
-    LANTERN_TRY(checkJsonNesting(in->json, diag));
+    // The parsed document, then tinygltf's model, then Lantern's scene are charged before
+    // each is built, from counts taken on the bytes and then on the document; a document is
+    // returned to the budget once freed (the budget follows what is held at once).
+    auto shape = scanJson(in->json, diag);
+    if (!shape) return std::move(shape).error();
+    const std::uint64_t document = shape->documentBytes();
+    LANTERN_TRY(diag.charge(document, 1, "JSON", "parsing the document"));
     auto raw = inspectJson(in->json, source, diag);
     if (!raw) return std::move(raw).error();
+    diag.release(document);
     std::vector<unsigned char> rebuiltGlb;
-    if (!raw->jsonForTinygltf.empty())
+    if (!raw->jsonForTinygltf.empty()) {
+        LANTERN_TRY(diag.charge(2 * raw->jsonForTinygltf.size(), 1, "JSON",
+                                "rewriting the document for tinygltf"));
         LANTERN_TRY(useRewrittenJson(bytes, raw->jsonForTinygltf, rebuiltGlb, *in, diag));
+    }
+    LANTERN_TRY(diag.charge(document, 1, "JSON", "parsing the document (tinygltf)"));
+    LANTERN_TRY(diag.charge(raw->modelBytes + raw->modelGrowthBytes, 1, "JSON",
+                            "building tinygltf's model of " + std::to_string(shape->values()) +
+                                " JSON values"));
+    LANTERN_TRY(diag.charge(shape->contentBytes(), 1, "JSON", "the model's lists and names"));
 
     FsContext fs;
     fs.folder = source.folder.string();
@@ -222,6 +252,7 @@ Result<Scene> loadBytes(std::vector<unsigned char> bytes, const std::filesystem:
     ImageStore images;
     auto model = parseModel(*in, fs, images, diag);
     if (!model) return std::move(model).error();
+    diag.release(document + raw->modelGrowthBytes);
     // The file's bytes are in the model now; what follows may allocate as much again.
     std::vector<unsigned char>().swap(bytes);
     std::vector<unsigned char>().swap(rebuiltGlb);
@@ -236,6 +267,8 @@ Result<Scene> loadBytes(std::vector<unsigned char> bytes, const std::filesystem:
     LANTERN_TRY(decodeMeshopt(*model, *raw, diag));
     LANTERN_TRY(decodeDraco(*model, diag));
     LANTERN_TRY(validateModel(*model, *raw, options, diag));
+    LANTERN_TRY(diag.charge(sceneBytes(*model) + shape->contentBytes(), 1, "JSON",
+                            "converting the model into the scene"));
     auto scene = convertModel(*model, *raw, images, options, diag);
     if (!scene) return std::move(scene).error();
     if (auto valid = scene->validate(); !valid) {

@@ -19,6 +19,7 @@
 //   5. Scene::validate()  the scene model's own checks, as a final net.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <lantern/Io.h>
@@ -119,6 +120,10 @@ public:
     /// `what`; an InvalidInput error naming both when the total would exceed it.
     Result<void> charge(std::uint64_t count, std::uint64_t each, const std::string& object,
                         const std::string& what) const;
+    /// Returns `bytes` charged earlier for memory freed since (a parsed document, once read).
+    void release(std::uint64_t bytes) const {
+        m_budget->used -= std::min(bytes, m_budget->used);
+    }
     /// Bytes charged so far, and the budget.
     std::uint64_t charged() const { return m_budget->used; }
     std::uint64_t budget() const { return m_budget->limit; }
@@ -153,8 +158,25 @@ bool isGlb(const std::vector<unsigned char>& bytes);
 /// Checks the GLB header and chunk structure (the validator's GLB_* rules).
 Result<GlbLayout> parseGlb(const std::vector<unsigned char>& bytes, const Diagnostics& diag);
 
-/// Refuses JSON text nested deeper than kMaxJsonDepth (a scan that respects strings).
-Result<void> checkJsonNesting(std::string_view json, const Diagnostics& diag);
+/// What a JSON text holds, counted by one scan of its bytes before anything is parsed: the
+/// load charges the parsed document and the model built from it to its budget from these.
+struct JsonShape {
+    std::uint64_t objects = 0, arrays = 0;
+    std::uint64_t members = 0;  ///< object members (each has a key string)
+    std::uint64_t scalars = 0;  ///< numbers, true, false and null
+    std::uint64_t strings = 0;  ///< keys and string values
+    std::uint64_t longStringBytes = 0;  ///< heap bytes of strings longer than 15 characters
+    /// Values of any kind: objects, arrays, scalars and string values.
+    std::uint64_t values() const;
+    /// Bytes the parsed document holds (nlohmann::json, an estimate from above).
+    std::uint64_t documentBytes() const;
+    /// Bytes a model built from the document holds beyond its objects' fixed size.
+    std::uint64_t contentBytes() const;
+};
+
+/// Counts the JSON text's values (JsonShape); refuses text nested deeper than kMaxJsonDepth.
+/// A scan that respects strings and allocates nothing.
+Result<JsonShape> scanJson(std::string_view json, const Diagnostics& diag);
 
 /// Decodes %XX escapes (as tinygltf does before opening a file).
 std::string percentDecode(std::string_view text);
@@ -201,6 +223,10 @@ struct RawFacts {
     /// left out of the JSON tinygltf reads (it refuses an indices accessor without a
     /// bufferView) and put back by restoreDracoIndices.
     std::map<std::pair<int, int>, int> dracoIndices;
+    /// Bytes tinygltf's model will hold in its objects' fixed size (each array at the capacity
+    /// its growth reaches) and in the extras and extensions it keeps as tinygltf::Value trees;
+    /// and the bytes held only while it is built (each array's block before its last growth).
+    std::uint64_t modelBytes = 0, modelGrowthBytes = 0;
     /// The JSON to hand tinygltf when it differs from the file's (placeholders, Draco indices);
     /// else empty.
     std::string jsonForTinygltf;

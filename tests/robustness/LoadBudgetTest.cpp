@@ -1,0 +1,158 @@
+// Issue 17: the load's budget (--max-size) follows the memory a glTF file really makes Lantern
+// hold, the parsed JSON and the models built from it included. This binary counts every
+// operator new and delete (global replacements below) to find the true peak of a load, then
+// checks that the budget charged for it is neither far below (a file could then allocate more
+// than --max-size) nor far above (a legitimate file would be refused).
+#include "TestSupport.h"
+
+#include <lantern/Io.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <iostream>
+#include <malloc.h>
+#include <new>
+#include <string>
+
+namespace {
+
+std::atomic<std::uint64_t> g_live{0};
+std::atomic<std::uint64_t> g_peak{0};
+
+void* counted(std::size_t size) {
+    void* p = std::malloc(size == 0 ? 1 : size);
+    if (!p) throw std::bad_alloc();
+    const std::uint64_t live = g_live += malloc_usable_size(p);
+    std::uint64_t peak = g_peak.load(std::memory_order_relaxed);
+    while (live > peak && !g_peak.compare_exchange_weak(peak, live)) {
+    }
+    return p;
+}
+
+void uncounted(void* p) noexcept {
+    if (!p) return;
+    g_live -= malloc_usable_size(p);
+    std::free(p);
+}
+
+} // namespace
+
+void* operator new(std::size_t size) { return counted(size); }
+void* operator new[](std::size_t size) { return counted(size); }
+void operator delete(void* p) noexcept { uncounted(p); }
+void operator delete[](void* p) noexcept { uncounted(p); }
+void operator delete(void* p, std::size_t) noexcept { uncounted(p); }
+void operator delete[](void* p, std::size_t) noexcept { uncounted(p); }
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace lantern;
+
+struct Measured {
+    std::uint64_t peak = 0;  ///< bytes held at the worst moment of the load, above the start
+    bool loaded = false;
+    std::string error;
+};
+
+Measured loadMeasured(const fs::path& file, std::uint64_t maxBytes) {
+    LoadOptions options;
+    options.maxBytes = maxBytes;
+    options.log = [](LogLevel, std::string_view) {};
+    const std::uint64_t before = g_live.load();
+    g_peak = before;
+    Measured m;
+    {
+        auto scene = loadGltf(file, options);
+        m.peak = g_peak.load() - before;
+        m.loaded = bool(scene);
+        if (!scene) m.error = scene.error().describe();
+    }
+    return m;
+}
+
+std::uint64_t fileSize(const fs::path& p) { return fs::file_size(p); }
+
+// Writes `text` as `name` in the test's folder.
+fs::path writeScene(const std::string& name, const std::string& text) {
+    const fs::path p = test::testOutputDir() / name;
+    std::ofstream(p, std::ios::binary) << text;
+    return p;
+}
+
+std::string header(const std::string& rootNodes) {
+    return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[)" + rootNodes +
+           "]}],\"nodes\":[";
+}
+
+// Each document: the true peak of its load (P), then the same load under budgets around it.
+// The budget must refuse the load somewhere above half the true peak less the file's own bytes
+// (the file is bounded by itself, read before the budget starts), and must admit it at twice
+// the true peak.
+void expectBudgetFollowsThePeak(const fs::path& file) {
+    const std::uint64_t size = fileSize(file);
+    const Measured free = loadMeasured(file, std::uint64_t(1) << 36);
+    ASSERT_TRUE(free.loaded) << free.error;
+    ASSERT_GT(free.peak, size);
+    const std::uint64_t held = free.peak - size;
+    const Measured twice = loadMeasured(file, 2 * free.peak);
+    EXPECT_TRUE(twice.loaded) << file.filename() << ": refused at twice its true peak ("
+                              << 2 * free.peak << " bytes): " << twice.error;
+    const Measured half = loadMeasured(file, std::max<std::uint64_t>(size, held / 2));
+    EXPECT_FALSE(half.loaded) << file.filename() << " (" << size << " bytes) loaded within "
+                              << held / 2 << " bytes of budget, half of the " << held
+                              << " it really held beyond its own bytes";
+    if (!half.loaded) {
+        EXPECT_NE(half.error.find("budget"), std::string::npos) << half.error;
+    }
+    std::cout << file.filename().string() << ": " << size << " bytes, true peak " << free.peak
+              << " bytes (" << double(free.peak) / double(size) << "x the file)\n";
+}
+
+TEST(LoadBudget, AChainOfNodesIsChargedForItsDocumentAndModels) {
+    constexpr int n = 200'000;
+    std::string text = header("0");
+    for (int i = 0; i < n; ++i) text += i + 1 < n ? R"({"children":[)" + std::to_string(i + 1) + "]}," : "{}";
+    expectBudgetFollowsThePeak(writeScene("chain.gltf", text + "]}"));
+}
+
+TEST(LoadBudget, AFlatSceneOfEmptyNodesIsChargedForItsDocumentAndModels) {
+    constexpr int n = 200'000;
+    std::string roots, nodes;
+    for (int i = 0; i < n; ++i) {
+        roots += (i ? "," : "") + std::to_string(i);
+        nodes += i ? ",{}" : "{}";
+    }
+    expectBudgetFollowsThePeak(writeScene("flat.gltf", header(roots) + nodes + "]}"));
+}
+
+TEST(LoadBudget, ExtrasAndExtensionsKeptAsValueTreesAreCharged) {
+    // tinygltf keeps every value under "extras" as a 152-byte tinygltf::Value: two bytes of
+    // JSON ("0,") become hundreds of bytes.
+    constexpr int n = 2'000;
+    std::string text = header("0") + R"({"extras":{"a":[)";
+    for (int i = 0; i < 100 * n; ++i) text += i ? ",0" : "0";
+    text += R"(],"b":{)";
+    for (int i = 0; i < n; ++i) text += (i ? "," : "") + std::string("\"k") + std::to_string(i) + "\":[]";
+    text += "}}}]}";
+    expectBudgetFollowsThePeak(writeScene("extras.gltf", text));
+}
+
+TEST(LoadBudget, LongNamesAndManyMeshesAreCharged) {
+    // Many meshes (each a Mesh and a Primitive in both models) with long names.
+    constexpr int n = 20'000;
+    std::string text =
+        R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],)"
+        R"("bufferViews":[{"buffer":0,"byteLength":36}],)"
+        R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],"meshes":[)";
+    const std::string longName(200, 'm');
+    for (int i = 0; i < n; ++i)
+        text += std::string(i ? "," : "") + R"({"name":")" + longName + R"(","primitives":[{"attributes":{"POSITION":0}}]})";
+    text += R"(],"nodes":[{"mesh":0}],"scene":0,"scenes":[{"nodes":[0]}]})";
+    expectBudgetFollowsThePeak(writeScene("meshes.gltf", text));
+}
+
+} // namespace
