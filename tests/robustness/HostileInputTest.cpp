@@ -8,6 +8,7 @@
 #include "../unit/GltfTestSupport.h"
 
 #include "io/AtomicFile.h"
+#include "io/GltfInternal.h"
 
 #include <lantern/Io.h>
 #include <lantern/Scene.h>
@@ -318,6 +319,41 @@ TEST(HostileFolder, AnAllowedFolderAdmitsParentUrisAndLinksIntoItAndNothingElse)
     const auto r = test::runLantern({"info", scene.string(), "--allow-folder", shared.string()});
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(test::runLantern({"info", scene.string(), "--allow-folder", (root / "missing").string()}).exitCode, 1);
+}
+
+TEST(HostileFolder, AFolderSwappedForALinkBetweenTheCheckAndTheReadIsNotFollowed) {
+    // The race a stranger with write access to the scene's folder could win: the URI
+    // "sub/data.bin" is checked while sub/ is a real folder, then sub/ is replaced by a link
+    // to a folder outside holding a secret data.bin. Opening the checked real path (even with
+    // O_NOFOLLOW, which guards only the last component) would read the secret; the confined
+    // read opens each component without following links and refuses.
+    const fs::path root = test::testOutputDir();
+    fs::create_directories(root / "scene" / "sub");
+    fs::create_directories(root / "outside");
+    writeText(root / "scene" / "sub" / "data.bin", "inside");
+    writeText(root / "outside" / "data.bin", "SECRET");
+    auto checked = gltf::resolveConfined(root / "scene", "sub/data.bin", 1 << 20);
+    ASSERT_TRUE(checked) << checked.error().describe();
+    auto before = gltf::readConfinedFile(*checked, 1 << 20);
+    ASSERT_TRUE(before) << before.error().describe();
+    EXPECT_EQ(std::string(before->begin(), before->end()), "inside");
+
+    fs::rename(root / "scene" / "sub", root / "scene" / "old");
+    fs::create_directory_symlink(root / "outside", root / "scene" / "sub");
+    // What the previous code did: the checked real path, O_NOFOLLOW on its last component.
+    auto naive = gltf::readRegularFile(checked->real(), 1 << 20, true);
+    ASSERT_TRUE(naive) << "the swap must make the naive read reach the secret";
+    EXPECT_EQ(std::string(naive->begin(), naive->end()), "SECRET");
+    auto after = gltf::readConfinedFile(*checked, 1 << 20);
+    ASSERT_FALSE(after) << "read " << std::string(after->begin(), after->end());
+    EXPECT_NE(after.error().message.find("a symbolic link appeared in its path"), std::string::npos)
+        << after.error().describe();
+    // The file itself swapped for a link is refused the same way.
+    fs::remove(root / "scene" / "sub");
+    fs::rename(root / "scene" / "old", root / "scene" / "sub");
+    fs::remove(root / "scene" / "sub" / "data.bin");
+    fs::create_symlink(root / "outside" / "data.bin", root / "scene" / "sub" / "data.bin");
+    EXPECT_FALSE(gltf::readConfinedFile(*checked, 1 << 20));
 }
 
 TEST(HostileFolder, FoldersFifosAndDevicesAreRefusedWithoutWaiting) {

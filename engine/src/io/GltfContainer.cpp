@@ -259,16 +259,10 @@ std::string sizeProblem(std::uint64_t size, std::uint64_t maxBytes) {
 
 } // namespace
 
-Result<std::vector<unsigned char>> readRegularFile(const std::filesystem::path& path,
-                                                   std::uint64_t maxBytes, bool noFollow) {
-    const int flags = O_RDONLY | O_NONBLOCK | O_CLOEXEC | (noFollow ? O_NOFOLLOW : 0);
-    const int fd = ::open(path.c_str(), flags);
-    if (fd < 0) {
-        const int e = errno;
-        if (e == ENOENT) return makeError(ErrorCode::InvalidInput, "does not exist");
-        if (e == ELOOP && noFollow) return makeError(ErrorCode::InvalidInput, "is a symbolic link");
-        return makeError(ErrorCode::IoError, std::string("cannot be opened: ") + std::strerror(e));
-    }
+namespace {
+
+// Reads the regular file open on `fd` (closed here): checked with fstat before a byte is read.
+Result<std::vector<unsigned char>> readOpenedFile(int fd, std::uint64_t maxBytes) {
     struct stat st {};
     if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
         const std::string kind = fileKind(st.st_mode);
@@ -297,7 +291,64 @@ Result<std::vector<unsigned char>> readRegularFile(const std::filesystem::path& 
     return bytes;
 }
 
-Result<std::filesystem::path> resolveConfined(const std::filesystem::path& folder,
+} // namespace
+
+Result<std::vector<unsigned char>> readRegularFile(const std::filesystem::path& path,
+                                                   std::uint64_t maxBytes, bool noFollow) {
+    const int flags = O_RDONLY | O_NONBLOCK | O_CLOEXEC | (noFollow ? O_NOFOLLOW : 0);
+    const int fd = ::open(path.c_str(), flags);
+    if (fd < 0) {
+        const int e = errno;
+        if (e == ENOENT) return makeError(ErrorCode::InvalidInput, "does not exist");
+        if (e == ELOOP && noFollow) return makeError(ErrorCode::InvalidInput, "is a symbolic link");
+        return makeError(ErrorCode::IoError, std::string("cannot be opened: ") + std::strerror(e));
+    }
+    return readOpenedFile(fd, maxBytes);
+}
+
+std::filesystem::path ConfinedPath::real() const { return root / relative; }
+
+Result<std::vector<unsigned char>> readConfinedFile(const ConfinedPath& file,
+                                                    std::uint64_t maxBytes) {
+    const auto changed = [](const char* what) {
+        return makeError(ErrorCode::InvalidInput,
+                         std::string("changed while it was opened (") + what +
+                             "); it is not read");
+    };
+    int dir = ::open(file.root.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC | O_NOFOLLOW);
+    if (dir < 0)
+        return makeError(ErrorCode::IoError,
+                         std::string("its folder cannot be opened: ") + std::strerror(errno));
+    // One component at a time, each opened relative to the folder opened before it and never
+    // through a symbolic link: the path resolveConfined checked is the path read, whatever
+    // was renamed or linked since (as openat2's RESOLVE_BENEATH | RESOLVE_NO_SYMLINKS).
+    std::vector<std::string> parts;
+    for (const std::filesystem::path& part : file.relative) parts.push_back(part.string());
+    if (parts.empty()) {
+        ::close(dir);
+        return changed("an empty path");
+    }
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+        const bool last = i + 1 == parts.size();
+        if (parts[i] == ".." || parts[i] == "." || parts[i].empty()) {
+            ::close(dir);
+            return changed("a relative component");
+        }
+        const int flags = O_RDONLY | O_CLOEXEC | O_NOFOLLOW | (last ? O_NONBLOCK : O_DIRECTORY);
+        const int next = ::openat(dir, parts[i].c_str(), flags);
+        const int e = errno;
+        ::close(dir);
+        if (next < 0) {
+            if (e == ELOOP || e == ENOTDIR) return changed("a symbolic link appeared in its path");
+            if (e == ENOENT) return changed("it no longer exists");
+            return makeError(ErrorCode::IoError, std::string("cannot be opened: ") + std::strerror(e));
+        }
+        dir = next;
+    }
+    return readOpenedFile(dir, maxBytes);
+}
+
+Result<ConfinedPath> resolveConfined(const std::filesystem::path& folder,
                                               const std::string& relative,
                                               std::uint64_t maxBytes,
                                               const std::vector<std::filesystem::path>& allowed) {
@@ -323,10 +374,12 @@ Result<std::filesystem::path> resolveConfined(const std::filesystem::path& folde
         const std::string inside = realRoot.string() == "/" ? "/" : realRoot.string() + "/";
         return real->string().compare(0, inside.size(), inside) == 0;
     };
-    bool confined = within(*realFolder);
+    std::optional<std::filesystem::path> root;
+    if (within(*realFolder)) root = *realFolder;
     for (const std::filesystem::path& a : allowed)
-        if (const auto realAllowed = realOf(a); realAllowed && within(*realAllowed)) confined = true;
-    if (!confined)
+        if (const auto realAllowed = realOf(a); !root && realAllowed && within(*realAllowed))
+            root = *realAllowed;
+    if (!root)
         return makeError(ErrorCode::InvalidInput,
                          shown + (allowed.empty()
                                       ? " is a symbolic link that leads outside the scene's folder"
@@ -338,7 +391,7 @@ Result<std::filesystem::path> resolveConfined(const std::filesystem::path& folde
     if (std::uint64_t(st.st_size) > maxBytes)
         return makeError(ErrorCode::InvalidInput,
                          shown + " " + sizeProblem(std::uint64_t(st.st_size), maxBytes));
-    return *real;
+    return ConfinedPath{*root, real->lexically_relative(*root)};
 }
 
 Result<std::string> checkRelativeUri(std::string_view uri, const std::string& object,

@@ -66,10 +66,11 @@ bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std:
         *err = "outside the scene's folder";
         return false;
     }
-    // Resolved to its real path inside the folder, then opened without following a link
-    // there (a link swapped in meanwhile is refused) and checked to be a regular file.
+    // Resolved to its real path inside the folder, then opened component by component
+    // without following a link (one swapped in meanwhile is refused) and checked to be a
+    // regular file.
     auto real = resolveConfined(ctx.folder, *rest, ctx.maxBytes, ctx.allowed);
-    auto bytes = real ? readRegularFile(*real, ctx.maxBytes, true)
+    auto bytes = real ? readConfinedFile(*real, ctx.maxBytes)
                       : Result<std::vector<unsigned char>>(std::move(real).error());
     if (!bytes) {
         *err = bytes.error().message;

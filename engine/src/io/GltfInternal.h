@@ -192,12 +192,19 @@ Result<std::string> checkRelativeUri(std::string_view uri, const std::string& ob
 /// cut after `limit` bytes ("..."). A message never carries a file's raw bytes.
 std::string printable(std::string_view text, std::size_t limit = 80);
 
+/// A file resolved inside a confining folder: `root` is the folder's real path, `relative` the
+/// file's real path below it (no symbolic link, no "..").
+struct ConfinedPath {
+    std::filesystem::path root, relative;
+    std::filesystem::path real() const;
+};
+
 /// An external file a URI names, resolved and confined: `relative` (a checked relative path)
 /// is resolved to its real path (every symlink followed) and refused unless that lies inside
 /// the scene's real folder or one of the `allowed` folders' and is a regular file (not a
 /// folder, FIFO, socket or device) of at most `maxBytes`. The error message names the URI and
-/// the reason, never the file's bytes.
-Result<std::filesystem::path> resolveConfined(const std::filesystem::path& folder,
+/// the reason, never the file's bytes. Read it with readConfinedFile.
+Result<ConfinedPath> resolveConfined(const std::filesystem::path& folder,
                                               const std::string& relative,
                                               std::uint64_t maxBytes,
                                               const std::vector<std::filesystem::path>& allowed = {});
@@ -207,6 +214,13 @@ Result<std::filesystem::path> resolveConfined(const std::filesystem::path& folde
 /// opened file is checked with fstat before a byte is read. The error message names the reason.
 Result<std::vector<unsigned char>> readRegularFile(const std::filesystem::path& path,
                                                    std::uint64_t maxBytes, bool noFollow);
+
+/// Reads a file resolveConfined found, without the window between its check and the open: the
+/// path is opened one component at a time from the confining folder, each with O_NOFOLLOW
+/// (openat), so a folder swapped for a symbolic link after the check is refused, not
+/// followed. Then as readRegularFile.
+Result<std::vector<unsigned char>> readConfinedFile(const ConfinedPath& file,
+                                                    std::uint64_t maxBytes);
 
 /// What the JSON says that tinygltf does not keep: presence of optional numbers, the number
 /// of primitives written (tinygltf silently drops malformed ones), and why an external image
