@@ -5,7 +5,7 @@
 #                Slurm tests on a private single-node cluster (ctest --preset ci)
 #   asan build   clang with AddressSanitizer and UndefinedBehaviorSanitizer (scripts/build.sh asan)
 #   asan suite   the whole suite again under them, LeakSanitizer included (ctest --preset asan)
-#   fuzz         the glTF/GLB loader for LANTERN_FUZZ_SECONDS seconds (default 60)
+#   fuzz         the glTF/GLB loader and the command line for LANTERN_FUZZ_SECONDS seconds (default 60)
 # Every stage runs even when an earlier one failed, so that one failure does not hide the
 # others; only a stage whose build failed is "not run". Each suite stage ends with the tests it
 # skipped and why (a test skips, naming it, when the machine lacks what it needs: a device, a

@@ -45,4 +45,39 @@ TEST(FuzzRegressions, EveryInputIsRefusedOrLoadedSafely) {
     EXPECT_GE(inputs, 10);
 }
 
+// The command-line fuzzer's inputs (tests/fuzz/CliFuzz.cpp): arguments one per line, given to
+// `lantern render builtin:spheres ... --dry-run`. Its regressions (the defects of issue 17
+// and anything it finds) and its seeds exit 0, 1 or 2, with one line of error at most and no
+// sanitizer report; the seeds are valid, so they exit 0.
+TEST(FuzzRegressions, CommandLineInputsExitCleanly) {
+    int inputs = 0;
+    for (const char* folder : {"cli-regressions", "cli-seeds"}) {
+        const auto dir = test::sourceDir() / "tests" / "fuzz" / folder;
+        ASSERT_TRUE(std::filesystem::is_directory(dir)) << dir;
+        for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+            SCOPED_TRACE(entry.path().filename().string());
+            std::ifstream in(entry.path());
+            std::vector<std::string> args{"render", "builtin:spheres"};
+            for (std::string line; std::getline(in, line);)
+                if (!line.empty()) args.push_back(line);
+            args.push_back("--dry-run");
+            // Run in the test's own (empty) folder: relative outputs would land there, and a
+            // dry run writes none.
+            std::vector<std::string> inFolder{"sh", "-c", "cd \"$0\" && exec \"$@\"",
+                                              test::testOutputDir().string(),
+                                              test::cliPath().string()};
+            inFolder.insert(inFolder.end(), args.begin(), args.end());
+            const auto run = test::runProcess(inFolder, {}, 60.0);
+            ++inputs;
+            EXPECT_GE(run.exitCode, 0) << run.err;
+            EXPECT_LE(run.exitCode, std::string(folder) == "cli-seeds" ? 0 : 2) << run.err;
+            EXPECT_EQ(run.err.find("Sanitizer"), std::string::npos) << run.err;
+            EXPECT_EQ(run.err.find("terminate"), std::string::npos) << run.err;
+            EXPECT_TRUE(std::filesystem::is_empty(test::testOutputDir()))
+                << "a dry run wrote into its folder";
+        }
+    }
+    EXPECT_GE(inputs, 10);
+}
+
 } // namespace

@@ -89,9 +89,10 @@ std::string header(const std::string& rootNodes) {
 }
 
 // Each document: the true peak of its load (P), then the same load under budgets around it.
-// The budget must refuse the load somewhere above half the true peak less the file's own bytes
-// (the file is bounded by itself, read before the budget starts), and must admit it at twice
-// the true peak.
+// The budget must refuse the load at 0.8 of the true peak less the file's own bytes (the file
+// is bounded by itself, read before the budget starts), and must admit it at twice the true
+// peak. (Measured when written: the smallest budget that admits each of these files is 1.03 to
+// 1.42 times its true peak.)
 void expectBudgetFollowsThePeak(const fs::path& file) {
     const std::uint64_t size = fileSize(file);
     const Measured free = loadMeasured(file, std::uint64_t(1) << 36);
@@ -101,12 +102,13 @@ void expectBudgetFollowsThePeak(const fs::path& file) {
     const Measured twice = loadMeasured(file, 2 * free.peak);
     EXPECT_TRUE(twice.loaded) << file.filename() << ": refused at twice its true peak ("
                               << 2 * free.peak << " bytes): " << twice.error;
-    const Measured half = loadMeasured(file, std::max<std::uint64_t>(size, held / 2));
-    EXPECT_FALSE(half.loaded) << file.filename() << " (" << size << " bytes) loaded within "
-                              << held / 2 << " bytes of budget, half of the " << held
-                              << " it really held beyond its own bytes";
-    if (!half.loaded) {
-        EXPECT_NE(half.error.find("budget"), std::string::npos) << half.error;
+    const std::uint64_t under = std::max<std::uint64_t>(size, held / 5 * 4);
+    const Measured tight = loadMeasured(file, under);
+    EXPECT_FALSE(tight.loaded) << file.filename() << " (" << size << " bytes) loaded within "
+                               << under << " bytes of budget, 0.8 of the " << held
+                               << " it really held beyond its own bytes";
+    if (!tight.loaded) {
+        EXPECT_NE(tight.error.find("budget"), std::string::npos) << tight.error;
     }
     std::cout << file.filename().string() << ": " << size << " bytes, true peak " << free.peak
               << " bytes (" << double(free.peak) / double(size) << "x the file)\n";
@@ -153,6 +155,20 @@ TEST(LoadBudget, LongNamesAndManyMeshesAreCharged) {
         text += std::string(i ? "," : "") + R"({"name":")" + longName + R"(","primitives":[{"attributes":{"POSITION":0}}]})";
     text += R"(],"nodes":[{"mesh":0}],"scene":0,"scenes":[{"nodes":[0]}]})";
     expectBudgetFollowsThePeak(writeScene("meshes.gltf", text));
+}
+
+TEST(LoadBudget, ZeroFilledAccessorsAndComputedNormalsAreCharged) {
+    // Accessors without a buffer view (zeros the loader makes), read by four primitives
+    // without NORMAL (smooth normals computed): decoded data a 1 KB file decides.
+    std::string text = R"({"asset":{"version":"2.0"},"accessors":[)";
+    for (int i = 0; i < 4; ++i)
+        text += std::string(i ? "," : "") +
+                R"({"componentType":5126,"count":300000,"type":"VEC3","min":[0,0,0],"max":[0,0,0]})";
+    text += R"(],"meshes":[{"primitives":[)";
+    for (int i = 0; i < 4; ++i)
+        text += std::string(i ? "," : "") + R"({"attributes":{"POSITION":)" + std::to_string(i) + "}}";
+    text += R"(]}],"nodes":[{"mesh":0}],"scene":0,"scenes":[{"nodes":[0]}]})";
+    expectBudgetFollowsThePeak(writeScene("zeros.gltf", text));
 }
 
 } // namespace

@@ -11,6 +11,7 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <thread>
 #include <unistd.h>
@@ -105,6 +106,7 @@ struct RenderArgs {
     std::vector<std::string> aovs;
     bool half = false;
     bool explain = false;
+    bool dryRun = false;  // --dry-run: check everything, render and write nothing
     std::string probe;
     std::string compression = "zip";
     std::uint64_t maxSize = kDefaultMaxBytes;
@@ -169,28 +171,34 @@ double medianOf(std::vector<double> v) {
     return v[v.size() / 2];
 }
 
-int runSequence(const RenderArgs& a, Renderer& renderer, const PreparedScene& prepared,
-                const RenderOptions& options, const ExrOptions& exr,
-                const std::vector<std::string>& outputs) {
+// The frames of a sequence (--frames or --frame-list, --shard) and where they go.
+Result<SequenceOptions> sequenceOptions(const RenderArgs& a, const ExrOptions& exr,
+                                        const std::vector<std::string>& outputs) {
     SequenceOptions seq;
     if (!a.frameList.empty()) {
         auto list = parseFrameList(a.frameList);
-        if (!list) return report(list.error());
+        if (!list) return std::move(list).error();
         seq.frameList = std::move(*list);
     } else {
         auto range = parseFrameRange(a.frames);
-        if (!range) return report(range.error());
+        if (!range) return std::move(range).error();
         seq.frames = *range;
     }
     if (!a.shard.empty()) {
         auto shard = parseShard(a.shard);
-        if (!shard) return report(shard.error());
+        if (!shard) return std::move(shard).error();
         seq.shard = *shard;
     }
     seq.fps = a.fps;
     seq.outputs = outputs;
     seq.exr = exr;
     seq.encoderThreads = a.encoderThreads;
+    return seq;
+}
+
+int runSequence(const RenderArgs& a, Renderer& renderer, const PreparedScene& prepared,
+                const RenderOptions& options, SequenceOptions seq) {
+    const std::vector<std::string>& outputs = seq.outputs;
     const bool terminal = ::isatty(2);
     seq.progress = [terminal](const SequenceProgress& p) { showProgress(p, terminal); };
     installStopHandlers();
@@ -251,6 +259,40 @@ Result<RenderOptions> renderOptions(const RenderArgs& a) {
     return options;
 }
 
+// --probe X,Y: a whole pixel inside the image.
+Result<std::pair<int, int>> probePixel(const RenderArgs& a) {
+    auto xy = parseNumbers(a.probe, 2, "--probe");
+    if (!xy) return std::move(xy).error();
+    const double x = (*xy)[0], y = (*xy)[1];
+    if (x != std::floor(x) || y != std::floor(y) || x < 0 || y < 0 || x >= a.width ||
+        y >= a.height)
+        return makeError(ErrorCode::InvalidInput,
+                         "pixel " + a.probe + " is not a whole pixel inside the " +
+                             std::to_string(a.width) + "x" + std::to_string(a.height) + " image",
+                         "--probe");
+    return std::pair<int, int>{int(x), int(y)};
+}
+
+// --dry-run: what would be rendered and written, on stdout; nothing is.
+int reportDryRun(const RenderArgs& a, const Scene& scene, const std::optional<SequenceOptions>& seq,
+                 const SingleFrame& frame, const std::vector<std::string>& outputs) {
+    std::vector<int> frames;
+    if (seq)
+        frames = sequenceFrames(*seq);
+    else
+        frames.push_back(frame.number);
+    std::cout << "dry run: " << a.scene << " (" << scene.nodes.size() << " nodes, "
+              << scene.meshes.size() << " meshes), " << frames.size() << " frame"
+              << (frames.size() == 1 ? "" : "s") << " of " << a.width << "x" << a.height << "\n";
+    const std::size_t shown = std::min<std::size_t>(frames.size(), 3);
+    for (std::size_t i = 0; i < shown; ++i)
+        for (const std::string& out : outputs)
+            std::cout << "  would write " << expandFramePattern(out, frames[i]) << "\n";
+    if (frames.size() > shown)
+        std::cout << "  ... and " << frames.size() - shown << " more frames\n";
+    return kOk;
+}
+
 // --explain and --probe: what the renderer will do, and the lighting equation at one pixel.
 Result<void> explainAndProbe(const RenderArgs& a, Renderer& renderer, const Scene& scene,
                              const RenderOptions& options, double time) {
@@ -265,17 +307,9 @@ Result<void> explainAndProbe(const RenderArgs& a, Renderer& renderer, const Scen
             std::cout << "  " << v << "\n";
     }
     if (!a.probe.empty()) {
-        auto xy = parseNumbers(a.probe, 2, "--probe");
+        auto xy = probePixel(a);
         if (!xy) return std::move(xy).error();
-        const double x = (*xy)[0], y = (*xy)[1];
-        if (x != std::floor(x) || y != std::floor(y) || x < 0 || y < 0 || x >= a.width ||
-            y >= a.height)
-            return makeError(ErrorCode::InvalidInput,
-                             "pixel " + a.probe + " is not a whole pixel inside the " +
-                                 std::to_string(a.width) + "x" + std::to_string(a.height) +
-                                 " image",
-                             "--probe");
-        auto probed = renderer.probe(scene, options, time, int(x), int(y));
+        auto probed = renderer.probe(scene, options, time, xy->first, xy->second);
         if (!probed) return std::move(probed).error();
         printProbe(std::cout, *probed);
     }
@@ -373,6 +407,14 @@ int run(const RenderArgs& a) {
             return report(makeError(ErrorCode::Usage, "--compare renders one frame, not --frames", "--compare"));
         if (auto o = a.compare.options(); !o) return report(o.error());
     }
+    std::optional<SequenceOptions> seq;
+    if (sequence) {
+        auto s = sequenceOptions(a, exr, outputs);
+        if (!s) return report(s.error());
+        seq = std::move(*s);
+    }
+    if (!a.probe.empty())
+        if (auto xy = probePixel(a); !xy) return report(xy.error());
 
     LoadOptions load;
     load.maxBytes = a.maxSize;
@@ -385,6 +427,8 @@ int run(const RenderArgs& a) {
     if (auto why = nothingToDraw(*shared, options->root))
         std::cerr << "lantern: warning: " << a.scene << ": nothing to draw (" << *why
                   << "); the image is the background\n";
+
+    if (a.dryRun) return reportDryRun(a, *shared, seq, frame, outputs);
 
     auto renderer = Renderer::create(a.device.desc());
     if (!renderer) return report(renderer.error());
@@ -399,7 +443,7 @@ int run(const RenderArgs& a) {
     if (auto r = makeParentFolders(outputs, sequence ? firstFrame(a) : frame.number, "--output");
         !r)
         return report(r.error());
-    if (sequence) return runSequence(a, *renderer, *prepared, *options, exr, outputs);
+    if (seq) return runSequence(a, *renderer, *prepared, *options, std::move(*seq));
     return renderFrame(a, frame, *renderer, *prepared, *options, exr, outputs);
 }
 
@@ -444,6 +488,9 @@ Runner addRenderCommand(CLI::App& app) {
     cmd->add_option("--compression", args->compression,
                     "EXR compression: none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab")
         ->capture_default_str();
+    cmd->add_flag("--dry-run", args->dryRun,
+                  "Check the options and load the scene, print what would be written, and stop: "
+                  "no device is created and no file or folder is written");
     cmd->add_flag("--explain", args->explain,
                   "Print the features the scene uses and the pipeline variants");
     cmd->add_option("--probe", args->probe,

@@ -82,14 +82,30 @@ Topology topologyOf(int mode) {
     return Topology::Triangles;
 }
 
+// The floats read for `object` as vectors of `components` each. The vectors are charged to the
+// load's budget before they are made; the floats are freed after and their bytes returned.
 template <typename Vec>
-std::vector<Vec> toVectors(const std::vector<float>& flat, std::size_t components) {
-    std::vector<Vec> out(flat.size() / components);
+Result<std::vector<Vec>> toVectors(std::vector<float>& flat, std::size_t components,
+                                   const std::string& object, const Diagnostics& diag) {
+    const std::size_t count = flat.size() / components;
+    LANTERN_TRY(diag.charge(count, sizeof(Vec), object, "converting the data to vectors"));
+    std::vector<Vec> out(count);
     for (std::size_t i = 0; i < out.size(); ++i)
         for (std::size_t c = 0; c < components && c < std::size_t(Vec::length()); ++c)
             out[i][int(c)] = flat[i * components + c];
+    const std::uint64_t freed = flat.size() * sizeof(float);
+    std::vector<float>().swap(flat);
+    diag.release(freed);
     return out;
 }
+
+// Assigns a conversion's vectors to `to`, or returns its error from the enclosing function.
+#define LANTERN_TAKE(to, conversion)                       \
+    do {                                                   \
+        auto taken_ = (conversion);                        \
+        if (!taken_) return std::move(taken_).error();     \
+        (to) = std::move(*taken_);                         \
+    } while (false)
 
 /// Which TEXCOORD set the primitive's material's textures read (0 without any).
 int texcoordSet(const tinygltf::Model& model, int material) {
@@ -120,18 +136,21 @@ Result<void> readAttributes(const tinygltf::Model& model, const tinygltf::Primit
     auto attribute = [&](const std::string& name) { return attributeAccessor(prim, name); };
     auto positions = readFloats(model, positionAccessor, obj + ".attributes.POSITION", diag);
     if (!positions) return std::move(positions).error();
-    out.positions = toVectors<glm::vec3>(*positions, 3);
+    LANTERN_TAKE(out.positions,
+                 toVectors<glm::vec3>(*positions, 3, obj + ".attributes.POSITION", diag));
 
     if (const int a = attribute("NORMAL"); a >= 0) {
         auto normals = readFloats(model, a, obj + ".attributes.NORMAL", diag);
         if (!normals) return std::move(normals).error();
-        out.normals = toVectors<glm::vec3>(*normals, 3);
+        LANTERN_TAKE(out.normals,
+                     toVectors<glm::vec3>(*normals, 3, obj + ".attributes.NORMAL", diag));
     }
     if (const int a = attribute("COLOR_0"); a >= 0) {
         auto colors = readFloats(model, a, obj + ".attributes.COLOR_0", diag);
         if (!colors) return std::move(colors).error();
         const std::size_t n = std::size_t(componentCount(model.accessors[std::size_t(a)].type));
-        out.colors = toVectors<glm::vec4>(*colors, n);
+        LANTERN_TAKE(out.colors,
+                     toVectors<glm::vec4>(*colors, n, obj + ".attributes.COLOR_0", diag));
         if (n == 3)
             for (glm::vec4& c : out.colors)
                 c.w = 1.0f;
@@ -141,7 +160,8 @@ Result<void> readAttributes(const tinygltf::Model& model, const tinygltf::Primit
     if (const int a = attribute(texcoordName); a >= 0) {
         auto uv = readFloats(model, a, obj + ".attributes." + texcoordName, diag);
         if (!uv) return std::move(uv).error();
-        out.texcoords = toVectors<glm::vec2>(*uv, 2);
+        LANTERN_TAKE(out.texcoords,
+                     toVectors<glm::vec2>(*uv, 2, obj + ".attributes." + texcoordName, diag));
     } else if (hasTextures(model, prim.material)) {
         diag.warn(obj + ".attributes", "no " + texcoordName +
                                            " for the material's textures; they are not applied");
@@ -167,10 +187,12 @@ Result<void> readSkinAttributes(const tinygltf::Model& model, const tinygltf::Pr
         if (!weights) return std::move(weights).error();
         std::vector<glm::uvec4>& j = set == 0 ? out.joints0 : out.joints1;
         std::vector<glm::vec4>& w = set == 0 ? out.weights0 : out.weights1;
+        LANTERN_TRY(diag.charge(joints->size() / 4, sizeof(glm::uvec4), obj + "." + jname,
+                                "converting the data to vectors"));
         j.resize(joints->size() / 4);
         for (std::size_t i = 0; i < j.size(); ++i)
             for (int k = 0; k < 4; ++k) j[i][k] = std::uint32_t((*joints)[i * 4 + std::size_t(k)]);
-        w = toVectors<glm::vec4>(*weights, 4);
+        LANTERN_TAKE(w, toVectors<glm::vec4>(*weights, 4, obj + "." + wname, diag));
         for (std::size_t i = 0; i < w.size(); ++i)
             for (int k = 0; k < 4; ++k)
                 if (w[i][k] < 0.0f)
@@ -199,8 +221,8 @@ Result<void> readTargets(const tinygltf::Model& model, const tinygltf::Primitive
             }
             auto values = readFloats(model, accessor, tobj, diag);
             if (!values) return std::move(values).error();
-            (name == "POSITION" ? target.positions : target.normals) =
-                toVectors<glm::vec3>(*values, 3);
+            LANTERN_TAKE(name == "POSITION" ? target.positions : target.normals,
+                         toVectors<glm::vec3>(*values, 3, tobj, diag));
         }
         out.targets.push_back(std::move(target));
     }
@@ -260,8 +282,14 @@ Result<std::optional<Primitive>> convertPrimitive(const tinygltf::Model& model,
     if (prim.indices < 0 && (list || prim.mode == TINYGLTF_MODE_POINTS) && given % k == 0)
         out.indices.clear();
     // Triangles without normals get smooth ones; lines and points without are drawn unlit.
-    if (out.normals.empty() && out.topology == Topology::Triangles)
+    if (out.normals.empty() && out.topology == Topology::Triangles) {
+        // The normals and, while they are summed, one double vector per vertex.
+        const std::uint64_t sums = out.positions.size() * sizeof(glm::dvec3);
+        LANTERN_TRY(diag.charge(out.positions.size(), sizeof(glm::vec3) + sizeof(glm::dvec3), obj,
+                                "computing smooth normals"));
         out.normals = computeSmoothNormals(out.positions, out.indices);
+        diag.release(sums);
+    }
     return std::optional<Primitive>(std::move(out));
 }
 
