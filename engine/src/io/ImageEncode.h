@@ -16,6 +16,25 @@ namespace lantern::io {
 /// 8-bit RGBA, un-premultiplied, clamped to [0,1], sRGB-encoded (non-finite values read as 0).
 std::vector<unsigned char> pngPixels(const Image& image);
 
+/// How a PNG's rows are compressed. Lantern writes for speed (issue 18): zlib level 2 and the
+/// Up filter on every row encode a 1080p render 2.4 times faster than libpng's default (level
+/// 6, every filter tried per row; `everyFilter`) for a file 1.7 times larger
+/// (lantern_microbench --benchmark_filter=BM_WritePng; docs/performance.md).
+struct PngEncoding {
+    int zlibLevel = 2;
+    bool everyFilter = false;
+};
+
+/// The PNG file's bytes for `image` (pngPixels, then libpng).
+Result<std::vector<unsigned char>> encodePng(const Image& image, const PngEncoding& encoding);
+
+/// The 8-bit sRGB code of a linear value, round(255 * srgbEncode(clamp(v, 0, 1))) computed with
+/// the sRGB formula (std::pow): the definition pngPixels must match.
+unsigned char srgb8Reference(float linear);
+/// The same code from a table of the 255 linear values where it steps (a binary search, no
+/// pow): what pngPixels uses. Equal to srgb8Reference for every float.
+unsigned char srgb8(float linear);
+
 /// An EXR data window, corners inclusive (Imath::Box2i's min and max, without OpenEXR's headers).
 struct ExrWindow {
     int minX = 0, minY = 0, maxX = -1, maxY = -1;

@@ -344,7 +344,7 @@ struct PngWriteState {
 // libpng reports errors by longjmp back here: this frame holds no object with a destructor and
 // changes no local after setjmp; the caller owns the state, the rows and the output.
 bool encodePng(PngWriteState* state, int width, int height, unsigned char* const* rows,
-               std::vector<unsigned char>* out) {
+               const io::PngEncoding& encoding, std::vector<unsigned char>* out) {
     if (!state->png || !state->info) return false;
     if (setjmp(png_jmpbuf(state->png))) return false;
     png_set_write_fn(
@@ -360,12 +360,72 @@ bool encodePng(PngWriteState* state, int width, int height, unsigned char* const
     // The pixels are sRGB-encoded: say so (sRGB chunk), with the gAMA and cHRM that decoders
     // without sRGB support read instead, so no viewer has to guess the colour space.
     png_set_sRGB_gAMA_and_cHRM(state->png, state->info, PNG_sRGB_INTENT_PERCEPTUAL);
+    png_set_compression_level(state->png, encoding.zlibLevel);
+    png_set_filter(state->png, PNG_FILTER_TYPE_BASE,
+                   encoding.everyFilter ? PNG_ALL_FILTERS : PNG_FILTER_UP);
     png_set_rows(state->png, state->info, const_cast<png_bytepp>(rows));
     png_write_png(state->png, state->info, PNG_TRANSFORM_IDENTITY, nullptr);
     return true;
 }
 
 } // namespace
+
+unsigned char io::srgb8Reference(float linear) {
+    return static_cast<unsigned char>(std::lround(srgbEncode(linear) * 255.0f));
+}
+
+namespace {
+
+// steps[k]: the smallest float whose code is k + 1 (k = 0..254), found by bisection over the
+// floats' bit patterns (non-negative floats order as their bits). The code of v is the number
+// of steps at or below it: start[] holds that count at the first float of each run of 2^15
+// floats below 1.0, and at most a step or two lies inside a run. srgbEncode is non-decreasing
+// over the floats (Png.Srgb8MatchesTheFormulaForEveryFloatNearEachStep).
+struct SrgbSteps {
+    static constexpr int kShift = 15;
+    static constexpr std::uint32_t kOne = 0x3F800000u;  // 1.0f
+    float steps[255];
+    unsigned char start[(kOne >> kShift) + 1];
+    SrgbSteps() {
+        for (int k = 0; k < 255; ++k) {
+            std::uint32_t lo = 0, hi = kOne;  // 0.0f and 1.0f: codes 0 and 255
+            while (hi - lo > 1) {
+                const std::uint32_t mid = lo + (hi - lo) / 2;
+                (io::srgb8Reference(floatOf(mid)) > k ? hi : lo) = mid;
+            }
+            steps[k] = floatOf(hi);
+        }
+        for (std::uint32_t i = 0; i <= (kOne >> kShift); ++i) {
+            const float first = floatOf(i << kShift);
+            int code = 0;
+            while (code < 255 && steps[code] <= first) ++code;
+            start[i] = static_cast<unsigned char>(code);
+        }
+    }
+    static float floatOf(std::uint32_t bits) {
+        float v;
+        std::memcpy(&v, &bits, sizeof v);
+        return v;
+    }
+};
+
+const SrgbSteps& srgbSteps() {
+    static const SrgbSteps table;
+    return table;
+}
+
+} // namespace
+
+unsigned char io::srgb8(float linear) {
+    if (!(linear > 0.0f)) return 0;  // also NaN
+    if (linear >= 1.0f) return 255;
+    const SrgbSteps& t = srgbSteps();
+    std::uint32_t bits;
+    std::memcpy(&bits, &linear, sizeof bits);
+    int code = t.start[bits >> SrgbSteps::kShift];
+    while (code < 255 && t.steps[code] <= linear) ++code;
+    return static_cast<unsigned char>(code);
+}
 
 std::vector<unsigned char> io::pngPixels(const Image& image) {
     const std::size_t n = image.pixelCount();
@@ -377,28 +437,37 @@ std::vector<unsigned char> io::pngPixels(const Image& image) {
             // PNG stores straight alpha: undo the premultiplication first.
             float v = std::isfinite(p[c]) ? p[c] : 0.0f;
             if (a > 0.0f && a < 1.0f) v /= a;
-            pixels[i * 4 + c] = static_cast<unsigned char>(std::lround(srgbEncode(v) * 255.0f));
+            pixels[i * 4 + c] = srgb8(v);
         }
         pixels[i * 4 + 3] = static_cast<unsigned char>(std::lround(a * 255.0f));
     }
     return pixels;
 }
 
-Result<void> writePng(const std::filesystem::path& path, const Image& image) {
-    LANTERN_TRY(checkImage(image, path));
-    io::AtomicFile file(path);
-    LANTERN_TRY(file.checkWritable());
+Result<std::vector<unsigned char>> io::encodePng(const Image& image, const PngEncoding& encoding) {
     std::vector<unsigned char> pixels = io::pngPixels(image);
-    const std::size_t n = image.pixelCount();
     std::vector<unsigned char*> rows(std::size_t(image.height));
     for (int y = 0; y < image.height; ++y)
         rows[std::size_t(y)] = pixels.data() + std::size_t(y) * std::size_t(image.width) * 4;
     std::vector<unsigned char> encoded;
-    encoded.reserve(n * 2);
+    encoded.reserve(image.pixelCount() * 2);
     PngWriteState state;
-    if (!encodePng(&state, image.width, image.height, rows.data(), &encoded))
-        return makeError(ErrorCode::IoError, "PNG encoding failed (libpng)", {}, path.string());
-    LANTERN_TRY(file.writeAll(encoded.data(), encoded.size()));
+    if (!encodePng(&state, image.width, image.height, rows.data(), encoding, &encoded))
+        return makeError(ErrorCode::IoError, "PNG encoding failed (libpng)");
+    return encoded;
+}
+
+Result<void> writePng(const std::filesystem::path& path, const Image& image) {
+    LANTERN_TRY(checkImage(image, path));
+    io::AtomicFile file(path);
+    LANTERN_TRY(file.checkWritable());
+    auto encoded = io::encodePng(image, io::PngEncoding{});
+    if (!encoded) {
+        Error e = std::move(encoded).error();
+        e.file = path.string();
+        return e;
+    }
+    LANTERN_TRY(file.writeAll(encoded->data(), encoded->size()));
     return file.commit();
 }
 
