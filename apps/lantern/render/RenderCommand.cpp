@@ -293,9 +293,11 @@ int reportDryRun(const RenderArgs& a, const Scene& scene, const std::optional<Se
     return kOk;
 }
 
-// --explain and --probe: what the renderer will do, and the lighting equation at one pixel.
+// --explain and --probe: what the renderer will do, and the lighting equation at one pixel
+// (`probe`, checked by probePixel).
 Result<void> explainAndProbe(const RenderArgs& a, Renderer& renderer, const Scene& scene,
-                             const RenderOptions& options, double time) {
+                             const RenderOptions& options, double time,
+                             const std::optional<std::pair<int, int>>& probe) {
     if (a.explain) {
         auto explained = renderer.explain(scene, options, time);
         if (!explained) return std::move(explained).error();
@@ -306,10 +308,8 @@ Result<void> explainAndProbe(const RenderArgs& a, Renderer& renderer, const Scen
         for (const auto& v : explained->variants)
             std::cout << "  " << v << "\n";
     }
-    if (!a.probe.empty()) {
-        auto xy = probePixel(a);
-        if (!xy) return std::move(xy).error();
-        auto probed = renderer.probe(scene, options, time, xy->first, xy->second);
+    if (probe) {
+        auto probed = renderer.probe(scene, options, time, probe->first, probe->second);
         if (!probed) return std::move(probed).error();
         printProbe(std::cout, *probed);
     }
@@ -413,8 +413,12 @@ int run(const RenderArgs& a) {
         if (!s) return report(s.error());
         seq = std::move(*s);
     }
-    if (!a.probe.empty())
-        if (auto xy = probePixel(a); !xy) return report(xy.error());
+    std::optional<std::pair<int, int>> probe;
+    if (!a.probe.empty()) {
+        auto xy = probePixel(a);
+        if (!xy) return report(xy.error());
+        probe = *xy;
+    }
 
     LoadOptions load;
     load.maxBytes = a.maxSize;
@@ -436,7 +440,7 @@ int run(const RenderArgs& a) {
         std::cerr << "lantern: device: " << renderer->device().name << " ("
                   << renderer->device().driver << ")\n";
     if (auto r = a.shading.checkDevice(renderer->device()); !r) return report(r.error());
-    if (auto r = explainAndProbe(a, *renderer, *shared, *options, frame.time); !r)
+    if (auto r = explainAndProbe(a, *renderer, *shared, *options, frame.time, probe); !r)
         return report(r.error());
     auto prepared = renderer->prepare(shared);
     if (!prepared) return report(prepared.error());

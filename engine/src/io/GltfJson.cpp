@@ -364,15 +364,6 @@ void hideDracoIndices(json& doc, RawFacts& facts) {
     }
 }
 
-// The bytes a std::vector filled by push_back holds: its capacity is the power of two at or
-// above `count` (libstdc++ doubles). `growth` adds the old block it frees at its last growth.
-std::uint64_t grownVectorBytes(std::uint64_t count, std::uint64_t each, bool growth) {
-    if (count == 0) return 0;
-    std::uint64_t capacity = 1;
-    while (capacity < count) capacity *= 2;
-    return (growth ? capacity / 2 : capacity) * each;
-}
-
 std::uint64_t sizeOfArray(const json& doc, const char* key) {
     const json* a = arrayOf(doc, key);
     return a ? a->size() : 0;
@@ -391,48 +382,47 @@ std::uint64_t keptValues(const json& v, bool kept) {
     return n;
 }
 
-// RawFacts::modelBytes (growth false) and modelGrowthBytes (true): tinygltf's objects by the
-// counts in the document.
-std::uint64_t modelBytes(const json& doc, const std::vector<std::size_t>& primitiveCounts,
-                         bool growth) {
-    std::uint64_t bytes = 0;
-    const auto grown = [growth](std::uint64_t count, std::uint64_t each) {
-        return grownVectorBytes(count, each, growth);
+// RawFacts::modelBytes and modelGrowthBytes: tinygltf's objects by the counts in the document.
+void countModelBytes(const json& doc, const std::vector<std::size_t>& primitiveCounts,
+                     RawFacts& facts) {
+    // A std::vector filled by push_back: its capacity is the power of two at or above `count`
+    // (libstdc++ doubles), and at its last growth it also holds the old block, half that.
+    const auto vector = [&facts](std::uint64_t count, std::uint64_t each) {
+        if (count == 0) return;
+        std::uint64_t capacity = 1;
+        while (capacity < count) capacity *= 2;
+        facts.modelBytes += capacity * each;
+        facts.modelGrowthBytes += capacity / 2 * each;
     };
-    const auto add = [&](const char* key, std::uint64_t each) {
-        bytes += grown(sizeOfArray(doc, key), each);
-    };
-    add("accessors", sizeof(tinygltf::Accessor));
-    add("animations", sizeof(tinygltf::Animation));
-    add("buffers", sizeof(tinygltf::Buffer));
-    add("bufferViews", sizeof(tinygltf::BufferView));
-    add("cameras", sizeof(tinygltf::Camera));
-    add("images", sizeof(tinygltf::Image));
-    add("materials", sizeof(tinygltf::Material));
-    add("meshes", sizeof(tinygltf::Mesh));
-    add("nodes", sizeof(tinygltf::Node));
-    add("samplers", sizeof(tinygltf::Sampler));
-    add("scenes", sizeof(tinygltf::Scene));
-    add("skins", sizeof(tinygltf::Skin));
-    add("textures", sizeof(tinygltf::Texture));
-    for (std::size_t count : primitiveCounts)
-        bytes += grown(count, sizeof(tinygltf::Primitive));
+    vector(sizeOfArray(doc, "accessors"), sizeof(tinygltf::Accessor));
+    vector(sizeOfArray(doc, "animations"), sizeof(tinygltf::Animation));
+    vector(sizeOfArray(doc, "buffers"), sizeof(tinygltf::Buffer));
+    vector(sizeOfArray(doc, "bufferViews"), sizeof(tinygltf::BufferView));
+    vector(sizeOfArray(doc, "cameras"), sizeof(tinygltf::Camera));
+    vector(sizeOfArray(doc, "images"), sizeof(tinygltf::Image));
+    vector(sizeOfArray(doc, "materials"), sizeof(tinygltf::Material));
+    vector(sizeOfArray(doc, "meshes"), sizeof(tinygltf::Mesh));
+    vector(sizeOfArray(doc, "nodes"), sizeof(tinygltf::Node));
+    vector(sizeOfArray(doc, "samplers"), sizeof(tinygltf::Sampler));
+    vector(sizeOfArray(doc, "scenes"), sizeof(tinygltf::Scene));
+    vector(sizeOfArray(doc, "skins"), sizeof(tinygltf::Skin));
+    vector(sizeOfArray(doc, "textures"), sizeof(tinygltf::Texture));
+    for (std::size_t count : primitiveCounts) vector(count, sizeof(tinygltf::Primitive));
     if (const json* animations = arrayOf(doc, "animations")) {
         for (const json& a : *animations) {
             if (!a.is_object()) continue;
-            bytes += grown(sizeOfArray(a, "channels"), sizeof(tinygltf::AnimationChannel));
-            bytes += grown(sizeOfArray(a, "samplers"), sizeof(tinygltf::AnimationSampler));
+            vector(sizeOfArray(a, "channels"), sizeof(tinygltf::AnimationChannel));
+            vector(sizeOfArray(a, "samplers"), sizeof(tinygltf::AnimationSampler));
         }
     }
     auto ext = doc.find("extensions");
     if (ext != doc.end() && ext->is_object()) {
         auto lights = ext->find("KHR_lights_punctual");
         if (lights != ext->end() && lights->is_object())
-            bytes += grown(sizeOfArray(*lights, "lights"), sizeof(tinygltf::Light));
+            vector(sizeOfArray(*lights, "lights"), sizeof(tinygltf::Light));
     }
-    if (growth) return bytes;
     // A Value in a map node (key, value, tree links) or a vector slot with spare capacity.
-    return bytes + keptValues(doc, false) * (sizeof(tinygltf::Value) + 96);
+    facts.modelBytes += keptValues(doc, false) * (sizeof(tinygltf::Value) + 96);
 }
 
 } // namespace
@@ -448,8 +438,7 @@ Result<RawFacts> inspectJson(std::string_view text, const Source& source, const 
     auto counts = primitiveCounts(*doc, diag);
     if (!counts) return std::move(counts).error();
     facts.primitiveCounts = std::move(*counts);
-    facts.modelBytes = modelBytes(*doc, facts.primitiveCounts, false);
-    facts.modelGrowthBytes = modelBytes(*doc, facts.primitiveCounts, true);
+    countModelBytes(*doc, facts.primitiveCounts, facts);
     // Four zero bytes: tinygltf refuses a buffer without data, and nothing reads these.
     for (const auto& [index, length] : facts.placeholderBuffers) {
         json& buffer = (*doc)["buffers"][std::size_t(index)];

@@ -17,7 +17,7 @@ namespace lantern::io {
 std::vector<unsigned char> pngPixels(const Image& image);
 
 /// How a PNG's rows are compressed. Lantern writes for speed (issue 18): zlib level 2 and the
-/// Up filter on every row encode a 1080p render 2.4 times faster than libpng's default (level
+/// Up filter on every row encode a 1080p render 2.5 times faster than libpng's default (level
 /// 6, every filter tried per row; `everyFilter`) for a file 1.7 times larger
 /// (lantern_microbench --benchmark_filter=BM_WritePng; docs/performance.md).
 struct PngEncoding {

@@ -414,12 +414,9 @@ const SrgbSteps& srgbSteps() {
     return table;
 }
 
-} // namespace
-
-unsigned char io::srgb8(float linear) {
+unsigned char srgb8With(const SrgbSteps& t, float linear) {
     if (!(linear > 0.0f)) return 0;  // also NaN
     if (linear >= 1.0f) return 255;
-    const SrgbSteps& t = srgbSteps();
     std::uint32_t bits;
     std::memcpy(&bits, &linear, sizeof bits);
     int code = t.start[bits >> SrgbSteps::kShift];
@@ -427,9 +424,14 @@ unsigned char io::srgb8(float linear) {
     return static_cast<unsigned char>(code);
 }
 
+} // namespace
+
+unsigned char io::srgb8(float linear) { return srgb8With(srgbSteps(), linear); }
+
 std::vector<unsigned char> io::pngPixels(const Image& image) {
     const std::size_t n = image.pixelCount();
     std::vector<unsigned char> pixels(n * 4);
+    const SrgbSteps& steps = srgbSteps();
     for (std::size_t i = 0; i < n; ++i) {
         const float* p = image.rgba.data() + i * 4;
         const float a = std::clamp(std::isfinite(p[3]) ? p[3] : 0.0f, 0.0f, 1.0f);
@@ -437,7 +439,7 @@ std::vector<unsigned char> io::pngPixels(const Image& image) {
             // PNG stores straight alpha: undo the premultiplication first.
             float v = std::isfinite(p[c]) ? p[c] : 0.0f;
             if (a > 0.0f && a < 1.0f) v /= a;
-            pixels[i * 4 + c] = srgb8(v);
+            pixels[i * 4 + c] = srgb8With(steps, v);
         }
         pixels[i * 4 + 3] = static_cast<unsigned char>(std::lround(a * 255.0f));
     }
