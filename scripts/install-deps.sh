@@ -5,7 +5,7 @@
 # Usage: scripts/install-deps.sh [build|test|all|slurm]   (default: all)
 #   build  what `cmake --build` and `lantern render` need
 #   test   build + the tools the test suite drives (Xvfb, xdotool, oiiotool, valgrind, clang,
-#          gltfpack and draco_transcoder, a single-node Slurm for the farm tests, pytest and NumPy
+#          gltfpack and draco_transcoder, OSMesa for the OpenGL peer benchmark, a single-node Slurm for the farm tests, pytest and NumPy
 #          for the Python module's tests, matplotlib for the accuracy plot)
 #   slurm  only Slurm and munge (scripts/slurm-single-node.sh install)
 set -euo pipefail
@@ -27,7 +27,7 @@ slurm_pkgs=(slurm-wlm slurmctld slurmd slurm-client munge)
 test_pkgs=(
     xvfb xauth xdotool x11-utils openimageio-tools vulkan-tools
     clang-14 libclang-rt-14-dev valgrind python3 librsvg2-bin
-    gltfpack draco
+    gltfpack draco libosmesa6-dev
     "${slurm_pkgs[@]}" python3-yaml python3-pytest python3-matplotlib
 )
 
