@@ -312,25 +312,29 @@ BENCHMARK(BM_LoadCompressedGltf)
     ->Arg(int(test::Encoding::Draco))
     ->Unit(benchmark::kMillisecond);
 
-// Writing a 640x360 float EXR (a smooth gradient with a highlight, like a rendered frame) per
-// compression, one thread: the encode stage of a sequence. Bytes written are a counter.
-void BM_WriteExr(benchmark::State& state) {
-    const auto compression = ExrCompression(state.range(0));
-    Image image(640, 360);
+// A smooth gradient with a highlight, like a rendered frame; with a depth plane when asked.
+Image renderedLikeImage(int w, int h, bool depth) {
+    Image image(w, h);
     for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x) {
             float* p = image.pixel(x, y);
-            const double dx = (x - 400.0) / 60.0, dy = (y - 150.0) / 60.0;
+            const double dx = (x - 0.625 * w) / (w / 10.7), dy = (y - 0.42 * h) / (w / 10.7);
             const float highlight = float(std::exp(-(dx * dx + dy * dy)));
             p[0] = 0.2f + 0.6f * float(x) / float(image.width) + highlight;
             p[1] = 0.1f + 0.5f * float(y) / float(image.height) + highlight;
             p[2] = 0.3f + highlight;
             p[3] = 1.0f;
         }
+    if (depth)
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) image.depth.push_back(3.0f + 0.002f * float(x) + 0.001f * float(y * y % 97));
+    return image;
+}
+
+// Times writeExr of `image` with `options`; the file's size is a counter.
+void timeExrWrites(benchmark::State& state, const Image& image, const ExrOptions& options) {
     const fs::path path = fs::temp_directory_path() /
                           ("lantern-microbench-" + std::to_string(::getpid()) + ".exr");
-    ExrOptions options;
-    options.compression = compression;
     for (auto _ : state) {
         auto written = writeExr(path, image, options);
         if (!written) {
@@ -341,6 +345,15 @@ void BM_WriteExr(benchmark::State& state) {
     std::error_code ec;
     state.counters["MiB"] = double(fs::file_size(path, ec)) / (1024.0 * 1024.0);
     fs::remove(path, ec);
+}
+
+// Writing a 640x360 float EXR per compression, one thread: the encode stage of a sequence.
+void BM_WriteExr(benchmark::State& state) {
+    const auto compression = ExrCompression(state.range(0));
+    ExrOptions options;
+    options.compression = compression;
+    options.threads = 1;
+    timeExrWrites(state, renderedLikeImage(640, 360, false), options);
     state.SetLabel(toString(compression));
 }
 BENCHMARK(BM_WriteExr)
@@ -349,6 +362,24 @@ BENCHMARK(BM_WriteExr)
     ->Arg(int(ExrCompression::Piz))
     ->Arg(int(ExrCompression::Dwaa))
     ->Unit(benchmark::kMillisecond);
+
+// A 1920x1080 float EXR with depth, zip, side by side: OpenEXR's default zlib level (4) and
+// Lantern's (2), on one thread (Arg 1) and on OpenEXR's pool over every core (Arg 0).
+void BM_WriteExr1080p(benchmark::State& state) {
+    ExrOptions options;
+    options.zipLevel = int(state.range(0));
+    options.threads = int(state.range(1));
+    timeExrWrites(state, renderedLikeImage(1920, 1080, true), options);
+    state.SetLabel("zip level " + std::to_string(options.zipLevel) +
+                   (options.threads == 1 ? ", 1 thread" : ", every core"));
+}
+BENCHMARK(BM_WriteExr1080p)
+    ->Args({4, 1})
+    ->Args({2, 1})
+    ->Args({4, 0})
+    ->Args({2, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // The float-to-8-bit sRGB conversion of a 1920x1080 PNG (io::pngPixels's inner step), with
 // the formula (std::pow per channel, Arg 0) and with the step table Lantern uses (Arg 1), side

@@ -68,6 +68,53 @@ TEST(ImageIo, ExrFloatRoundTripIsExact) {
     }
 }
 
+// The zip level and the line-block threads change how fast a file is written, never what it
+// holds: each level reads back exactly and a higher one is no larger; the bytes are the same
+// whether this thread alone or OpenEXR's pool compressed the blocks; a level outside 1..9 is
+// refused before anything is written.
+TEST(ImageIo, ZipLevelsReadBackExactlyAndThreadsWriteTheSameBytes) {
+    const auto dir = testOutputDir();
+    Image img(300, 97); // 7 blocks of 16 lines for zip, 97 single lines for zips
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+            for (int c = 0; c < 4; ++c)
+                img.pixel(x, y)[c] = float((x * (c + 1) + y * 3) % 251) / 64.0f + float((x / 7) % 3);
+    auto bytes = [](const std::filesystem::path& p) {
+        std::ifstream in(p, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    for (ExrCompression c : {ExrCompression::Zip, ExrCompression::Zips}) {
+        std::uintmax_t previous = 0;
+        for (int level : {9, 4, 2, 1}) {
+            const auto path = dir / ("level" + std::to_string(level) + toString(c) + ".exr");
+            ExrOptions o;
+            o.compression = c;
+            o.zipLevel = level;
+            o.threads = 1;
+            ASSERT_TRUE(writeExr(path, img, o));
+            auto back = readExr(path);
+            ASSERT_TRUE(back) << back.error().describe();
+            EXPECT_EQ(back->rgba, img.rgba) << level;
+            const std::uintmax_t size = std::filesystem::file_size(path);
+            EXPECT_GE(size, previous) << "level " << level << " wrote a smaller file than a higher level";
+            previous = size;
+            for (int threads : {0, 4}) {
+                o.threads = threads;
+                const auto pooled = dir / ("pooled" + std::to_string(threads) + ".exr");
+                ASSERT_TRUE(writeExr(pooled, img, o));
+                EXPECT_EQ(bytes(pooled), bytes(path)) << toString(c) << " level " << level << ", " << threads << " threads";
+            }
+        }
+    }
+    ExrOptions bad;
+    bad.zipLevel = 0;
+    const auto refused = dir / "refused.exr";
+    auto r = writeExr(refused, img, bad);
+    ASSERT_FALSE(r);
+    EXPECT_EQ(r.error().code, ErrorCode::InvalidInput);
+    EXPECT_FALSE(std::filesystem::exists(refused));
+}
+
 TEST(ImageIo, ExrHalfIsWithinHalfPrecisionAndClampsInsteadOfInf) {
     const auto path = testOutputDir() / "half.exr";
     const Image img = randomImage(16, 16, false);

@@ -109,6 +109,7 @@ struct RenderArgs {
     bool dryRun = false;  // --dry-run: check everything, render and write nothing
     std::string probe;
     std::string compression = "zip";
+    int zipLevel = ExrOptions{}.zipLevel;
     std::uint64_t maxSize = kDefaultMaxBytes;
     std::vector<std::string> allowFolders;
     std::string background;
@@ -373,6 +374,7 @@ int run(const RenderArgs& a) {
         return report(makeError(ErrorCode::InvalidInput,
                                 "unknown compression \"" + a.compression + "\"", "--compression"));
     exr.compression = *compression;
+    exr.zipLevel = a.zipLevel;
     const bool sequence = !a.frames.empty() || !a.frameList.empty();
     if (!a.frames.empty() && !a.frameList.empty())
         return report(makeError(ErrorCode::Usage, "--frames and --frame-list cannot be combined",
@@ -492,6 +494,10 @@ Runner addRenderCommand(CLI::App& app) {
     cmd->add_option("--compression", args->compression,
                     "EXR compression: none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab")
         ->capture_default_str();
+    cmd->add_option("--zip-level", args->zipLevel,
+                    "zlib level of the zip and zips compressions: 1 fastest to 9 smallest")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 9));
     cmd->add_flag("--dry-run", args->dryRun,
                   "Check the options and load the scene, print what would be written, and stop: "
                   "no device is created and no file or folder is written");

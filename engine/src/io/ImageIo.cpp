@@ -14,6 +14,7 @@
 #include <ImfRationalAttribute.h>
 #include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
+#include <ImfThreading.h>
 #include <IexBaseExc.h>
 #include <half.h>
 
@@ -23,7 +24,9 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <mutex>
 #include <optional>
+#include <thread>
 #include <vector>
 
 namespace lantern {
@@ -43,6 +46,16 @@ Imf::Compression toImf(ExrCompression c) {
     case ExrCompression::Dwab: return Imf::DWAB_COMPRESSION;
     }
     return Imf::ZIP_COMPRESSION;
+}
+
+// The threads compressing one file's line blocks, from OpenEXR's global pool (sized once to
+// the cores); 0 has the calling thread compress them alone.
+int exrThreads(int asked) {
+    static std::once_flag once;
+    const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
+    std::call_once(once, [cores] { Imf::setGlobalThreadCount(cores); });
+    const int n = std::min(asked > 0 ? asked : cores, cores);
+    return n > 1 ? n : 0;
 }
 
 Result<void> checkImage(const Image& image, const std::filesystem::path& path) {
@@ -252,6 +265,8 @@ void addCameraAttributes(Imf::Header& header, const CameraMetadata& camera) {
 Result<void> writeExr(const std::filesystem::path& path, const Image& image,
                       const ExrOptions& options) {
     LANTERN_TRY(checkImage(image, path));
+    if (options.zipLevel < 1 || options.zipLevel > 9 || options.threads < 0)
+        return makeError(ErrorCode::InvalidInput, "zip level outside 1..9 or negative threads", {}, path.string());
     io::AtomicFile file(path);
     LANTERN_TRY(file.checkWritable());
     AtomicFileStream stream(file);
@@ -260,6 +275,7 @@ Result<void> writeExr(const std::filesystem::path& path, const Image& image,
     try {
         Imf::Header header(image.width, image.height);
         header.compression() = toImf(options.compression);
+        header.zipCompressionLevel() = options.zipLevel;
         Imf::FrameBuffer fb;
         if (options.half) halves = toHalves(image.rgba, clamped);
         addColorChannels(header, fb, image, options.half, halves);
@@ -269,7 +285,7 @@ Result<void> writeExr(const std::filesystem::path& path, const Image& image,
         if (image.framesPerSecond > 0.0)
             Imf::addFramesPerSecond(header, Imf::guessExactFps(image.framesPerSecond));
         // The OutputFile is destroyed (writing its offset table) before the stream finishes.
-        Imf::OutputFile out(stream, header);
+        Imf::OutputFile out(stream, header, exrThreads(options.threads));
         out.setFrameBuffer(fb);
         out.writePixels(image.height);
     } catch (const std::exception& e) {
