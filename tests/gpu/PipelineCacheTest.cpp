@@ -2,7 +2,8 @@
 // what the first wrote; a damaged, truncated or foreign file, or a link planted at its name,
 // is refused with one warning naming the file and the reason, and replaced, without following
 // the link; a folder that cannot be written is a warning; turned off, nothing is read or
-// written. Each test keeps its cache in its own folder.
+// written; and the missing variants of a frame, compiled together, render what one renderer
+// compiling them one by one renders. Each test keeps its cache in its own folder.
 #include "TestSupport.h"
 
 #include "gpu/Context.h"
@@ -273,6 +274,38 @@ TEST_F(PipelineCache_, TurnedOffNothingIsReadOrWritten) {
         renderOnce(*r);
     }
     EXPECT_FALSE(fs::exists(dir / "by-the-host"));
+}
+
+// The missing variants of one frame are compiled on several threads at once: exactly those the
+// draws use, and the frame is the shared renderer's (whose variants exist already) bit for bit.
+TEST_F(PipelineCache_, VariantsCompiledTogetherRenderAsOneByOne) {
+    auto scene = builtinScene("spheres");
+    ASSERT_TRUE(scene) << scene.error().describe();
+    RenderOptions o;
+    o.width = 48;
+    o.height = 32;
+    o.aovs.normal = true;  // with --msaa, the AOV pass adds its own variants
+    o.msaa = 4;
+    auto variants = explainScene(*scene, o);
+    ASSERT_TRUE(variants) << variants.error().describe();
+    // Each variant and its single-sample AOV twin: at least two, made at once.
+    const std::size_t expected = 2 * variants->variants.size();
+    ASSERT_GE(expected, 2u);
+
+    RendererDesc desc;
+    desc.validation = true;
+    desc.pipelineCacheOnDisk = false;
+    auto fresh = Renderer::create(desc);
+    ASSERT_TRUE(fresh) << fresh.error().describe();
+    auto together = fresh->render(*scene, o, 0.0);
+    ASSERT_TRUE(together) << together.error().describe();
+    EXPECT_EQ(fresh->lastFrameStats().pipelinesCreated, expected) << "and nothing else";
+    EXPECT_EQ(fresh->validationMessageCount(), 0u);
+
+    auto alone = renderer().render(*scene, o, 0.0);
+    ASSERT_TRUE(alone) << alone.error().describe();
+    EXPECT_GT(test::countCovered(*together), 0u);
+    EXPECT_EQ(together->rgba, alone->rgba) << test::saveComparison(*together, *alone, "variants");
 }
 
 // Where the file goes, without a device: LANTERN_CACHE_DIR, else an absolute XDG_CACHE_HOME,
