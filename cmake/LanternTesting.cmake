@@ -1,6 +1,7 @@
 # lantern_add_test(): one GoogleTest executable, its tests discovered into CTest with a label
 # (unit, gpu, image, robustness, install, window, farm), and GoogleTest skips reported as
-# CTest skips rather than passes.
+# CTest skips rather than passes. The pipeline cache goes to the build tree, never the user's
+# ~/.cache (LANTERN_CACHE_DIR).
 find_package(GTest CONFIG REQUIRED)
 include(GoogleTest)
 
@@ -23,5 +24,5 @@ function(lantern_add_test name)
             LABELS "${ARG_LABEL}"
             TIMEOUT ${ARG_TIMEOUT}
             SKIP_REGULAR_EXPRESSION "\\[  SKIPPED \\]"
-            ENVIRONMENT "LANTERN_SHARED_DIR=${LANTERN_SHARED_DIR};LANTERN_SOURCE_DIR=${PROJECT_SOURCE_DIR};LANTERN_BINARY_DIR=${PROJECT_BINARY_DIR};LANTERN_CLI=$<TARGET_FILE:lantern_cli>;XDG_RUNTIME_DIR=${PROJECT_BINARY_DIR}/xdg-runtime")
+            ENVIRONMENT "LANTERN_SHARED_DIR=${LANTERN_SHARED_DIR};LANTERN_SOURCE_DIR=${PROJECT_SOURCE_DIR};LANTERN_BINARY_DIR=${PROJECT_BINARY_DIR};LANTERN_CLI=$<TARGET_FILE:lantern_cli>;XDG_RUNTIME_DIR=${PROJECT_BINARY_DIR}/xdg-runtime;LANTERN_CACHE_DIR=${PROJECT_BINARY_DIR}/tests/pipeline-cache")
 endfunction()

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <fstream>
 
 namespace {
@@ -131,12 +132,46 @@ TEST_F(CliOutput, InfoDevicesNamesTheChosenDeviceAndWhy) {
     EXPECT_NE(r.out.find("chosen: " + name + ": the best-ranked usable device"), std::string::npos)
         << r.out;
     EXPECT_NE(r.out.find("Vulkan loader: " + buildInfo().vulkanLoader), std::string::npos);
-    EXPECT_NE(r.out.find("pipeline cache: in memory only"), std::string::npos) << r.out;
+    // The suite's cache folder (LANTERN_CACHE_DIR, set for every test), never ~/.cache.
+    const char* cacheDir = std::getenv("LANTERN_CACHE_DIR");
+    ASSERT_TRUE(cacheDir && *cacheDir);
+    EXPECT_NE(r.out.find(std::string("pipeline cache: ") + cacheDir + "/pipelines-"),
+              std::string::npos)
+        << r.out;
+    const auto off = runLantern({"info", "--devices"}, {"LANTERN_PIPELINE_CACHE=0"});
+    EXPECT_NE(off.out.find("pipeline cache: in memory only (LANTERN_PIPELINE_CACHE=0; "
+                           "pipelines are compiled again by each run)"),
+              std::string::npos)
+        << off.out;
     EXPECT_NE(r.out.find("display for `lantern view`: none"), std::string::npos) << r.out;
     const auto none = runLantern({"info", "--devices", "--device", "no-such-device"});
     EXPECT_EQ(none.exitCode, 3) << none.out;
     EXPECT_NE(none.out.find("chosen: none"), std::string::npos) << none.out;
     EXPECT_EQ(runLantern({"info"}).exitCode, 2) << "neither a scene nor --devices";
+}
+
+// A second process finds the pipeline cache the first one wrote, and `info --devices` says
+// where it is and how big.
+TEST_F(CliOutput, ASecondProcessLoadsThePipelineCache) {
+    const auto dir = testOutputDir();
+    const std::vector<std::string> env = {"LANTERN_CACHE_DIR=" + (dir / "cache").string()};
+    const auto before = runLantern({"info", "--devices"}, env);
+    EXPECT_NE(before.out.find((dir / "cache").string() + "/pipelines-"), std::string::npos)
+        << before.out;
+    EXPECT_NE(before.out.find(" (not written yet)\n"), std::string::npos) << before.out;
+    for (int run = 0; run < 2; ++run) {
+        SCOPED_TRACE("run " + std::to_string(run));
+        const auto r = runLantern(
+            small({"render", "builtin:spheres", "--verbose", "-o", (dir / "a.png").string()}), env);
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+        EXPECT_EQ(r.err.find("bytes loaded from " + (dir / "cache").string() + "/pipelines-") !=
+                      std::string::npos,
+                  run == 1)
+            << r.err;
+    }
+    const auto after = runLantern({"info", "--devices"}, env);
+    EXPECT_NE(after.out.find(" bytes)\n"), std::string::npos) << after.out;
 }
 
 } // namespace

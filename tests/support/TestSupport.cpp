@@ -28,6 +28,14 @@ std::filesystem::path envPath(const char* name, const std::filesystem::path& fal
 std::mutex g_logMutex;
 std::vector<std::string> g_log;
 
+// The suite never writes into the user's own cache folder: ctest sets LANTERN_CACHE_DIR for
+// every test (cmake/LanternTesting.cmake), and a test binary run by hand gets the build
+// tree's folder here, before any renderer exists.
+[[maybe_unused]] const bool g_pipelineCacheInBuildTree = [] {
+    const std::string folder = std::string(LANTERN_TEST_BINARY_DIR) + "/tests/pipeline-cache";
+    return ::setenv("LANTERN_CACHE_DIR", folder.c_str(), 0) == 0;
+}();
+
 } // namespace
 
 std::filesystem::path sourceDir() { return envPath("LANTERN_SOURCE_DIR", LANTERN_TEST_SOURCE_DIR); }

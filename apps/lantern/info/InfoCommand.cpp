@@ -182,6 +182,15 @@ std::string displayStatus() {
                            : ", GLFW connects but offers no Vulkan surface");
 }
 
+// Where the chosen device's compiled pipelines are kept between runs, and how big that is.
+std::string pipelineCacheStatus(const DeviceListing& d) {
+    if (d.pipelineCacheFile.empty())
+        return "in memory only (" + d.pipelineCacheOff +
+               "; pipelines are compiled again by each run)";
+    if (d.pipelineCacheBytes < 0) return d.pipelineCacheFile + " (not written yet)";
+    return d.pipelineCacheFile + " (" + std::to_string(d.pipelineCacheBytes) + " bytes)";
+}
+
 int runDevices(const InfoArgs& a) {
     const BuildInfo build = buildInfo();
     std::cout << "Vulkan loader: " << build.vulkanLoader << "\n";
@@ -199,7 +208,8 @@ int runDevices(const InfoArgs& a) {
         if (d.chosen) chosen = &d;
     }
     std::cout << "chosen: " << (chosen ? chosen->name + ": " : "") << list->choice << "\n"
-              << "pipeline cache: in memory only (pipelines are compiled again by each run)\n"
+              << "pipeline cache: " << (chosen ? pipelineCacheStatus(*chosen) : "no device")
+              << "\n"
               << "display for `lantern view`: " << displayStatus() << "\n";
     return chosen ? kOk : kFailed;
 }

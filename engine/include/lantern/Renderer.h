@@ -46,6 +46,14 @@ struct RendererDesc {
     /// them in), and VK_KHR_swapchain on the device (devices without it are passed over).
     std::vector<std::string> instanceExtensions;
     bool presentation = false;
+    /// Keep compiled pipelines on disk so that the next process does not compile them again
+    /// (docs/performance.md, "Pipeline cache"): one file per device, driver and Lantern
+    /// version in `pipelineCacheFolder`, or when that is empty in $LANTERN_CACHE_DIR,
+    /// $XDG_CACHE_HOME/lantern or ~/.cache/lantern. A damaged file or a folder that cannot be
+    /// written is a warning, never a failure. The environment variable LANTERN_PIPELINE_CACHE=0
+    /// turns it off whatever this says.
+    bool pipelineCacheOnDisk = true;
+    std::string pipelineCacheFolder;
     LogSink log;
 };
 
@@ -85,6 +93,11 @@ struct DeviceInfo {
     std::uint32_t apiVersion = 0;
     bool validationEnabled = false;
     std::vector<int> msaaSampleCounts;  ///< supported for float colour + depth
+    /// The file compiled pipelines are kept in between runs (empty: kept in memory only).
+    std::string pipelineCacheFile;
+    /// Bytes of the driver's pipeline data loaded from that file when the device was created
+    /// (0: a first run, the cache off, or a file refused with a warning).
+    std::uint64_t pipelineCacheLoadedBytes = 0;
 };
 
 /// One Vulkan device of this machine, as listDevices() sees it.
@@ -98,6 +111,12 @@ struct DeviceListing {
     bool presentation = false;  ///< has VK_KHR_swapchain (a window, `lantern view`, can use it)
     std::vector<int> msaaSampleCounts;  ///< supported for float colour + depth
     bool chosen = false;  ///< the device Renderer::create would take with the same deviceName
+    /// Where Renderer::create (with the default RendererDesc) keeps this device's compiled
+    /// pipelines between runs, empty when that is off (then pipelineCacheOff says why), and
+    /// the file's size now (-1: not written yet).
+    std::string pipelineCacheFile;
+    std::int64_t pipelineCacheBytes = -1;
+    std::string pipelineCacheOff;
 };
 
 /// The devices of this machine and the one Lantern would choose.

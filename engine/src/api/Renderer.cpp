@@ -75,6 +75,8 @@ gpu::DeviceDesc deviceDesc(const RendererDesc& desc) {
     d.instanceExtensions = desc.instanceExtensions;
     d.presentation = desc.presentation;
     d.framesInFlight = std::uint32_t(desc.framesInFlight);
+    d.pipelineCacheOnDisk = desc.pipelineCacheOnDisk;
+    d.pipelineCacheFolder = desc.pipelineCacheFolder;
     return d;
 }
 

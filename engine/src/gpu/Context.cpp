@@ -96,7 +96,7 @@ Result<std::shared_ptr<Context>> Context::create(const ContextDesc& desc) {
     ctx->m_queueFamily = chosen->queueFamily;
     const VkPhysicalDeviceFeatures core = ctx->readOptionalFeatures();
     LANTERN_TRY(ctx->createDevice(core, desc.swapchain));
-    LANTERN_TRY(ctx->finishSetup());
+    LANTERN_TRY(ctx->finishSetup(desc.pipelineCache));
     return ctx;
 }
 
@@ -228,6 +228,7 @@ Result<void> Context::createDevice(const VkPhysicalDeviceFeatures& core, bool sw
 }
 
 Result<std::shared_ptr<Context>> Context::adopt(const ExternalDevice& e, bool swapchain,
+                                                const PipelineCacheSettings& pipelineCache,
                                                 LogSink log) {
     armFaultsFromEnvironment();
 #if defined(LANTERN_ASAN)
@@ -254,11 +255,11 @@ Result<std::shared_ptr<Context>> Context::adopt(const ExternalDevice& e, bool sw
     ctx->m_caps.shaderFloat64 = f.core.shaderFloat64;
     ctx->m_caps.provokingVertexLast =
         f.provokingVertexLast && extensionEnabled(e, VK_EXT_PROVOKING_VERTEX_EXTENSION_NAME);
-    LANTERN_TRY(ctx->finishSetup());
+    LANTERN_TRY(ctx->finishSetup(pipelineCache));
     return ctx;
 }
 
-Result<void> Context::finishSetup() {
+Result<void> Context::finishSetup(const PipelineCacheSettings& pipelineCache) {
     vkGetPhysicalDeviceProperties(m_physical, &m_properties);
     vkGetPhysicalDeviceMemoryProperties(m_physical, &m_memory);
     VkPhysicalDeviceVulkan12Properties p12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_PROPERTIES};
@@ -274,10 +275,9 @@ Result<void> Context::finishSetup() {
     m_caps.colorDepthSampleCounts =
         lim.framebufferColorSampleCounts & lim.framebufferDepthSampleCounts;
 
-    VkPipelineCacheCreateInfo pcci{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
-    VkPipelineCache cache = VK_NULL_HANDLE;
-    LANTERN_VK_TRY(vkCreatePipelineCache(m_device, &pcci, nullptr, &cache));
-    m_pipelineCache = UniquePipelineCache(m_device, cache);
+    auto cache = PipelineCache::create(m_device, m_properties, pipelineCache, m_log);
+    if (!cache) return std::move(cache).error();
+    m_pipelineCache = std::move(*cache);
 
     VkCommandPoolCreateInfo cpci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     cpci.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
@@ -306,6 +306,8 @@ void Context::waitIdle() {
 Context::~Context() {
     waitIdle();
     m_oneShotPool.reset();
+    // Every pipeline this context compiled is in the cache by now: keep them for the next run.
+    savePipelineCache();
     m_pipelineCache.reset();
     if (m_external) return;  // the host's instance and device: never destroyed here
     if (m_device) vkDestroyDevice(m_device, nullptr);

@@ -1,12 +1,14 @@
 // Context: the Vulkan instance (with the validation layer and a debug messenger when asked and
-// installed), the chosen physical device, the logical device, its graphics queue, a pipeline
-// cache and helpers for one-off submissions. Shared (std::shared_ptr) by everything that owns
+// installed), the chosen physical device, the logical device, its graphics queue, the pipeline
+// cache (loaded from disk and written back when the context goes, gpu/PipelineCache.h) and
+// helpers for one-off submissions. Shared (std::shared_ptr) by everything that owns
 // device objects, so the device outlives them whatever order a host destroys things in.
 // Either Lantern creates and owns the instance and device (create), or the host lends its own
 // (adopt): then they are checked, used and never destroyed.
 #pragma once
 
 #include "gpu/Handles.h"
+#include "gpu/PipelineCache.h"
 #include "gpu/Vk.h"
 
 #include <lantern/ExternalDevice.h>
@@ -29,6 +31,7 @@ struct ContextDesc {
     bool synchronizationValidation = false;
     std::vector<std::string> instanceExtensions;  ///< e.g. surface extensions for a window
     bool swapchain = false;                       ///< enable VK_KHR_swapchain on the device
+    PipelineCacheSettings pipelineCache;          ///< kept on disk between runs, and where
     LogSink log;
 };
 
@@ -51,6 +54,7 @@ public:
     /// what Lantern needs (Unsupported or Usage naming what is missing) and never destroys
     /// them. `swapchain`: presentation was asked for (VK_KHR_swapchain must be enabled).
     static Result<std::shared_ptr<Context>> adopt(const ExternalDevice& external, bool swapchain,
+                                                  const PipelineCacheSettings& pipelineCache,
                                                   LogSink log);
     ~Context();
     Context(const Context&) = delete;
@@ -62,6 +66,10 @@ public:
     VkQueue queue() const { return m_queue; }
     std::uint32_t queueFamily() const { return m_queueFamily; }
     VkPipelineCache pipelineCache() const { return m_pipelineCache.get(); }
+    /// The cache's file and what was loaded from it.
+    const PipelineCache& diskCache() const { return m_pipelineCache; }
+    /// Writes the pipeline cache to its file now if it changed (also done on destruction).
+    bool savePipelineCache() { return m_pipelineCache.save(m_device, m_log); }
     const VkPhysicalDeviceProperties& properties() const { return m_properties; }
     const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return m_memory; }
     /// The largest single allocation the device accepts (Vulkan 1.1 maxMemoryAllocationSize).
@@ -108,7 +116,7 @@ private:
     Result<void> createMessenger(VkDebugUtilsMessengerCreateInfoEXT messengerInfo);
     VkPhysicalDeviceFeatures readOptionalFeatures();
     Result<void> createDevice(const VkPhysicalDeviceFeatures& core, bool swapchain);
-    Result<void> finishSetup();
+    Result<void> finishSetup(const PipelineCacheSettings& pipelineCache);
     static VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(
         VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
         const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
@@ -127,7 +135,7 @@ private:
     bool m_external = false;
     std::string m_driverInfo;
     VkDeviceSize m_maxAllocation = 0;
-    UniquePipelineCache m_pipelineCache;
+    PipelineCache m_pipelineCache;
     UniqueCommandPool m_oneShotPool;
     std::mutex m_oneShotMutex;
     std::mutex m_queueMutex;

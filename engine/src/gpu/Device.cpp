@@ -47,6 +47,8 @@ void describe(const Context& ctx, DeviceInfo& info, DeviceLimits& limits) {
     const Capabilities& caps = ctx.capabilities();
     for (int s : {1, 2, 4, 8})
         if (caps.colorDepthSampleCounts & std::uint32_t(s)) info.msaaSampleCounts.push_back(s);
+    info.pipelineCacheFile = ctx.diskCache().file().string();
+    info.pipelineCacheLoadedBytes = ctx.diskCache().loadedBytes();
     limits.maxImageDimension = p.limits.maxImageDimension2D;
     limits.sampleCounts = caps.colorDepthSampleCounts;
     limits.primitiveId = caps.primitiveIdInFragment;
@@ -55,6 +57,10 @@ void describe(const Context& ctx, DeviceInfo& info, DeviceLimits& limits) {
     for (std::uint32_t i = 0; i < mem.memoryHeapCount; ++i)
         if (mem.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
             limits.deviceMemory = std::max<std::uint64_t>(limits.deviceMemory, mem.memoryHeaps[i].size);
+}
+
+PipelineCacheSettings pipelineCacheSettings(const DeviceDesc& desc) {
+    return {desc.pipelineCacheOnDisk, desc.pipelineCacheFolder};
 }
 
 } // namespace
@@ -85,6 +91,7 @@ Result<std::shared_ptr<Device>> Device::create(const DeviceDesc& desc) {
     cd.log = desc.log;
     cd.instanceExtensions = desc.instanceExtensions;
     cd.swapchain = desc.presentation;
+    cd.pipelineCache = pipelineCacheSettings(desc);
     auto ctx = Context::create(cd);
     if (!ctx) return std::move(ctx).error();
     return assemble(std::move(*ctx), desc);
@@ -92,7 +99,8 @@ Result<std::shared_ptr<Device>> Device::create(const DeviceDesc& desc) {
 
 Result<std::shared_ptr<Device>> Device::adopt(const ExternalDevice& external,
                                               const DeviceDesc& desc) {
-    auto ctx = Context::adopt(external, desc.presentation, desc.log);
+    auto ctx =
+        Context::adopt(external, desc.presentation, pipelineCacheSettings(desc), desc.log);
     if (!ctx) return std::move(ctx).error();
     return assemble(std::move(*ctx), desc);
 }

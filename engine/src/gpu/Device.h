@@ -35,6 +35,8 @@ struct DeviceDesc {
     std::vector<std::string> instanceExtensions;  ///< e.g. the surface extensions of a window
     bool presentation = false;                    ///< enable VK_KHR_swapchain on the device
     std::uint32_t framesInFlight = 2;
+    bool pipelineCacheOnDisk = true;  ///< RendererDesc's: keep compiled pipelines between runs
+    std::string pipelineCacheFolder;  ///< empty: the environment's (gpu/PipelineCache.h)
     LogSink log;
 };
 

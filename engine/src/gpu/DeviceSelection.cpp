@@ -4,11 +4,14 @@
 // Context::adopt.
 #include "gpu/DeviceSelection.h"
 
+#include "gpu/PipelineCache.h"
+
 #include <lantern/Renderer.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cstring>
+#include <filesystem>
 #include <sstream>
 #include <utility>
 
@@ -318,6 +321,15 @@ DeviceListing describe(const gpu::Candidate& c) {
         lim.framebufferColorSampleCounts & lim.framebufferDepthSampleCounts;
     for (int s = 1; s <= 64; s *= 2)
         if (counts & VkSampleCountFlags(s)) d.msaaSampleCounts.push_back(s);
+    // Where Renderer::create would keep its pipelines (the default settings, this environment).
+    const gpu::PipelineCachePlace place = gpu::pipelineCachePlace({}, c.props);
+    d.pipelineCacheFile = place.file.string();
+    d.pipelineCacheOff = place.off;
+    std::error_code error;
+    // A link at the name is not the cache (the cache never follows one): its size is not told.
+    if (!place.file.empty() && std::filesystem::symlink_status(place.file, error).type() ==
+                                   std::filesystem::file_type::regular)
+        d.pipelineCacheBytes = std::int64_t(std::filesystem::file_size(place.file, error));
     return d;
 }
 

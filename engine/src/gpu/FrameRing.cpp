@@ -84,23 +84,30 @@ Result<void> FrameRing::preparePipelines(const DrawList& list, SceneBuffers& sce
                                          std::vector<VkPipeline>& main,
                                          std::vector<VkPipeline>& aov) {
     const bool aovPass = list.target.aovs.any() && list.target.samples > 1;
+    // The variants the draws use (and only those), the missing ones compiled together.
+    std::vector<PipelineKey> mainKeys, aovKeys;
     bool needFlat = false;
     for (const ViewCommands& v : list.views)
         for (const DrawCommand& d : v.draws) {
             PipelineKey key = d.pipeline;
             if (aovPass) key.aov = false;
-            auto p = m_pipelines.pipeline(key);
-            if (!p) return std::move(p).error();
-            main.push_back(*p);
+            mainKeys.push_back(key);
             if (aovPass) {
                 PipelineKey single = d.pipeline;
                 single.samples = 1;
                 single.aov = true;
-                auto a = m_pipelines.pipeline(single);
-                if (!a) return std::move(a).error();
-                aov.push_back(*a);
+                aovKeys.push_back(single);
             }
             needFlat |= d.pipeline.program == frame::Program::Flat;
+        }
+    std::vector<PipelineKey> all = mainKeys;
+    all.insert(all.end(), aovKeys.begin(), aovKeys.end());
+    LANTERN_TRY(m_pipelines.prepare(all));
+    for (const auto& [keys, out] : {std::pair{&mainKeys, &main}, std::pair{&aovKeys, &aov}})
+        for (const PipelineKey& key : *keys) {
+            auto p = m_pipelines.pipeline(key);
+            if (!p) return std::move(p).error();
+            out->push_back(*p);
         }
     if (needFlat) LANTERN_TRY(scene.ensureFlatStreams());
     return {};

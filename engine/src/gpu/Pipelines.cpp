@@ -7,6 +7,13 @@
 
 #include "ShaderBlobs.h"
 
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <optional>
+#include <thread>
+
 namespace lantern::gpu {
 namespace {
 
@@ -51,6 +58,17 @@ Result<UniqueDescriptorSetLayout> makeSetLayout(Context& ctx,
     VkDescriptorSetLayout layout = VK_NULL_HANDLE;
     LANTERN_VK_TRY(vkCreateDescriptorSetLayout(ctx.device(), &lci, nullptr, &layout));
     return UniqueDescriptorSetLayout(ctx.device(), layout);
+}
+
+// What a frame's first use of its variants cost (`--verbose` prints it).
+void logCompiled(const Context& ctx, std::size_t count, std::size_t threads,
+                 std::chrono::steady_clock::time_point start) {
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    char text[128];
+    std::snprintf(text, sizeof text, "pipeline variants compiled: %zu in %.1f ms on %zu thread%s",
+                  count, ms, threads, threads == 1 ? "" : "s");
+    ctx.log(LogLevel::Info, text);
 }
 
 } // namespace
@@ -108,8 +126,8 @@ Result<VkShaderModule> Pipelines::shader(std::uint32_t id) {
     return handle;
 }
 
-Result<VkPipeline> Pipelines::pipeline(const PipelineKey& key) {
-    if (auto it = m_pipelines.find(key); it != m_pipelines.end()) return it->second.get();
+// What a variant is made of; its shader modules are made here, on the calling thread.
+Result<GraphicsPipelineDesc> Pipelines::describe(const PipelineKey& key) {
     const ProgramShaders ps = programShaders(key.program);
     auto vs = shader(std::uint32_t(ps.vertex));
     if (!vs) return std::move(vs).error();
@@ -149,12 +167,62 @@ Result<VkPipeline> Pipelines::pipeline(const PipelineKey& key) {
                  : key.topology == Topology::Points ? VK_PRIMITIVE_TOPOLOGY_POINT_LIST
                                                     : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
     d.name = std::string(frame::toString(key.program)) + " variant";
-    auto p = createGraphicsPipeline(*m_ctx, d);
+    return d;
+}
+
+Result<VkPipeline> Pipelines::pipeline(const PipelineKey& key) {
+    if (auto it = m_pipelines.find(key); it != m_pipelines.end()) return it->second.get();
+    auto d = describe(key);
+    if (!d) return std::move(d).error();
+    auto p = createGraphicsPipeline(*m_ctx, *d);
     if (!p) return std::move(p).error();
     const VkPipeline handle = p->get();
     m_pipelines.emplace(key, std::move(*p));
-    m_ctx->log(LogLevel::Debug, "pipeline variant created: " + d.name);
+    m_ctx->log(LogLevel::Debug, "pipeline variant created: " + d->name);
     return handle;
+}
+
+Result<void> Pipelines::prepare(const std::vector<PipelineKey>& keys) {
+    std::vector<PipelineKey> missing;
+    for (const PipelineKey& k : keys)
+        if (!m_pipelines.count(k) && std::find(missing.begin(), missing.end(), k) == missing.end())
+            missing.push_back(k);
+    if (missing.empty()) return {};
+    const auto start = std::chrono::steady_clock::now();
+    if (missing.size() == 1) {
+        auto p = pipeline(missing[0]);
+        if (!p) return std::move(p).error();
+        logCompiled(*m_ctx, 1, 1, start);
+        return {};
+    }
+    std::vector<GraphicsPipelineDesc> descs;
+    for (const PipelineKey& k : missing) {
+        auto d = describe(k);
+        if (!d) return std::move(d).error();
+        descs.push_back(std::move(*d));
+    }
+    // The driver compiles each variant on its own thread, at most one per core. The pipeline
+    // cache needs no lock of ours: Vulkan synchronises it internally unless it was created
+    // with VK_PIPELINE_CACHE_CREATE_EXTERNALLY_SYNCHRONIZED_BIT (Lantern's is not).
+    std::vector<std::optional<Result<UniquePipeline>>> made(descs.size());
+    std::atomic<std::size_t> next{0};
+    const std::size_t threads =
+        std::min<std::size_t>(descs.size(), std::max(1u, std::thread::hardware_concurrency()));
+    {
+        std::vector<std::jthread> workers;
+        for (std::size_t t = 0; t < threads; ++t)
+            workers.emplace_back([&] {
+                for (std::size_t i = next++; i < descs.size(); i = next++)
+                    made[i].emplace(createGraphicsPipeline(*m_ctx, descs[i]));
+            });
+    }
+    for (std::size_t i = 0; i < descs.size(); ++i) {
+        if (!*made[i]) return std::move(*made[i]).error();
+        m_pipelines.emplace(missing[i], std::move(**made[i]));
+        m_ctx->log(LogLevel::Debug, "pipeline variant created: " + descs[i].name);
+    }
+    logCompiled(*m_ctx, descs.size(), threads, start);
+    return {};
 }
 
 } // namespace lantern::gpu

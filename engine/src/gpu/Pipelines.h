@@ -7,6 +7,7 @@
 #include "gpu/Context.h"
 #include "gpu/DrawList.h"
 #include "gpu/Handles.h"
+#include "gpu/Pipeline.h"
 
 #include <map>
 #include <unordered_map>
@@ -25,6 +26,8 @@ public:
 
     /// The pipeline for a variant (created on first use).
     Result<VkPipeline> pipeline(const PipelineKey& key);
+    /// Creates every variant of `keys` not made yet, several at once on as many threads.
+    Result<void> prepare(const std::vector<PipelineKey>& keys);
     std::size_t count() const { return m_pipelines.size(); }
 
     /// A shader module of the embedded registry (shaders::ShaderId), made on first use.
@@ -32,6 +35,7 @@ public:
 
 private:
     Pipelines() = default;
+    Result<GraphicsPipelineDesc> describe(const PipelineKey& key);
 
     Context* m_ctx = nullptr;
     UniqueDescriptorSetLayout m_frameLayout, m_textureLayout;
