@@ -9,6 +9,8 @@
 #define LANTERN_BINDING_FRAME 0      // uniform FrameBlock (dynamic offset, one per view)
 #define LANTERN_BINDING_LIGHTS 1     // buffer LightBlock (dynamic offset, one per view)
 #define LANTERN_BINDING_MATERIALS 2  // buffer MaterialBlock
+#define LANTERN_BINDING_FLAT_COLORS 3   // buffer: per-triangle flat colours (flatlight.comp)
+#define LANTERN_BINDING_FLAT_NORMALS 4  // buffer: per-triangle eye normals (frames with AOVs)
 #define LANTERN_SET_TEXTURE 1
 #define LANTERN_BINDING_BASE_COLOR 0 // sampler2D, the material's base-colour texture
 #define LANTERN_BINDING_METALLIC_ROUGHNESS 1  // sampler2D: B metallic, G roughness (linear)
@@ -23,6 +25,16 @@
 #define LANTERN_BINDING_DEFORM_OUTPUT 2  // buffer: deformed streams, read as vertex buffers
 #define LANTERN_DEFORM_GROUP 64          // invocations per workgroup
 #define LANTERN_DEFORM_NONE 0xFFFFFFFFu  // an absent offset
+
+// The per-triangle flat-lighting pre-pass (shaders/flatlight.comp): its inputs in their own set
+// (the frame set's bindings give it the lights and materials and take its results).
+#define LANTERN_SET_FLAT 2
+#define LANTERN_BINDING_FLAT_GEOMETRY 0  // buffer: the scene's geometry (positions, colours, indices)
+#define LANTERN_BINDING_FLAT_DEFORMED 1  // buffer: this frame's deformed streams
+#define LANTERN_BINDING_FLAT_JOBS 2      // buffer: one FlatJob per flat triangle draw
+#define LANTERN_FLAT_GROUP 64            // invocations (triangles) per workgroup
+#define LANTERN_FLAT_CULL_BACK 1u        // FlatJob.cull: the draw culls back faces
+#define LANTERN_FLAT_FRONT_CLOCKWISE 2u  // FlatJob.cull: clockwise triangles are front
 
 // Vertex attribute locations; each attribute has its own vertex-buffer binding of the same
 // number (non-interleaved streams, so absent attributes can be bound to a stride-0 default).

@@ -101,13 +101,28 @@ uint materialMaps(uint materialIndex) {
     return SC_MAPS & uint(materials[materialIndex].params.y);
 }
 
-// Per draw: 124 of the 128 bytes every device guarantees.
+// Per draw: the 128 bytes every device guarantees. The flat-lighting pre-pass
+// (flatlight.comp, LANTERN_DRAW_FROM_JOB) has no push-constant draw: it copies its job's draw
+// into a variable of the same name, so the lighting functions below serve both.
+#ifdef LANTERN_DRAW_FROM_JOB
+struct DrawData {
+    mat4 viewFromModel;
+    vec4 normalMatrix[3];
+    uint materialIndex;
+    uint drawIndex;
+    uint flags;
+    uint flatBase;
+};
+DrawData draw;
+#else
 layout(push_constant, std430) uniform DrawBlock {
     mat4 viewFromModel;     // camera-relative, composed in double precision
     vec4 normalMatrix[3];   // columns of the normalised cofactor of viewFromModel's 3x3
     uint materialIndex;
     uint drawIndex;
     uint flags;
+    uint flatBase;          // per-triangle flat: the draw's first record in FlatColors
 } draw;
+#endif
 
 #endif

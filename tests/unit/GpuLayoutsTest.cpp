@@ -88,6 +88,15 @@ TEST(GpuLayouts, MirrorsMatchTheShippedSpirv) {
         LANTERN_ROW(DrawBlock, viewFromModel),
         LANTERN_ROW(DrawBlock, normalMatrix),    LANTERN_ROW(DrawBlock, materialIndex),
         LANTERN_ROW(DrawBlock, drawIndex),       LANTERN_ROW(DrawBlock, flags),
+        LANTERN_ROW(DrawBlock, flatBase),
+        LANTERN_ROW(FlatJob, viewFromModel),     LANTERN_ROW(FlatJob, normalMatrix),
+        LANTERN_ROW(FlatJob, materialIndex),     LANTERN_ROW(FlatJob, drawIndex),
+        LANTERN_ROW(FlatJob, flags),             LANTERN_ROW(FlatJob, flatBase),
+        LANTERN_ROW(FlatJob, count),             LANTERN_ROW(FlatJob, indices),
+        LANTERN_ROW(FlatJob, positions),         LANTERN_ROW(FlatJob, deformed),
+        LANTERN_ROW(FlatJob, colors),            LANTERN_ROW(FlatJob, cull),
+        LANTERN_ROW(FlatJob, writeNormals),      LANTERN_ROW(FlatJob, view),
+        LANTERN_ROW(FlatJob, viewport),
         LANTERN_ROW(DeformJob, count),           LANTERN_ROW(DeformJob, flatMode),
         LANTERN_ROW(DeformJob, vertexCount),     LANTERN_ROW(DeformJob, position),
         LANTERN_ROW(DeformJob, normal),          LANTERN_ROW(DeformJob, joints),
@@ -110,8 +119,8 @@ TEST(GpuLayouts, MirrorsMatchTheShippedSpirv) {
 TEST(GpuLayouts, EveryShaderMemberIsMirrored) {
     // A member added to a shader block but not to the C++ mirror is caught here.
     const std::map<std::string, std::size_t> expectedCounts = {
-        {"FrameBlock", 6}, {"LightData", 8}, {"MaterialSideData", 4}, {"MaterialData", 8}, {"DrawBlock", 5},
-        {"DeformJob", 16}};
+        {"FrameBlock", 6}, {"LightData", 8}, {"MaterialSideData", 4}, {"MaterialData", 8}, {"DrawBlock", 6},
+        {"DeformJob", 16}, {"FlatJob", 15}};
     const Layouts layouts = allLayouts();
     for (const auto& [type, count] : expectedCounts) {
         auto it = layouts.find(type);

@@ -66,12 +66,13 @@ namespace {
 
 // One command's job: where its inputs are, its parameters appended to `params` (joint
 // matrices, then morph weights), its output streams at 16-byte-aligned offsets from `out`.
-DeformJob planJob(const DeformCommand& c, const PrimitiveBuffers& gp, std::vector<float>& params,
-                  VkDeviceSize& out, DeformStreams& st) {
+DeformJob planJob(const DeformCommand& c, const PrimitiveBuffers& gp, bool flatPerTriangle,
+                  std::vector<float>& params, VkDeviceSize& out, DeformStreams& st) {
+    const bool flat = c.flat && !(flatPerTriangle && gp.corners == 3);
     DeformJob job;
-    job.flatMode = c.flat ? gp.corners : 0u;
+    job.flatMode = flat ? gp.corners : 0u;
     job.vertexCount = gp.vertexCount;
-    job.count = c.flat ? gp.flatVertexCount / gp.corners : gp.vertexCount;
+    job.count = flat ? gp.flatVertexCount / gp.corners : gp.vertexCount;
     job.position = gp.deformPosition;
     job.normal = gp.deformNormal;
     job.joints = gp.deformJoints;
@@ -85,13 +86,13 @@ DeformJob planJob(const DeformCommand& c, const PrimitiveBuffers& gp, std::vecto
     for (const Mat4& m : c.joints) params.insert(params.end(), m.m, m.m + 16);
     job.morphWeights = std::uint32_t(params.size());
     params.insert(params.end(), c.weights.begin(), c.weights.end());
-    const VkDeviceSize corners = c.flat ? VkDeviceSize(gp.flatVertexCount) : gp.vertexCount;
+    const VkDeviceSize corners = flat ? VkDeviceSize(gp.flatVertexCount) : gp.vertexCount;
     st.position = out;
     out = align16(out + corners * 12);
     st.normal = out;
     out = align16(out + corners * 12);
     st.centroid = st.normal;
-    if (c.flat) {
+    if (flat) {
         st.centroid = out;
         out = align16(out + corners * 12);
     }
@@ -113,14 +114,16 @@ Result<void> ensureSize(Context& ctx, Buffer& buffer, VkDeviceSize bytes, VkBuff
 
 } // namespace
 
-Result<void> Deformer::prepare(DeformSlot& slot, const DrawList& list, const SceneBuffers& scene) {
+Result<void> Deformer::prepare(DeformSlot& slot, const DrawList& list, const SceneBuffers& scene,
+                               bool flatPerTriangle) {
     slot.jobs.clear();
     slot.streams.clear();
     std::vector<float> params;
     VkDeviceSize out = 0;
     for (const DeformCommand& c : list.deforms) {
         DeformStreams st;
-        slot.jobs.push_back(planJob(c, scene.primitive(c.mesh, c.primitive), params, out, st));
+        slot.jobs.push_back(
+            planJob(c, scene.primitive(c.mesh, c.primitive), flatPerTriangle, params, out, st));
         slot.streams.push_back(st);
         if (out / 4 >= LANTERN_DEFORM_NONE) return tooLarge();
     }
@@ -163,8 +166,9 @@ Result<void> Deformer::ensureDescriptorSet(DeformSlot& slot) {
 }
 
 void Deformer::record(VkCommandBuffer cmd, const DeformSlot& slot) const {
-    // The previous frame of this slot read the output as vertices: finish that before writing.
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT, 0,
+    // The previous frame of this slot read the output as vertices (and in the flat pass):
+    // finish that before writing.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, 0,
                   VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m_pipeline.get());
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m_layout.get(), 0, 1, &slot.set,

@@ -37,8 +37,11 @@ public:
     static Result<std::unique_ptr<Deformer>> create(Context& ctx, Pipelines& pipelines);
 
     /// Fills `slot` for `list` (which has deforms): parameters written, output sized,
-    /// descriptors pointed at the scene's inputs.
-    Result<void> prepare(DeformSlot& slot, const DrawList& list, const SceneBuffers& scene);
+    /// descriptors pointed at the scene's inputs. `flatPerTriangle`: flat triangles are lit by
+    /// the per-triangle pass (gpu/FlatLight.h), which reads per-vertex deformed positions, so
+    /// only flat points and lines get the per-corner streams.
+    Result<void> prepare(DeformSlot& slot, const DrawList& list, const SceneBuffers& scene,
+                         bool flatPerTriangle);
 
     /// Records the dispatches and the barrier that makes their output vertex input.
     void record(VkCommandBuffer cmd, const DeformSlot& slot) const;

@@ -56,6 +56,9 @@ struct FrameReadback {
     std::uint64_t nonFinite = 0;    ///< NaN/Inf values found (and zeroed) at readback
     int nonFiniteX = -1, nonFiniteY = -1;  ///< the first colour pixel that held one (-1: none)
     std::size_t draws = 0;
+    /// Flat triangles given to the per-triangle lighting pass (gpu/FlatLight.h); those it
+    /// finds outside the view or back-facing are skipped, the others lit once.
+    std::uint64_t flatTriangles = 0;
     /// With AOVs: per pixel (draw index + 1, primitive id); 0: no draw.
     std::vector<std::uint32_t> ids;
 };

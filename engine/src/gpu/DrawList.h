@@ -27,6 +27,9 @@ struct PipelineKey {
     bool aov = false;  ///< the fragment stage also writes the AOV attachments
     std::uint32_t samples = 1;
     bool reversedZ = true;
+    /// Set by gpu/ (never by render/): flat triangles lit once per triangle by the pre-pass
+    /// (shaders/flatlight.comp) and drawn indexed, instead of the per-corner flat streams.
+    bool flatPerTriangle = false;
 
     bool operator==(const PipelineKey&) const = default;
 };

@@ -49,7 +49,7 @@ Result<void> FrameRing::createSlot(Slot& s, std::size_t index) {
 
     VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1},
                                      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, 1},
-                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3}};
     VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     dpci.maxSets = 1;
     dpci.poolSizeCount = 3;
@@ -79,26 +79,30 @@ FrameRing::~FrameRing() {
         if (s.queries) vkDestroyQueryPool(m_ctx.device(), s.queries, nullptr);
 }
 
-// Pipelines (created on first use) and the flat-shading streams before recording.
+// Pipelines (created on first use) and the flat-shading streams the per-corner path needs
+// before recording. `flatPerTriangle`: flat triangles are lit by the pre-pass this frame.
 Result<void> FrameRing::preparePipelines(const DrawList& list, SceneBuffers& scene,
-                                         std::vector<VkPipeline>& main,
+                                         bool flatPerTriangle, std::vector<VkPipeline>& main,
                                          std::vector<VkPipeline>& aov) {
     const bool aovPass = list.target.aovs.any() && list.target.samples > 1;
     // The variants the draws use (and only those), the missing ones compiled together.
     std::vector<PipelineKey> mainKeys, aovKeys;
-    bool needFlat = false;
+    bool needFlat = false, needFlatTriangles = false;
     for (const ViewCommands& v : list.views)
         for (const DrawCommand& d : v.draws) {
             PipelineKey key = d.pipeline;
+            key.flatPerTriangle = FlatLighter::perTriangle(d.pipeline, flatPerTriangle);
+            PipelineKey single = key;
             if (aovPass) key.aov = false;
             mainKeys.push_back(key);
             if (aovPass) {
-                PipelineKey single = d.pipeline;
                 single.samples = 1;
                 single.aov = true;
                 aovKeys.push_back(single);
             }
-            needFlat |= d.pipeline.program == frame::Program::Flat;
+            const bool corners = d.pipeline.program == frame::Program::Flat && !key.flatPerTriangle;
+            needFlat |= corners;
+            needFlatTriangles |= corners && d.pipeline.topology == Topology::Triangles;
         }
     std::vector<PipelineKey> all = mainKeys;
     all.insert(all.end(), aovKeys.begin(), aovKeys.end());
@@ -109,7 +113,38 @@ Result<void> FrameRing::preparePipelines(const DrawList& list, SceneBuffers& sce
             if (!p) return std::move(p).error();
             out->push_back(*p);
         }
-    if (needFlat) LANTERN_TRY(scene.ensureFlatStreams());
+    if (needFlat) LANTERN_TRY(scene.ensureFlatStreams(needFlatTriangles));
+    return {};
+}
+
+// The compute pre-passes: skinning and morphing, then the per-triangle flat lighting, which
+// reads the deformed positions.
+Result<void> FrameRing::preparePrePasses(Slot& slot, const DrawList& list,
+                                         const SceneBuffers& scene, bool flatPerTriangle) {
+    slot.deforming = !list.deforms.empty();
+    if (slot.deforming) {
+        if (!scene.deformInput())
+            return makeError(ErrorCode::Internal,
+                             "a draw list deforms a scene uploaded without deformation inputs");
+        if (!m_deformer) {
+            auto deformer = Deformer::create(m_ctx, m_pipelines);
+            if (!deformer) return std::move(deformer).error();
+            m_deformer = std::move(*deformer);
+        }
+        LANTERN_TRY(m_deformer->prepare(slot.deform, list, scene, flatPerTriangle));
+    }
+    bool litPerTriangle = false;
+    for (const ViewCommands& v : list.views)
+        for (const DrawCommand& d : v.draws)
+            litPerTriangle |= FlatLighter::perTriangle(d.pipeline, flatPerTriangle);
+    if (litPerTriangle && !m_flatLighter) {
+        auto lighter = FlatLighter::create(m_ctx, m_pipelines);
+        if (!lighter) return std::move(lighter).error();
+        m_flatLighter = std::move(*lighter);
+    }
+    if (m_flatLighter)
+        LANTERN_TRY(m_flatLighter->prepare(slot.flat, list, scene,
+                                           slot.deforming ? &slot.deform : nullptr, flatPerTriangle));
     return {};
 }
 
@@ -159,6 +194,18 @@ Result<FrameRing::ArenaLayout> FrameRing::fillArena(Slot& slot, const DrawList& 
           {slot.arena.get(), 0, a.lightRange}},
          {LANTERN_BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
           {slot.arena.get(), 0, std::max<VkDeviceSize>(a.materialBytes, sizeof(MaterialData))}}});
+    // The per-triangle flat records; a frame without them points the bindings at the arena
+    // (never read).
+    const FlatSlot& f = slot.flat;
+    const VkDescriptorBufferInfo colors = f.any()
+        ? VkDescriptorBufferInfo{f.records.get(), 0, f.recordBytes}
+        : VkDescriptorBufferInfo{slot.arena.get(), 0, 16};
+    const VkDescriptorBufferInfo normals = f.any()
+        ? VkDescriptorBufferInfo{f.records.get(), f.normalOffset, f.normalBytes}
+        : VkDescriptorBufferInfo{slot.arena.get(), 0, 16};
+    writeBufferDescriptors(m_ctx, slot.frameSet,
+                           {{LANTERN_BINDING_FLAT_COLORS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, colors},
+                            {LANTERN_BINDING_FLAT_NORMALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, normals}});
     return a;
 }
 
@@ -199,7 +246,8 @@ Result<std::uint32_t> FrameRing::submit(const DrawList& list,
     LANTERN_TRY(ensureTarget(m_ctx, slot.target, list.target));
     slot.desc = list.target;
     std::vector<VkPipeline> pipelines, aovPipelines;
-    LANTERN_TRY(preparePipelines(list, *scene, pipelines, aovPipelines));
+    const bool flatPerTriangle = FlatLighter::available(m_ctx, *scene, list);
+    LANTERN_TRY(preparePipelines(list, *scene, flatPerTriangle, pipelines, aovPipelines));
     slot.overlays = {};
     if (list.overlays.any()) {
         if (!m_overlays) m_overlays = std::make_unique<OverlayPipelines>(m_ctx, m_pipelines);
@@ -207,18 +255,7 @@ Result<std::uint32_t> FrameRing::submit(const DrawList& list,
         if (!overlays) return std::move(overlays).error();
         slot.overlays = *overlays;
     }
-    slot.deforming = !list.deforms.empty();
-    if (slot.deforming) {
-        if (!scene->deformInput())
-            return makeError(ErrorCode::Internal,
-                             "a draw list deforms a scene uploaded without deformation inputs");
-        if (!m_deformer) {
-            auto deformer = Deformer::create(m_ctx, m_pipelines);
-            if (!deformer) return std::move(deformer).error();
-            m_deformer = std::move(*deformer);
-        }
-        LANTERN_TRY(m_deformer->prepare(slot.deform, list, *scene));
-    }
+    LANTERN_TRY(preparePrePasses(slot, list, *scene, flatPerTriangle));
     auto arena = fillArena(slot, list);
     if (!arena) return std::move(arena).error();
 
@@ -226,8 +263,8 @@ Result<std::uint32_t> FrameRing::submit(const DrawList& list,
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     LANTERN_VK_TRY(vkBeginCommandBuffer(slot.cmd, &bi));
-    recordFrame(m_pipelines.layout(), m_overlays.get(), m_deformer.get(), slot, *scene, list, *arena,
-                pipelines, aovPipelines, hooks);
+    recordFrame(m_pipelines.layout(), m_overlays.get(), m_deformer.get(), m_flatLighter.get(), slot,
+                *scene, list, *arena, pipelines, aovPipelines, hooks);
     LANTERN_VK_TRY(vkEndCommandBuffer(slot.cmd));
     LANTERN_TRY(queueSubmit(slot, hooks));
     slot.scene = scene;

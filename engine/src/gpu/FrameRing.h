@@ -10,6 +10,7 @@
 #include "gpu/Deform.h"
 #include "gpu/Device.h"
 #include "gpu/DrawList.h"
+#include "gpu/FlatLight.h"
 #include "gpu/Overlays.h"
 #include "gpu/Pipelines.h"
 #include "gpu/SceneBuffers.h"
@@ -66,6 +67,7 @@ public:
         OverlayFrame overlays;  ///< this frame's display overlays
         DeformSlot deform;      ///< skinned and morphing streams (frames with deforms only)
         bool deforming = false; ///< this frame records the deformation pre-pass
+        FlatSlot flat;          ///< flat triangles lit once per triangle (gpu/FlatLight.h)
     };
 
     /// Where each view's FrameBlock and lights sit in a slot's arena.
@@ -77,8 +79,10 @@ public:
 private:
     FrameRing(Context& ctx, Pipelines& pipelines) : m_ctx(ctx), m_pipelines(pipelines) {}
     Result<void> createSlot(Slot& slot, std::size_t index);
-    Result<void> preparePipelines(const DrawList& list, SceneBuffers& scene,
+    Result<void> preparePipelines(const DrawList& list, SceneBuffers& scene, bool flatPerTriangle,
                                   std::vector<VkPipeline>& main, std::vector<VkPipeline>& aov);
+    Result<void> preparePrePasses(Slot& slot, const DrawList& list, const SceneBuffers& scene,
+                                  bool flatPerTriangle);
     Result<ArenaLayout> fillArena(Slot& slot, const DrawList& list);
     Result<void> queueSubmit(Slot& slot, const SubmitHooks& hooks);
 
@@ -86,16 +90,18 @@ private:
     Pipelines& m_pipelines;
     std::unique_ptr<OverlayPipelines> m_overlays;  ///< made on first use
     std::unique_ptr<Deformer> m_deformer;          ///< made on first use
+    std::unique_ptr<FlatLighter> m_flatLighter;    ///< made on first use
     std::vector<Slot> m_slots;
     std::uint32_t m_next = 0;
     bool m_timestamps = false;
 };
 
 /// Records a frame into `slot.cmd` (begun): the deformation pre-pass (when the slot deforms),
-/// barriers, the render pass(es) with every view's
+/// the per-triangle flat lighting (when it has flat triangle draws), barriers, the render pass(es) with every view's
 /// draws and overlays, the copies into the readback buffers, then `hooks.afterRender`.
 void recordFrame(VkPipelineLayout layout, const OverlayPipelines* overlays,
-                 const Deformer* deformer, FrameRing::Slot& slot, const SceneBuffers& scene, const DrawList& list,
+                 const Deformer* deformer, const FlatLighter* flatLighter, FrameRing::Slot& slot,
+                 const SceneBuffers& scene, const DrawList& list,
                  const FrameRing::ArenaLayout& arena, const std::vector<VkPipeline>& pipelines,
                  const std::vector<VkPipeline>& aovPipelines, const SubmitHooks& hooks);
 

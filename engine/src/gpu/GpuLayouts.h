@@ -88,12 +88,14 @@ struct DrawBlock {
     std::uint32_t materialIndex = 0;
     std::uint32_t drawIndex = 0;
     std::uint32_t flags = 0;  // bit 0: the primitive has vertex colours
+    std::uint32_t flatBase = 0;  // per-triangle flat: the draw's first record (set by gpu/)
 };
-static_assert(sizeof(DrawBlock) == 124);
+static_assert(sizeof(DrawBlock) == 128);
 static_assert(offsetof(DrawBlock, normalMatrix) == 64);
 static_assert(offsetof(DrawBlock, materialIndex) == 112);
 static_assert(offsetof(DrawBlock, drawIndex) == 116);
 static_assert(offsetof(DrawBlock, flags) == 120);
+static_assert(offsetof(DrawBlock, flatBase) == 124);
 
 inline constexpr std::uint32_t kDrawFlagVertexColor = 1u;
 
@@ -107,5 +109,28 @@ struct DeformJob {
 };
 static_assert(sizeof(DeformJob) == 64);
 static_assert(offsetof(DeformJob, outCentroid) == 60);
+
+// std430, set LANTERN_SET_FLAT binding LANTERN_BINDING_FLAT_JOBS of shaders/flatlight.comp:
+// one flat triangle draw lit once per triangle. The first members are its DrawBlock's; the
+// offsets are 32-bit words of the geometry (or deformed) buffer.
+struct FlatJob {
+    float viewFromModel[16];
+    float normalMatrix[12];
+    std::uint32_t materialIndex = 0, drawIndex = 0, flags = 0, flatBase = 0;
+    std::uint32_t count = 0;                     // triangles
+    std::uint32_t indices = LANTERN_DEFORM_NONE; // the triangle list; NONE: vertices in order
+    std::uint32_t positions = 0;
+    std::uint32_t deformed = 0;                  // 1: positions are in the deformed buffer
+    std::uint32_t colors = LANTERN_DEFORM_NONE;  // vertex colours (rgba); NONE: white
+    std::uint32_t cull = 0;                      // LANTERN_FLAT_CULL_BACK | _FRONT_CLOCKWISE
+    std::uint32_t writeNormals = 0;              // 1: the frame has AOVs
+    std::uint32_t view = 0;
+    Vec4 viewport;                               // x, y: half the view's size in pixels
+};
+static_assert(sizeof(FlatJob) == 176);
+static_assert(offsetof(FlatJob, flatBase) == 124);
+static_assert(offsetof(FlatJob, count) == 128);
+static_assert(offsetof(FlatJob, view) == 156);
+static_assert(offsetof(FlatJob, viewport) == 160);
 
 } // namespace lantern::gpu

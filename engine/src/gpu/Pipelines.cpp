@@ -24,8 +24,10 @@ struct ProgramShaders {
     ShaderId vertex, fragment, fragmentAov;
 };
 
-ProgramShaders programShaders(Program p) {
-    switch (p) {
+ProgramShaders programShaders(const PipelineKey& key) {
+    if (key.flatPerTriangle)
+        return {ShaderId::flatprim_vert, ShaderId::flatprim_frag, ShaderId::flatprim_aov_frag};
+    switch (key.program) {
     case Program::Phong: return {ShaderId::mesh_vert, ShaderId::phong_frag, ShaderId::phong_aov_frag};
     case Program::Gouraud:
         return {ShaderId::gouraud_vert, ShaderId::gouraud_frag, ShaderId::gouraud_aov_frag};
@@ -80,6 +82,7 @@ std::size_t PipelineKeyHash::operator()(const PipelineKey& k) const noexcept {
     h = h * 31u + (k.aov ? 1u : 0u);
     h = h * 31u + k.samples;
     h = h * 31u + (k.reversedZ ? 1u : 0u);
+    h = h * 31u + (k.flatPerTriangle ? 1u : 0u);
     return h;
 }
 
@@ -87,10 +90,16 @@ Result<Pipelines> Pipelines::create(Context& ctx) {
     Pipelines p;
     p.m_ctx = &ctx;
     const VkShaderStageFlags both = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    // The flat-lighting pre-pass (gpu/FlatLight.cpp) binds the same frame set for compute: it
+    // reads the view, lights and materials and writes the per-triangle records.
+    const VkShaderStageFlags all = both | VK_SHADER_STAGE_COMPUTE_BIT;
+    const VkShaderStageFlags records = VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT;
     auto frameLayout = makeSetLayout(
-        ctx, {{LANTERN_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1, both, nullptr},
-              {LANTERN_BINDING_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, 1, both, nullptr},
-              {LANTERN_BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, both, nullptr}});
+        ctx, {{LANTERN_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1, all, nullptr},
+              {LANTERN_BINDING_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, 1, all, nullptr},
+              {LANTERN_BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+              {LANTERN_BINDING_FLAT_COLORS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, records, nullptr},
+              {LANTERN_BINDING_FLAT_NORMALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, records, nullptr}});
     if (!frameLayout) return std::move(frameLayout).error();
     p.m_frameLayout = std::move(*frameLayout);
     std::vector<VkDescriptorSetLayoutBinding> textureBindings;
@@ -128,7 +137,7 @@ Result<VkShaderModule> Pipelines::shader(std::uint32_t id) {
 
 // What a variant is made of; its shader modules are made here, on the calling thread.
 Result<GraphicsPipelineDesc> Pipelines::describe(const PipelineKey& key) {
-    const ProgramShaders ps = programShaders(key.program);
+    const ProgramShaders ps = programShaders(key);
     auto vs = shader(std::uint32_t(ps.vertex));
     if (!vs) return std::move(vs).error();
     auto fs = shader(std::uint32_t(key.aov ? ps.fragmentAov : ps.fragment));
@@ -142,11 +151,13 @@ Result<GraphicsPipelineDesc> Pipelines::describe(const PipelineKey& key) {
         d.specEntries.push_back({i, i * 4u, 4u});
         d.specData.push_back(key.constants[i]);
     }
-    // Only flat shading reads the centroid stream.
+    // Only flat shading reads the centroid stream; lit per triangle, it reads positions and
+    // texture coordinates alone.
     const std::uint32_t attributes =
         key.program == Program::Flat ? LANTERN_VERTEX_BINDINGS : LANTERN_LOC_CENTROID;
     for (std::uint32_t a = 0; a < attributes; ++a) {
         const Attribute& at = kAttributes[a];
+        if (key.flatPerTriangle && a != LANTERN_LOC_POSITION && a != LANTERN_LOC_TEXCOORD) continue;
         d.bindings.push_back({at.location, at.stride, VK_VERTEX_INPUT_RATE_VERTEX});
         d.attributes.push_back({at.location, at.location, at.format, 0});
     }
@@ -166,7 +177,8 @@ Result<GraphicsPipelineDesc> Pipelines::describe(const PipelineKey& key) {
     d.topology = key.topology == Topology::Lines    ? VK_PRIMITIVE_TOPOLOGY_LINE_LIST
                  : key.topology == Topology::Points ? VK_PRIMITIVE_TOPOLOGY_POINT_LIST
                                                     : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-    d.name = std::string(frame::toString(key.program)) + " variant";
+    d.name = std::string(frame::toString(key.program)) +
+             (key.flatPerTriangle ? " per-triangle variant" : " variant");
     return d;
 }
 

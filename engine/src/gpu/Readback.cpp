@@ -76,6 +76,7 @@ void readAovs(const FrameRing::Slot& slot, std::size_t n, FrameReadback& r) {
 Result<FrameReadback> readBack(Context& ctx, const FrameRing::Slot& slot) {
     FrameReadback r;
     r.draws = slot.draws;
+    r.flatTriangles = slot.flat.triangles;
     if (slot.queries) {
         std::uint64_t ts[2] = {0, 0};
         if (vkGetQueryPoolResults(ctx.device(), slot.queries, 0, 2, sizeof ts, ts, 8,

@@ -25,7 +25,7 @@ struct FrameRecorder {
     const FrameRing::ArenaLayout& arena;
 
     void beginAttachments() const;
-    void bindStreams(const DrawCommand& d) const;
+    void bindStreams(const DrawCommand& d, bool perTriangle) const;
     void drawViews(const std::vector<VkPipeline>& pipelines) const;
     void pass(const std::vector<VkRenderingAttachmentInfo>& colors, const Image& depthImage,
               const std::vector<VkPipeline>& pipelines) const;
@@ -64,8 +64,9 @@ void FrameRecorder::beginAttachments() const {
 }
 
 // The primitive's streams, one binding per attribute location; absent colours and texture
-// coordinates read a stride-0 default (white, zero).
-void FrameRecorder::bindStreams(const DrawCommand& d) const {
+// coordinates read a stride-0 default (white, zero). `perTriangle`: a flat draw lit by the
+// per-triangle pass, drawn from the indexed mesh like gouraud.
+void FrameRecorder::bindStreams(const DrawCommand& d, bool perTriangle) const {
     const PrimitiveBuffers& gp = scene.primitive(d.mesh, d.primitive);
     const VkBuffer geometry = scene.geometry();
     // A deformed draw reads its positions and normals (and flat centroids) from this frame's
@@ -73,7 +74,7 @@ void FrameRecorder::bindStreams(const DrawCommand& d) const {
     const bool deformed = d.deform >= 0 && slot.deforming;
     const DeformStreams* ds = deformed ? &slot.deform.streams[std::size_t(d.deform)] : nullptr;
     const VkBuffer moved = deformed ? slot.deform.output.get() : VK_NULL_HANDLE;
-    if (d.pipeline.program == frame::Program::Flat) {
+    if (d.pipeline.program == frame::Program::Flat && !perTriangle) {
         const VkBuffer flat = scene.flatGeometry();
         const bool color = gp.flatColor != kNoStream, texcoord = gp.flatTexcoord != kNoStream;
         VkBuffer buffers[LANTERN_VERTEX_BINDINGS];
@@ -133,6 +134,8 @@ void FrameRecorder::drawViews(const std::vector<VkPipeline>& pipelines) const {
         VkPipeline bound = VK_NULL_HANDLE;
         VkDescriptorSet boundTexture = VK_NULL_HANDLE;
         for (const DrawCommand& d : v.draws) {
+            const std::uint32_t flatBase =
+                counter < slot.flat.bases.size() ? slot.flat.bases[counter] : kNoFlatBase;
             const VkPipeline p = pipelines[counter++];
             if (p != bound) {
                 vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
@@ -153,9 +156,11 @@ void FrameRecorder::drawViews(const std::vector<VkPipeline>& pipelines) const {
             // counter-clockwise on screen; a mirroring transform reverses them (glTF's rule).
             vkCmdSetFrontFace(cmd, d.frontClockwise ? VK_FRONT_FACE_CLOCKWISE
                                                     : VK_FRONT_FACE_COUNTER_CLOCKWISE);
+            DrawBlock block = d.block;
+            if (flatBase != kNoFlatBase) block.flatBase = flatBase;
             vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-                               0, sizeof(DrawBlock), &d.block);
-            bindStreams(d);
+                               0, sizeof(DrawBlock), &block);
+            bindStreams(d, flatBase != kNoFlatBase);
         }
         // The display overlays never meet the AOV pass (they refuse AOVs).
         if (slot.overlays.any())
@@ -219,7 +224,8 @@ VkRenderingAttachmentInfo attachment(const Image& target, const Image* multisamp
 } // namespace
 
 void recordFrame(VkPipelineLayout layout, const OverlayPipelines* overlays,
-                 const Deformer* deformer, FrameRing::Slot& slot, const SceneBuffers& scene, const DrawList& list,
+                 const Deformer* deformer, const FlatLighter* flatLighter, FrameRing::Slot& slot,
+                 const SceneBuffers& scene, const DrawList& list,
                  const FrameRing::ArenaLayout& arena, const std::vector<VkPipeline>& pipelines,
                  const std::vector<VkPipeline>& aovPipelines, const SubmitHooks& hooks) {
     const FrameRecorder r{slot.cmd, layout, overlays, slot, scene, list, arena};
@@ -229,6 +235,8 @@ void recordFrame(VkPipelineLayout layout, const OverlayPipelines* overlays,
     r.beginAttachments();
     if (slot.queries) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, slot.queries, 0);
     if (slot.deforming && deformer) deformer->record(cmd, slot.deform);
+    if (slot.flat.any() && flatLighter)
+        flatLighter->record(cmd, slot.flat, slot.frameSet, arena.frameOffsets, arena.lightOffsets);
 
     VkClearValue colorClear{};
     std::memcpy(colorClear.color.float32, &list.target.clear[0], 4 * sizeof(float));

@@ -140,9 +140,11 @@ Result<std::shared_ptr<SceneBuffers>> SceneBuffers::create(std::shared_ptr<Conte
         }
     }
     Context& c = *g->m_ctx;
+    // Vertices and indices to draw, storage for the per-triangle flat pass to read.
     auto buffer = createBuffer(c, size,
                                     VK_BUFFER_USAGE_VERTEX_BUFFER_BIT |
                                         VK_BUFFER_USAGE_INDEX_BUFFER_BIT |
+                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                         VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                     MemoryUsage::DeviceLocal, "scene geometry");
     if (!buffer) return std::move(buffer).error();
@@ -166,21 +168,28 @@ Result<std::shared_ptr<SceneBuffers>> SceneBuffers::create(std::shared_ptr<Conte
             if (gp.texcoord != kNoStream) put(dst, gp.texcoord, p.texcoords);
             if (gp.index != kNoStream) put(dst, gp.index, p.indices);
         }
-    LANTERN_TRY(endFill(c, g->m_geometry, *fill));
+    LANTERN_TRY(endFill(c, g->m_geometry, *fill,
+                        VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_2_INDEX_READ_BIT |
+                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT));
     LANTERN_TRY(g->uploadDeformInputs());
     LANTERN_TRY(g->uploadTextures(textureLayout));
     return g;
 }
 
-Result<void> SceneBuffers::ensureFlatStreams() {
+Result<void> SceneBuffers::ensureFlatStreams(bool triangles) {
     std::lock_guard lock(m_flatMutex);
-    if (m_flatReady) return {};
+    if (m_flatReady && (m_flatTriangles || !triangles)) return {};
     const Scene& s = *m_scene;
     VkDeviceSize size = 16;
     std::size_t k = 0;
+    bool any = false;
     for (const Mesh& mesh : s.meshes)
         for (const Primitive& p : mesh.primitives) {
             PrimitiveBuffers& gp = m_primitives[k++];
+            gp.flatVertexCount = 0;
+            if (p.verticesPerElement() == 3 && !triangles) continue;
+            any = true;
             const VkDeviceSize n = VkDeviceSize(p.elementCount()) * p.verticesPerElement();
             if (n > std::numeric_limits<std::uint32_t>::max()) return tooLarge("a primitive");
             gp.flatVertexCount = std::uint32_t(n);
@@ -199,11 +208,15 @@ Result<void> SceneBuffers::ensureFlatStreams() {
                 size = align16(size + n * 8);
             }
         }
+    m_flatReady = !any;
+    m_flatTriangles = triangles;
+    if (!any) return {};
     auto buffer = createBuffer(*m_ctx, size,
                                     VK_BUFFER_USAGE_VERTEX_BUFFER_BIT |
                                         VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                     MemoryUsage::DeviceLocal, "flat geometry");
     if (!buffer) return std::move(buffer).error();
+    if (m_flatGeometry.get()) m_retiredFlat.push_back(std::move(m_flatGeometry));
     m_flatGeometry = std::move(*buffer);
     auto fill = beginFill(*m_ctx, m_flatGeometry);
     if (!fill) return std::move(fill).error();
@@ -212,6 +225,7 @@ Result<void> SceneBuffers::ensureFlatStreams() {
     for (const Mesh& mesh : s.meshes)
         for (const Primitive& p : mesh.primitives) {
             const PrimitiveBuffers& gp = m_primitives[k++];
+            if (gp.flatVertexCount == 0) continue;
             auto* pos = reinterpret_cast<glm::vec3*>(dst + gp.flatPosition);
             auto* nrm = reinterpret_cast<glm::vec3*>(dst + gp.flatNormal);
             auto* cen = reinterpret_cast<glm::vec3*>(dst + gp.flatCentroid);

@@ -1,6 +1,8 @@
 // SceneBuffers.h: a Scene's geometry and textures on the device. All primitives share one
-// geometry buffer (non-interleaved streams at 16-byte-aligned offsets); the de-indexed streams
-// flat shading needs (face normal and centroid per triangle corner) are built on first use.
+// geometry buffer (non-interleaved streams at 16-byte-aligned offsets), also read as a storage
+// buffer by the per-triangle flat pass (gpu/FlatLight.h); the de-indexed streams the per-corner
+// flat path needs (face normal and centroid per element corner: points, lines, and triangles
+// where the per-triangle pass cannot run) are built on first use.
 #pragma once
 
 #include "gpu/Context.h"
@@ -62,8 +64,11 @@ public:
     VkDescriptorSet textureSet(int index) const {
         return m_textureSets[std::size_t(index + 1)];
     }
-    /// Builds the flat-shading streams if they do not exist yet (thread-safe).
-    Result<void> ensureFlatStreams();
+    /// Builds the per-corner flat-shading streams of the points and lines, and of the triangles
+    /// when `triangles`, if they do not exist yet (thread-safe).
+    Result<void> ensureFlatStreams(bool triangles);
+    /// Bytes of the per-corner flat streams built so far (0: none).
+    std::size_t flatGeometryBytes() const { return std::size_t(m_flatGeometry.size); }
     std::size_t geometryBytes() const { return std::size_t(m_geometry.size); }
 
 private:
@@ -84,7 +89,9 @@ private:
     Buffer m_flatGeometry;
     Buffer m_deformInput;
     std::mutex m_flatMutex;
-    bool m_flatReady = false;
+    bool m_flatReady = false, m_flatTriangles = false;
+    /// Flat streams replaced by a larger set: a frame in flight may still read them.
+    std::vector<Buffer> m_retiredFlat;
     VkDeviceSize m_defaultColor = 0, m_defaultTexcoord = 0;
     std::vector<Image> m_textures;  ///< [0] is the white default
     std::vector<UniqueSampler> m_samplers;  ///< by (nearest, clamp)

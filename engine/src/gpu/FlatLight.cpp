@@ -1,0 +1,249 @@
+// The per-triangle flat-lighting pre-pass: compute pipelines specialised like their draws,
+// per-slot job and record buffers, one dispatch per flat triangle draw.
+#include "gpu/FlatLight.h"
+
+#include "ShaderBlobs.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace lantern::gpu {
+namespace {
+
+std::uint64_t triangles(const PrimitiveBuffers& gp) {
+    return (gp.indexCount > 0 ? gp.indexCount : gp.vertexCount) / 3u;
+}
+
+// 16-byte vectors per triangle record (shaders/include/flat.glsl): per side one, two when the
+// variant samples a base-colour texture; two sides with two-sided lighting.
+std::uint64_t recordVectors(const PipelineKey& key) {
+    return (key.constants[LANTERN_SC_TEXTURE] ? 2u : 1u) *
+           (key.constants[LANTERN_SC_TWO_SIDED] ? 2u : 1u);
+}
+
+Error tooLarge() {
+    return makeError(ErrorCode::OutOfMemory,
+                     "the frame's flat-shaded triangles exceed the addressable size");
+}
+
+// The job of one flat triangle draw: its DrawBlock, where its triangles, positions and
+// colours are, how it culls.
+FlatJob planJob(const DrawCommand& d, const PrimitiveBuffers& gp, const DeformStreams* moved,
+                const ViewCommands& view, std::uint32_t base, bool aovs) {
+    FlatJob j;
+    std::memcpy(j.viewFromModel, d.block.viewFromModel, sizeof j.viewFromModel);
+    std::memcpy(j.normalMatrix, d.block.normalMatrix, sizeof j.normalMatrix);
+    j.materialIndex = d.block.materialIndex;
+    j.drawIndex = d.block.drawIndex;
+    j.flags = d.block.flags;
+    j.flatBase = base;
+    j.count = std::uint32_t(triangles(gp));
+    j.indices = gp.indexCount > 0 ? std::uint32_t(gp.index / 4) : LANTERN_DEFORM_NONE;
+    j.deformed = moved ? 1u : 0u;
+    j.positions = std::uint32_t((moved ? moved->position : gp.position) / 4);
+    j.colors = gp.color != kNoStream ? std::uint32_t(gp.color / 4) : LANTERN_DEFORM_NONE;
+    j.cull = (d.cullBack ? LANTERN_FLAT_CULL_BACK : 0u) |
+             (d.frontClockwise ? LANTERN_FLAT_FRONT_CLOCKWISE : 0u);
+    j.writeNormals = aovs ? 1u : 0u;
+    j.viewport = {0.5f * float(view.width), 0.5f * float(view.height), 0.0f, 0.0f};
+    return j;
+}
+
+// Grows `buffer` to twice `bytes` when it holds fewer.
+Result<void> ensureSize(Context& ctx, Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage,
+                        MemoryUsage memory, const char* name) {
+    if (buffer.size >= bytes) return {};
+    auto b = createBuffer(ctx, bytes * 2, usage, memory, name);
+    if (!b) return std::move(b).error();
+    buffer = std::move(*b);
+    return {};
+}
+
+} // namespace
+
+Result<std::unique_ptr<FlatLighter>> FlatLighter::create(Context& ctx, Pipelines& pipelines) {
+    std::unique_ptr<FlatLighter> f(new FlatLighter(ctx, pipelines));
+    const VkDevice dev = ctx.device();
+    VkDescriptorSetLayoutBinding bindings[3] = {
+        {LANTERN_BINDING_FLAT_GEOMETRY, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+         VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+        {LANTERN_BINDING_FLAT_DEFORMED, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+         VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+        {LANTERN_BINDING_FLAT_JOBS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+         VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
+    VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    lci.bindingCount = 3;
+    lci.pBindings = bindings;
+    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &setLayout));
+    f->m_setLayout = UniqueDescriptorSetLayout(dev, setLayout);
+
+    // The frame and texture sets of the graphics layout, then the pass's own set.
+    VkDescriptorSetLayout sets[3] = {};
+    sets[LANTERN_SET_FRAME] = pipelines.frameSetLayout();
+    sets[LANTERN_SET_TEXTURE] = pipelines.textureSetLayout();
+    sets[LANTERN_SET_FLAT] = setLayout;
+    VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(std::uint32_t)};
+    VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    plci.setLayoutCount = 3;
+    plci.pSetLayouts = sets;
+    plci.pushConstantRangeCount = 1;
+    plci.pPushConstantRanges = &push;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkCreatePipelineLayout(dev, &plci, nullptr, &layout));
+    f->m_layout = UniquePipelineLayout(dev, layout);
+    return f;
+}
+
+bool FlatLighter::available(const Context& ctx, const SceneBuffers& scene, const DrawList& list) {
+    if (!ctx.capabilities().primitiveIdInFragment) return false;
+    const VkDeviceSize range = ctx.properties().limits.maxStorageBufferRange;
+    std::uint64_t records = 0;
+    for (const ViewCommands& v : list.views)
+        for (const DrawCommand& d : v.draws)
+            if (perTriangle(d.pipeline, true))
+                records += triangles(scene.primitive(d.mesh, d.primitive)) * recordVectors(d.pipeline);
+    return scene.geometryBytes() <= range && records * 16 <= range;
+}
+
+Result<VkPipeline> FlatLighter::pipeline(const std::array<std::uint32_t, LANTERN_SC_COUNT>& constants) {
+    if (auto it = m_variants.find(constants); it != m_variants.end()) return it->second.get();
+    auto module = m_pipelines.shader(std::uint32_t(shaders::ShaderId::flatlight_comp));
+    if (!module) return std::move(module).error();
+    std::vector<VkSpecializationMapEntry> entries;
+    for (std::uint32_t i = 0; i < LANTERN_SC_COUNT; ++i) entries.push_back({i, i * 4u, 4u});
+    VkSpecializationInfo spec{};
+    spec.mapEntryCount = LANTERN_SC_COUNT;
+    spec.pMapEntries = entries.data();
+    spec.dataSize = sizeof constants;
+    spec.pData = constants.data();
+    VkComputePipelineCreateInfo cpci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    cpci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    cpci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    cpci.stage.module = *module;
+    cpci.stage.pName = "main";
+    cpci.stage.pSpecializationInfo = &spec;
+    cpci.layout = m_layout.get();
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkCreateComputePipelines(m_ctx.device(), m_ctx.pipelineCache(), 1, &cpci,
+                                            nullptr, &pipeline));
+    m_ctx.setName(VK_OBJECT_TYPE_PIPELINE, pipeline, "flat per-triangle pre-pass");
+    m_variants.emplace(constants, UniquePipeline(m_ctx.device(), pipeline));
+    m_ctx.log(LogLevel::Debug, "pipeline variant created: flat per-triangle pre-pass");
+    return pipeline;
+}
+
+Result<void> FlatLighter::prepare(FlatSlot& slot, const DrawList& list, const SceneBuffers& scene,
+                                  const DeformSlot* deform, bool available) {
+    slot.dispatches.clear();
+    slot.bases.clear();
+    slot.triangles = 0;
+    std::vector<FlatJob> jobs;
+    std::uint64_t vectors = 0, count = 0;
+    const bool aovs = list.target.aovs.any();
+    for (std::uint32_t vi = 0; vi < list.views.size(); ++vi)
+        for (const DrawCommand& d : list.views[vi].draws) {
+            if (!perTriangle(d.pipeline, available)) {
+                slot.bases.push_back(kNoFlatBase);
+                continue;
+            }
+            const PrimitiveBuffers& gp = scene.primitive(d.mesh, d.primitive);
+            const DeformStreams* moved =
+                d.deform >= 0 && deform ? &deform->streams[std::size_t(d.deform)] : nullptr;
+            const std::uint64_t vectorsPerTriangle = recordVectors(d.pipeline);
+            // The base counts triangles: the shaders read record vectors from base * size and
+            // normals from base, so it is past both the records and the normals before it.
+            const std::uint64_t base =
+                std::max((vectors + vectorsPerTriangle - 1) / vectorsPerTriangle, count);
+            if (base + count >= kNoFlatBase) return tooLarge();
+            FlatJob job = planJob(d, gp, moved, list.views[vi], std::uint32_t(base), aovs);
+            job.view = vi;
+            vectors = (base + job.count) * vectorsPerTriangle;
+            count = std::max<std::uint64_t>(count, base + job.count);
+            slot.bases.push_back(std::uint32_t(base));
+            slot.triangles += job.count;
+            auto p = pipeline(d.pipeline.constants);
+            if (!p) return std::move(p).error();
+            slot.dispatches.push_back({std::uint32_t(jobs.size()), vi,
+                                       (job.count + LANTERN_FLAT_GROUP - 1) / LANTERN_FLAT_GROUP, *p});
+            jobs.push_back(job);
+        }
+    if (jobs.empty()) return {};
+    slot.recordBytes = std::max<VkDeviceSize>(vectors * 16, 16);
+    // The normals are bound at an offset: the device's storage-buffer offset alignment.
+    const VkDeviceSize alignment =
+        std::max<VkDeviceSize>(m_ctx.properties().limits.minStorageBufferOffsetAlignment, 16);
+    slot.normalOffset = (slot.recordBytes + alignment - 1) / alignment * alignment;
+    slot.normalBytes = aovs ? std::max<VkDeviceSize>(count * 16, 16) : 16;
+    LANTERN_TRY(ensureSize(m_ctx, slot.records, slot.normalOffset + slot.normalBytes,
+                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::DeviceLocal,
+                           "flat per-triangle records"));
+    const VkDeviceSize jobBytes = jobs.size() * sizeof(FlatJob);
+    LANTERN_TRY(ensureSize(m_ctx, slot.jobs, jobBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                           MemoryUsage::Upload, "flat per-triangle jobs"));
+    std::memcpy(slot.jobs.mapped, jobs.data(), jobBytes);
+    LANTERN_TRY(flush(m_ctx, slot.jobs));
+    LANTERN_TRY(ensureDescriptorSet(slot));
+    // A scene without deformation binds its geometry in the deformed slot (never read).
+    const bool moving = deform && deform->output.get();
+    const VkBuffer moved = moving ? deform->output.get() : scene.geometry();
+    constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writeBufferDescriptors(m_ctx, slot.set,
+                           {{LANTERN_BINDING_FLAT_GEOMETRY, kStorage, {scene.geometry(), 0, VK_WHOLE_SIZE}},
+                            {LANTERN_BINDING_FLAT_DEFORMED, kStorage, {moved, 0, VK_WHOLE_SIZE}},
+                            {LANTERN_BINDING_FLAT_JOBS, kStorage, {slot.jobs.get(), 0, VK_WHOLE_SIZE}}});
+    return {};
+}
+
+Result<void> FlatLighter::ensureDescriptorSet(FlatSlot& slot) {
+    if (slot.pool) return {};
+    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3};
+    VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    dpci.maxSets = 1;
+    dpci.poolSizeCount = 1;
+    dpci.pPoolSizes = &size;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkCreateDescriptorPool(m_ctx.device(), &dpci, nullptr, &pool));
+    slot.pool = UniqueDescriptorPool(m_ctx.device(), pool);
+    VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    ai.descriptorPool = pool;
+    ai.descriptorSetCount = 1;
+    const VkDescriptorSetLayout layout = m_setLayout.get();
+    ai.pSetLayouts = &layout;
+    LANTERN_VK_TRY(vkAllocateDescriptorSets(m_ctx.device(), &ai, &slot.set));
+    return {};
+}
+
+void FlatLighter::record(VkCommandBuffer cmd, const FlatSlot& slot, VkDescriptorSet frameSet,
+                         const std::vector<VkDeviceSize>& frameOffsets,
+                         const std::vector<VkDeviceSize>& lightOffsets) const {
+    // The deformed positions written before, and the previous frame's fragment reads of this
+    // slot's records, come first.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                  VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m_layout.get(), LANTERN_SET_FLAT,
+                            1, &slot.set, 0, nullptr);
+    VkPipeline bound = VK_NULL_HANDLE;
+    std::uint32_t boundView = ~0u;
+    for (const FlatSlot::Dispatch& d : slot.dispatches) {
+        if (d.view != boundView) {
+            const std::uint32_t offsets[2] = {std::uint32_t(frameOffsets[d.view]),
+                                              std::uint32_t(lightOffsets[d.view])};
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m_layout.get(),
+                                    LANTERN_SET_FRAME, 1, &frameSet, 2, offsets);
+            boundView = d.view;
+        }
+        if (d.pipeline != bound) {
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, d.pipeline);
+            bound = d.pipeline;
+        }
+        vkCmdPushConstants(cmd, m_layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                           sizeof(std::uint32_t), &d.job);
+        if (d.groups > 0) vkCmdDispatch(cmd, d.groups, 1, 1);
+    }
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+}
+
+} // namespace lantern::gpu
