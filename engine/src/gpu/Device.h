@@ -54,7 +54,8 @@ struct FrameReadback {
     std::uint64_t nonFinite = 0;    ///< NaN/Inf values found (and zeroed) at readback
     int nonFiniteX = -1, nonFiniteY = -1;  ///< the first colour pixel that held one (-1: none)
     std::size_t draws = 0;
-    /// With AOVs: per pixel (draw index + 1, primitive id); 0: no draw.
+    /// When the frame asked for them (TargetDesc::ids, the probe): per pixel (draw index + 1,
+    /// primitive id); 0: no draw.
     std::vector<std::uint32_t> ids;
 };
 
