@@ -6,7 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <initializer_list>
+#include <limits>
+#include <vector>
 
 namespace {
 
@@ -119,6 +122,36 @@ TEST(ReadbackPath, TheLinearImageLimitsDecide) {
 TEST(ReadbackPath, NoMemoryTypesMeansStaged) {
     EXPECT_EQ(inPlaceMemoryType(memoryOf({}), ~0u), -1);
     EXPECT_EQ(inPlaceMemoryType(memoryOf({HV | HC | CACHED}), ~0u), -1);  // no device-local type
+}
+
+// The vectorised check finds every kind of non-finite value at every position of a row (the
+// blocks of 64 and the tail), and nothing in finite values of every exponent.
+TEST(ReadbackPath, AnyNonFiniteFindsEveryNaNAndInfAndNothingElse) {
+    const float bad[] = {std::numeric_limits<float>::infinity(),
+                         -std::numeric_limits<float>::infinity(),
+                         std::numeric_limits<float>::quiet_NaN(),
+                         -std::numeric_limits<float>::quiet_NaN(),
+                         std::numeric_limits<float>::signaling_NaN(),
+                         std::bit_cast<float>(0x7f800001u), std::bit_cast<float>(0xffffffffu)};
+    std::vector<float> finite;
+    for (std::uint32_t e = 0; e < 255; ++e)  // every finite exponent, both signs, some mantissas
+        for (std::uint32_t m : {0u, 1u, 0x400000u, 0x7fffffu})
+            for (std::uint32_t sign : {0u, 0x80000000u})
+                finite.push_back(std::bit_cast<float>(sign | (e << 23) | m));
+    finite.push_back(std::numeric_limits<float>::max());
+    finite.push_back(std::numeric_limits<float>::denorm_min());
+    EXPECT_FALSE(anyNonFinite(finite.data(), finite.size()));
+    for (std::size_t n : {std::size_t(1), std::size_t(63), std::size_t(64), std::size_t(65),
+                          std::size_t(200), finite.size()}) {
+        EXPECT_FALSE(anyNonFinite(finite.data(), n)) << n;
+        for (std::size_t at : {std::size_t(0), n / 2, n - 1})
+            for (float b : bad) {
+                std::vector<float> row(finite.begin(), finite.begin() + std::ptrdiff_t(n));
+                row[at] = b;
+                EXPECT_TRUE(anyNonFinite(row.data(), n)) << n << " " << at << " " << b;
+            }
+    }
+    EXPECT_FALSE(anyNonFinite(nullptr, 0));
 }
 
 } // namespace

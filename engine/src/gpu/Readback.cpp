@@ -2,6 +2,7 @@
 // mapped render targets themselves (read in place) or from the slot's staging buffers. The
 // last line of defence: no NaN or Inf leaves the renderer.
 #include "gpu/FrameRing.h"
+#include "gpu/ReadbackPath.h"
 
 #include <atomic>
 #include <cfloat>
@@ -47,18 +48,6 @@ Result<HostPlane> hostPlane(Context& ctx, const Image& image, const Buffer& stag
     }
     LANTERN_TRY(invalidate(ctx, staging));
     return HostPlane{static_cast<const char*>(staging.mapped), rowBytes};
-}
-
-// True when one of the `n` floats is NaN or Inf (every exponent bit set). Without branches,
-// so that the compiler vectorises it.
-bool anyNonFinite(const float* v, std::size_t n) {
-    std::uint32_t bad = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        std::uint32_t u;
-        std::memcpy(&u, v + i, 4);
-        bad |= std::uint32_t((u & 0x7f800000u) == 0x7f800000u);
-    }
-    return bad != 0;
 }
 
 // Counts and zeroes NaN/Inf in row `y` of the colour image, remembering the first pixel that

@@ -8,6 +8,7 @@
 
 #include "gpu/Vk.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -45,5 +46,9 @@ int inPlaceMemoryType(const VkPhysicalDeviceMemoryProperties& memory, std::uint3
 ReadbackChoice chooseReadback(const LinearSupport& linear, VkFormatFeatureFlags needed,
                               const VkPhysicalDeviceMemoryProperties& memory,
                               std::uint32_t typeBits, std::uint32_t width, std::uint32_t height);
+
+/// True when one of the `n` floats is NaN or Inf (either sign, any payload): the check the
+/// readback makes on every row it copies, vectorised (gpu/Readback.cpp).
+bool anyNonFinite(const float* values, std::size_t n);
 
 } // namespace lantern::gpu
