@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -131,6 +132,88 @@ void BM_RenderFrame(benchmark::State& state) {
     state.SetLabel(state.range(0) ? "at 1e7" : "at the origin");
 }
 BENCHMARK(BM_RenderFrame)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// One sphere under one directional light at 1920x1080 (issue 18's frame), its float pixels
+// read back: arg 0 staged (LANTERN_TEST_READBACK=staged: copied into a buffer on the device,
+// then into the Image), arg 1 in place where the device allows it (the Image filled straight
+// from the rendered linear image). Counters: gpu_ms, the render pass (GPU timestamps);
+// wait_ms, the fence wait and the readback into the Image. Needs a build with the testing
+// hooks (the tests' builds) to force the staged path; says so otherwise.
+void BM_Readback1080p(benchmark::State& state) {
+    const bool staged = state.range(0) == 0;
+    struct Made {
+        std::optional<Renderer> renderer;
+        std::string path;  // how the colour is read back, from the debug log
+    };
+    static Made made[2];
+    Made& m = made[staged ? 0 : 1];
+    if (!m.renderer) {
+        if (staged) ::setenv("LANTERN_TEST_READBACK", "staged", 1);
+        RendererDesc desc;
+        desc.log = [&m](LogLevel, std::string_view line) {
+            const std::string_view prefix = "colour 1920x1080 read back ";
+            if (line.substr(0, prefix.size()) == prefix) m.path = line.substr(prefix.size());
+        };
+        auto r = Renderer::create(desc);
+        ::unsetenv("LANTERN_TEST_READBACK");
+        if (!r) {
+            state.SkipWithError(("no Vulkan device: " + r.error().describe()).c_str());
+            return;
+        }
+        m.renderer.emplace(std::move(*r));
+    }
+    Scene scene;
+    scene.materials.push_back(Material{});
+    Primitive sphere = makeSphere(1.0, 64, 32);
+    sphere.material = 0;
+    scene.meshes.push_back(Mesh{"sphere", {sphere}});
+    Node node;
+    node.mesh = 0;
+    scene.nodes.push_back(node);
+    Light light;
+    light.type = LightType::Directional;
+    scene.lights.push_back(light);
+    Node sun;
+    sun.light = 0;
+    scene.nodes.push_back(sun);
+    Camera camera;
+    camera.projection = Projection::makePerspective(0.8, 0.0, 0.1, kInfinity);
+    camera.lookAt = LookAt{{0, 0, 3}, {0, 0, 0}, {0, 1, 0}};
+    scene.cameras.push_back(camera);
+    scene.roots.push_back(SceneRoot{"", {0, 1}, {}});
+    auto prepared = m.renderer->prepare(std::make_shared<const Scene>(std::move(scene)));
+    if (!prepared) {
+        state.SkipWithError(prepared.error().describe().c_str());
+        return;
+    }
+    RenderOptions options;
+    options.width = 1920;
+    options.height = 1080;
+    options.shading = ShadingMode::Gouraud;
+    if (!m.renderer->render(*prepared, options, 0.0)) {
+        state.SkipWithError("the first frame failed");
+        return;
+    }
+    if (staged != (m.path.rfind("staged", 0) == 0)) {
+        state.SkipWithError(("the colour is read back " + m.path).c_str());
+        return;
+    }
+    double gpuMs = 0, waitMs = 0;
+    for (auto _ : state) {
+        auto image = m.renderer->render(*prepared, options, 0.0);
+        if (!image) {
+            state.SkipWithError(image.error().describe().c_str());
+            break;
+        }
+        benchmark::DoNotOptimize(image);
+        gpuMs += m.renderer->lastFrameStats().gpuMs;
+        waitMs += m.renderer->lastFrameStats().waitMs;
+    }
+    state.counters["gpu_ms"] = benchmark::Counter(gpuMs, benchmark::Counter::kAvgIterations);
+    state.counters["wait_ms"] = benchmark::Counter(waitMs, benchmark::Counter::kAvgIterations);
+    state.SetLabel(m.path);
+}
+BENCHMARK(BM_Readback1080p)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // A plane of 257 x 257 vertices (131072 triangles) bent about +Y by a two-bone skin: unskinned
 // (arg 0: the same mesh without joints or skin), skinned with 4 influences per vertex (arg 4,

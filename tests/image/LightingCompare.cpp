@@ -114,7 +114,13 @@ Result<render::RenderedFrame> renderWithIds(gpu::Device& device, const Scene& sc
     auto buffers = device.upload(std::shared_ptr<const Scene>(std::shared_ptr<const Scene>(), &scene));
     if (!buffers) return std::move(buffers).error();
     FrameStats stats;
-    return render::renderFrame(device, *buffers, scene, o, time, stats, edits);
+    // The ids plane is read back only when a frame asks for it (as the probe does).
+    render::FrameEdits withIds = edits;
+    withIds.list = [&edits](gpu::DrawList& list) {
+        list.target.ids = true;
+        if (edits.list) edits.list(list);
+    };
+    return render::renderFrame(device, *buffers, scene, o, time, stats, withIds);
 }
 
 ReferenceComparison compareWithReference(gpu::Device& device, const Scene& scene,

@@ -59,7 +59,8 @@ struct FrameReadback {
     /// Flat triangles given to the per-triangle lighting pass (gpu/FlatLight.h); those it
     /// finds outside the view or back-facing are skipped, the others lit once.
     std::uint64_t flatTriangles = 0;
-    /// With AOVs: per pixel (draw index + 1, primitive id); 0: no draw.
+    /// When the frame asked for them (TargetDesc::ids, the probe): per pixel (draw index + 1,
+    /// primitive id); 0: no draw.
     std::vector<std::uint32_t> ids;
 };
 

@@ -71,6 +71,7 @@ struct TargetDesc {
     std::uint32_t width = 0, height = 0;
     std::uint32_t samples = 1;
     AovSet aovs;              ///< AOV planes to read back (any: the AOV attachments exist)
+    bool ids = false;         ///< with AOVs, read back the draw and primitive ids too (the probe)
     bool reversedZ = true;    ///< depth clears to 0 (far) instead of 1
     glm::vec4 clear{0.0f};    ///< linear, premultiplied
     float pointSize = 1.0f;   ///< pixels across a point (GL_POINTS)

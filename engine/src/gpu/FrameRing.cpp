@@ -3,6 +3,7 @@
 #include "gpu/FrameRing.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 
 namespace lantern::gpu {
@@ -21,6 +22,12 @@ Result<std::unique_ptr<FrameRing>> FrameRing::create(Context& ctx, Pipelines& pi
     vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice(), &nq, families.data());
     ring->m_timestamps = families[ctx.queueFamily()].timestampValidBits > 0 &&
                          ctx.properties().limits.timestampPeriod > 0;
+#ifdef LANTERN_TESTING_HOOKS
+    // LANTERN_TEST_READBACK=staged (tests only), read when the renderer is made: every plane
+    // staged, whatever the device allows, so that the two paths can be compared on one device.
+    if (const char* env = std::getenv("LANTERN_TEST_READBACK"))
+        ring->m_inPlace = std::strcmp(env, "staged") != 0;
+#endif
     ring->m_slots.resize(std::max<std::uint32_t>(slots, 1));
     for (std::size_t i = 0; i < ring->m_slots.size(); ++i)
         LANTERN_TRY(ring->createSlot(ring->m_slots[i], i));
@@ -243,7 +250,7 @@ Result<std::uint32_t> FrameRing::submit(const DrawList& list,
     if (slot.busy)
         return makeError(ErrorCode::Usage, "frame slot " + std::to_string(index) +
                                                " is still in flight; collect it first");
-    LANTERN_TRY(ensureTarget(m_ctx, slot.target, list.target));
+    LANTERN_TRY(ensureTarget(m_ctx, slot.target, list.target, m_inPlace));
     slot.desc = list.target;
     std::vector<VkPipeline> pipelines, aovPipelines;
     const bool flatPerTriangle = FlatLighter::available(m_ctx, *scene, list);

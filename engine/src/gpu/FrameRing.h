@@ -26,9 +26,10 @@ namespace lantern::gpu {
 /// semaphores, and whether the picture is read back.
 struct SubmitHooks {
     bool readback = true;  ///< copy the colour (and AOV) images into the readback buffers
-    /// Records after the scene, with the colour image in TRANSFER_SRC_OPTIMAL, made available
-    /// to the transfer stage (blits included).
-    std::function<void(VkCommandBuffer, VkImage color, std::uint32_t width, std::uint32_t height)>
+    /// Records after the scene, with the colour image in `layout` (TRANSFER_SRC_OPTIMAL, or
+    /// GENERAL when it is read in place), made available to the transfer stage (blits included).
+    std::function<void(VkCommandBuffer, VkImage color, VkImageLayout layout, std::uint32_t width,
+                       std::uint32_t height)>
         afterRender;
     VkSemaphore wait = VK_NULL_HANDLE;  ///< waited for at the transfer stage
     VkSemaphore signal = VK_NULL_HANDLE;
@@ -94,6 +95,7 @@ private:
     std::vector<Slot> m_slots;
     std::uint32_t m_next = 0;
     bool m_timestamps = false;
+    bool m_inPlace = true;  ///< false: every plane staged (LANTERN_TEST_READBACK=staged)
 };
 
 /// Records a frame into `slot.cmd` (begun): the deformation pre-pass (when the slot deforms),

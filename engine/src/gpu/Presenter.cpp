@@ -206,7 +206,8 @@ Result<void> Presenter::rebuild() {
 }
 
 // After the scene: the picture into the swapchain image, then the overlay pass.
-void Presenter::recordPresentation(VkCommandBuffer cmd, VkImage color, std::uint32_t w, std::uint32_t h,
+void Presenter::recordPresentation(VkCommandBuffer cmd, VkImage color, VkImageLayout layout,
+                                   std::uint32_t w, std::uint32_t h,
                         std::uint32_t index, const OverlayRecorder& recorder) {
     const VkImage target = m_swapchain->image(index);
     // Waits on the acquire semaphore, whose wait is at the transfer stage.
@@ -218,7 +219,7 @@ void Presenter::recordPresentation(VkCommandBuffer cmd, VkImage color, std::uint
     blit.srcOffsets[1] = {int(w), int(h), 1};
     blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     blit.dstOffsets[1] = {int(w), int(h), 1};
-    vkCmdBlitImage(cmd, color, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
+    vkCmdBlitImage(cmd, color, layout, target,
                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
     if (!m_overlayPass) {
         imageBarrier(cmd, target, VK_IMAGE_ASPECT_COLOR_BIT,
@@ -275,8 +276,9 @@ Result<PresentedFrame> Presenter::present(const DrawList& list,
     hooks.readback = capture;
     hooks.wait = m_acquired[slot].get();
     hooks.signal = m_rendered[index].get();
-    hooks.afterRender = [&](VkCommandBuffer cmd, VkImage color, std::uint32_t w, std::uint32_t h) {
-        recordPresentation(cmd, color, w, h, index, overlay);
+    hooks.afterRender = [&](VkCommandBuffer cmd, VkImage color, VkImageLayout layout,
+                            std::uint32_t w, std::uint32_t h) {
+        recordPresentation(cmd, color, layout, w, h, index, overlay);
     };
     auto submitted = ring.submit(list, scene, hooks);
     if (!submitted) {

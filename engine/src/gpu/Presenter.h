@@ -61,8 +61,9 @@ private:
     Result<void> drain();
     Result<void> makeOverlayObjects();
     Result<void> rebuild();
-    void recordPresentation(VkCommandBuffer cmd, VkImage color, std::uint32_t w, std::uint32_t h,
-                            std::uint32_t index, const OverlayRecorder& recorder);
+    void recordPresentation(VkCommandBuffer cmd, VkImage color, VkImageLayout layout,
+                            std::uint32_t w, std::uint32_t h, std::uint32_t index,
+                            const OverlayRecorder& recorder);
 
     Device& m_device;
     VkSurfaceKHR m_surface = VK_NULL_HANDLE;

@@ -1,6 +1,8 @@
-// Reading a finished frame back: timestamps, the colour image and the AOV planes from the
-// slot's host-visible buffers. The last line of defence: no NaN or Inf leaves the renderer.
+// Reading a finished frame back: timestamps, the colour image and the AOV planes, from the
+// mapped render targets themselves (read in place) or from the slot's staging buffers. The
+// last line of defence: no NaN or Inf leaves the renderer.
 #include "gpu/FrameRing.h"
+#include "gpu/ReadbackPath.h"
 
 #include <atomic>
 #include <cfloat>
@@ -8,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 
 namespace lantern::gpu {
 namespace {
@@ -26,49 +29,108 @@ float finiteOr(float v, float replacement, std::uint64_t& nonFinite) {
     return replacement;
 }
 
+// Where the host reads one plane: the mapped image (in place, at its row pitch) or the staging
+// buffer its copy filled (rows packed).
+struct HostPlane {
+    const char* data = nullptr;
+    std::size_t rowPitch = 0;
+
+    template <typename T> const T* row(std::uint32_t y) const {
+        return reinterpret_cast<const T*>(data + std::size_t(y) * rowPitch);
+    }
+};
+
+Result<HostPlane> hostPlane(Context& ctx, const Image& image, const Buffer& staging,
+                            std::size_t rowBytes) {
+    if (image.mapped) {
+        LANTERN_TRY(invalidate(ctx, image));
+        return HostPlane{static_cast<const char*>(image.mapped), std::size_t(image.rowPitch)};
+    }
+    LANTERN_TRY(invalidate(ctx, staging));
+    return HostPlane{static_cast<const char*>(staging.mapped), rowBytes};
+}
+
+// Counts and zeroes NaN/Inf in row `y` of the colour image, remembering the first pixel that
+// held one.
+void scrubRow(float* row, std::uint32_t width, std::uint32_t y, FrameReadback& r) {
+    for (std::uint32_t x = 0; x < width; ++x) {
+        const std::uint64_t before = r.nonFinite;
+        for (std::size_t c = 0; c < 4; ++c) row[x * 4 + c] = finiteOr(row[x * 4 + c], 0.0f, r.nonFinite);
+        if (r.nonFinite != before && r.nonFiniteX < 0) {
+            r.nonFiniteX = int(x);
+            r.nonFiniteY = int(y);
+        }
+    }
+}
+
+// The pixel a test poisons, or (-1, -1).
+struct Poison {
+    long x = -1, y = -1;
+};
+
 #ifdef LANTERN_TESTING_HOOKS
 // LANTERN_TEST_NONFINITE_PIXEL="X,Y[@N]" (tests only): the (N+1)th colour readback and every
 // later one find NaN at pixel (X, Y), as a shader bug would leave it, so that the path from
 // detection to the refusal can be tested without one.
-void injectNonFinite(FrameReadback& r) {
+Poison injectedNonFinite(std::uint32_t width, std::uint32_t height) {
     static std::atomic<long> readbacks{0};
     const long index = readbacks++;
     const char* env = std::getenv("LANTERN_TEST_NONFINITE_PIXEL");
     int x = -1, y = -1;
     long after = 0;
-    if (!env || std::sscanf(env, "%d,%d@%ld", &x, &y, &after) < 2 || index < after) return;
-    if (x < 0 || y < 0 || x >= r.image.width || y >= r.image.height) return;
-    r.image.rgba[(std::size_t(y) * std::size_t(r.image.width) + std::size_t(x)) * 4] = NAN;
+    if (!env || std::sscanf(env, "%d,%d@%ld", &x, &y, &after) < 2 || index < after) return {};
+    if (x < 0 || y < 0 || std::uint32_t(x) >= width || std::uint32_t(y) >= height) return {};
+    return {x, y};
 }
 #endif
 
-// Counts and zeroes NaN/Inf in the colour image, remembering the first pixel that held one.
-void scrubColour(FrameReadback& r) {
-    const std::size_t n = r.image.rgba.size() / 4;
-    for (std::size_t i = 0; i < n; ++i) {
-        const std::uint64_t before = r.nonFinite;
-        for (std::size_t c = 0; c < 4; ++c) r.image.rgba[i * 4 + c] = finiteOr(r.image.rgba[i * 4 + c], 0.0f, r.nonFinite);
-        if (r.nonFinite != before && r.nonFiniteX < 0) {
-            r.nonFiniteX = int(i % std::size_t(r.image.width));
-            r.nonFiniteY = int(i / std::size_t(r.image.width));
-        }
+// The colour plane into r.image.rgba in one pass over memory: each row is appended (the vector
+// is never zero-filled first) and checked while it is still in the cache; only a row that
+// holds a NaN or Inf is scrubbed.
+void readColour(const HostPlane& src, std::uint32_t width, std::uint32_t height,
+                FrameReadback& r) {
+    Poison poison;
+#ifdef LANTERN_TESTING_HOOKS
+    poison = injectedNonFinite(width, height);
+#endif
+    std::vector<float>& rgba = r.image.rgba;
+    const std::size_t rowFloats = std::size_t(width) * 4;
+    rgba.reserve(rowFloats * height);
+    for (std::uint32_t y = 0; y < height; ++y) {
+        const float* row = src.row<float>(y);
+        rgba.insert(rgba.end(), row, row + rowFloats);
+        float* dst = rgba.data() + std::size_t(y) * rowFloats;
+        if (long(y) == poison.y) dst[poison.x * 4] = NAN;
+        if (anyNonFinite(dst, rowFloats)) scrubRow(dst, width, y, r);
     }
 }
 
-void readAovs(const FrameRing::Slot& slot, std::size_t n, FrameReadback& r) {
-    const auto* nd = static_cast<const std::uint32_t*>(slot.target.readNormalDepth.mapped);
-    const AovSet& aovs = slot.desc.aovs;
+// The depth and normal planes asked for, and the ids when the frame wants them (the probe).
+void readAovs(const HostPlane& nd, const HostPlane* ids, const TargetDesc& desc,
+              FrameReadback& r) {
+    const AovSet& aovs = desc.aovs;
     lantern::Image& img = r.image;
-    if (aovs.depth) img.depth.resize(n);
-    if (aovs.normal) img.normal.resize(n * 3);
-    for (std::size_t i = 0; i < n; ++i) {
-        if (aovs.normal)
-            for (std::size_t c = 0; c < 3; ++c)
-                img.normal[i * 3 + c] = finiteOr(bitsFloat(nd[i * 4 + c]), 0.0f, r.nonFinite);
-        if (aovs.depth) img.depth[i] = finiteOr(bitsFloat(nd[i * 4 + 3]), FLT_MAX, r.nonFinite);
+    const std::size_t w = desc.width;
+    if (aovs.depth) img.depth.resize(w * desc.height);
+    if (aovs.normal) img.normal.resize(w * desc.height * 3);
+    for (std::uint32_t y = 0; y < desc.height; ++y) {
+        const std::uint32_t* row = nd.row<std::uint32_t>(y);
+        const std::size_t base = std::size_t(y) * w;
+        for (std::size_t x = 0; x < w; ++x) {
+            if (aovs.normal)
+                for (std::size_t c = 0; c < 3; ++c)
+                    img.normal[(base + x) * 3 + c] =
+                        finiteOr(bitsFloat(row[x * 4 + c]), 0.0f, r.nonFinite);
+            if (aovs.depth)
+                img.depth[base + x] = finiteOr(bitsFloat(row[x * 4 + 3]), FLT_MAX, r.nonFinite);
+        }
     }
-    const auto* ids = static_cast<const std::uint32_t*>(slot.target.readIds.mapped);
-    r.ids.assign(ids, ids + n * 2);
+    if (!ids) return;
+    r.ids.reserve(w * desc.height * 2);
+    for (std::uint32_t y = 0; y < desc.height; ++y) {
+        const std::uint32_t* row = ids->row<std::uint32_t>(y);
+        r.ids.insert(r.ids.end(), row, row + w * 2);
+    }
 }
 
 } // namespace
@@ -85,20 +147,21 @@ Result<FrameReadback> readBack(Context& ctx, const FrameRing::Slot& slot) {
     }
     if (!slot.readback) return r;
     const Target& t = slot.target;
-    LANTERN_TRY(invalidate(ctx, t.readColor));
-    const std::size_t n = std::size_t(t.width) * t.height;
+    auto colour = hostPlane(ctx, t.color, t.readColor, std::size_t(t.width) * 16);
+    if (!colour) return std::move(colour).error();
     r.image.width = int(t.width);
     r.image.height = int(t.height);
-    r.image.rgba.resize(n * 4);
-    std::memcpy(r.image.rgba.data(), t.readColor.mapped, n * 16);
-#ifdef LANTERN_TESTING_HOOKS
-    injectNonFinite(r);
-#endif
-    scrubColour(r);
+    readColour(*colour, t.width, t.height, r);
     if (t.aov) {
-        LANTERN_TRY(invalidate(ctx, t.readNormalDepth));
-        LANTERN_TRY(invalidate(ctx, t.readIds));
-        readAovs(slot, n, r);
+        auto nd = hostPlane(ctx, t.normalDepth, t.readNormalDepth, std::size_t(t.width) * 16);
+        if (!nd) return std::move(nd).error();
+        std::optional<HostPlane> ids;
+        if (slot.desc.ids) {
+            auto plane = hostPlane(ctx, t.ids, t.readIds, std::size_t(t.width) * 8);
+            if (!plane) return std::move(plane).error();
+            ids = *plane;
+        }
+        readAovs(*nd, ids ? &*ids : nullptr, slot.desc, r);
     }
     return r;
 }

@@ -1,6 +1,7 @@
 // Recording one frame with Vulkan 1.3 dynamic rendering and synchronization2: attachment
 // barriers, the scene pass (and, with MSAA and AOVs, a single-sampled AOV pass), one viewport
-// per view, one draw per DrawCommand, the overlays, then the copies into the readback buffers.
+// per view, one draw per DrawCommand, the overlays, then the copies into the readback buffers
+// (or, for planes read in place, only the transition that hands them to the host).
 #include "gpu/FrameRing.h"
 
 #include <cfloat>
@@ -189,6 +190,18 @@ void FrameRecorder::pass(const std::vector<VkRenderingAttachmentInfo>& colors,
 }
 
 void FrameRecorder::copyOut(const Image& img, const Buffer& buf, bool readback) const {
+    if (img.mapped) {
+        // Read in place: GENERAL is the layout in which the host may read a linear image; the
+        // fence that collect() waits for then makes the writes visible. A window frame blits
+        // from GENERAL.
+        imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT,
+                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+                     VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                     VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_TRANSFER_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
+                     VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_HOST_READ_BIT);
+        return;
+    }
     // To the whole transfer stage: a window frame blits the colour image afterwards.
     imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
@@ -263,11 +276,15 @@ void recordFrame(VkPipelineLayout layout, const OverlayPipelines* overlays,
     r.copyOut(t.color, t.readColor, hooks.readback);
     if (t.aov) {
         r.copyOut(t.normalDepth, t.readNormalDepth, hooks.readback);
-        r.copyOut(t.ids, t.readIds, hooks.readback);
+        r.copyOut(t.ids, t.readIds, hooks.readback && list.target.ids);
     }
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                   VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
-    if (hooks.afterRender) hooks.afterRender(cmd, t.color.get(), t.width, t.height);
+    if (hooks.afterRender)
+        hooks.afterRender(cmd, t.color.get(),
+                          t.color.mapped ? VK_IMAGE_LAYOUT_GENERAL
+                                         : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                          t.width, t.height);
 }
 
 } // namespace lantern::gpu

@@ -1,6 +1,8 @@
 // Buffers, images, memory types and barriers.
 #include "gpu/Resources.h"
 
+#include "gpu/ReadbackPath.h"
+
 #include <cstring>
 #include <vector>
 
@@ -91,6 +93,24 @@ Result<void> invalidate(Context& ctx, const Buffer& buffer) {
     return {};
 }
 
+namespace {
+
+// Maps a host-readable image's memory for good and finds where mip 0 lies in it.
+Result<void> mapImage(Context& ctx, Image& img, std::uint32_t type) {
+    void* base = nullptr;
+    LANTERN_VK_TRY(vkMapMemory(ctx.device(), img.memory.get(), 0, VK_WHOLE_SIZE, 0, &base));
+    const VkImageSubresource sub{VK_IMAGE_ASPECT_COLOR_BIT, 0, 0};
+    VkSubresourceLayout layout{};
+    vkGetImageSubresourceLayout(ctx.device(), img.get(), &sub, &layout);
+    img.mapped = static_cast<const char*>(base) + layout.offset;
+    img.rowPitch = layout.rowPitch;
+    img.coherent = (ctx.memoryProperties().memoryTypes[type].propertyFlags &
+                    VK_MEMORY_PROPERTY_HOST_COHERENT_BIT) != 0;
+    return {};
+}
+
+} // namespace
+
 Result<Image> createImage(Context& ctx, const ImageDesc& desc) {
     Image img;
     img.desc = desc;
@@ -101,7 +121,7 @@ Result<Image> createImage(Context& ctx, const ImageDesc& desc) {
     ici.mipLevels = desc.mipLevels;
     ici.arrayLayers = 1;
     ici.samples = desc.samples;
-    ici.tiling = VK_IMAGE_TILING_OPTIMAL;
+    ici.tiling = desc.hostReadable ? VK_IMAGE_TILING_LINEAR : VK_IMAGE_TILING_OPTIMAL;
     ici.usage = desc.usage;
     ici.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     ici.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
@@ -113,9 +133,15 @@ Result<Image> createImage(Context& ctx, const ImageDesc& desc) {
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(ctx.device(), image, &req);
     const int type =
-        ctx.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+        desc.hostReadable
+            ? inPlaceMemoryType(ctx.memoryProperties(), req.memoryTypeBits)
+            : ctx.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     if (type < 0)
-        return makeError(ErrorCode::Unsupported, "no device-local memory for image " + desc.name);
+        return makeError(ErrorCode::Unsupported,
+                         std::string(desc.hostReadable ? "no device-local memory the host reads "
+                                                         "in place"
+                                                       : "no device-local memory") +
+                             " for image " + desc.name);
     VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     mai.allocationSize = req.size;
     mai.memoryTypeIndex = std::uint32_t(type);
@@ -123,6 +149,7 @@ Result<Image> createImage(Context& ctx, const ImageDesc& desc) {
     LANTERN_VK_TRY(vkAllocateMemory(ctx.device(), &mai, nullptr, &mem));
     img.memory = UniqueMemory(ctx.device(), mem);
     LANTERN_VK_TRY(vkBindImageMemory(ctx.device(), image, mem, 0));
+    if (desc.hostReadable) LANTERN_TRY(mapImage(ctx, img, std::uint32_t(type)));
 
     VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     vci.image = image;
@@ -134,6 +161,15 @@ Result<Image> createImage(Context& ctx, const ImageDesc& desc) {
     img.view = UniqueImageView(ctx.device(), view);
     ctx.setName(VK_OBJECT_TYPE_IMAGE_VIEW, view, desc.name + " view");
     return img;
+}
+
+Result<void> invalidate(Context& ctx, const Image& image) {
+    if (image.coherent || !image.mapped) return {};
+    VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE};
+    range.memory = image.memory.get();
+    range.size = VK_WHOLE_SIZE;
+    LANTERN_VK_TRY(vkInvalidateMappedMemoryRanges(ctx.device(), 1, &range));
+    return {};
 }
 
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,

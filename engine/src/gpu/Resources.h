@@ -45,6 +45,9 @@ struct ImageDesc {
     VkImageUsageFlags usage = 0;
     VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
     std::string name;
+    /// Linear tiling in device-local, host-visible, host-cached memory, mapped for the host to
+    /// read in place (gpu/ReadbackPath.h; single-sampled, one mip level).
+    bool hostReadable = false;
 };
 
 struct Image {
@@ -52,11 +55,19 @@ struct Image {
     UniqueMemory memory;
     UniqueImageView view;
     ImageDesc desc;
+    /// A host-readable image: its pixels (mip 0) in the persistently mapped memory, and the
+    /// bytes from one row to the next (vkGetImageSubresourceLayout).
+    const void* mapped = nullptr;
+    VkDeviceSize rowPitch = 0;
+    bool coherent = true;
 
     VkImage get() const { return image.get(); }
 };
 
 Result<Image> createImage(Context& ctx, const ImageDesc& desc);
+
+/// Makes device writes to a host-readable image visible to the CPU (no-op for coherent memory).
+Result<void> invalidate(Context& ctx, const Image& image);
 
 /// Records one image layout transition / memory dependency (synchronization2).
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,

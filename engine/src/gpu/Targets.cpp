@@ -1,6 +1,8 @@
 // Render targets of a frame slot, and the checks that refuse a target before allocating it.
 #include "gpu/Targets.h"
 
+#include "gpu/ReadbackPath.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -25,6 +27,7 @@ double slotBytes(const TargetDesc& d) {
 struct TargetMaker {
     Context& ctx;
     std::uint32_t width, height;
+    bool inPlace;  ///< planes may be read in place
 
     Result<void> image(Image& img, VkFormat format, std::uint32_t samples, VkImageUsageFlags usage,
                        VkImageAspectFlags aspect, const char* name) const {
@@ -48,7 +51,61 @@ struct TargetMaker {
         b = std::move(*r);
         return {};
     }
+    ReadbackChoice choose(VkFormat format, VkImageUsageFlags usage, bool blended) const;
+    Result<void> readable(Image& img, Buffer& staging, VkFormat format, bool blended,
+                          VkDeviceSize bytesPerPixel, const char* name) const;
 };
+
+// The device's answer for `format` as a linear image of this size and usage.
+ReadbackChoice TargetMaker::choose(VkFormat format, VkImageUsageFlags usage, bool blended) const {
+    if (!inPlace) return {false, "staged: reading in place switched off (LANTERN_TEST_READBACK=staged)"};
+    VkFormatProperties fp{};
+    vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice(), format, &fp);
+    LinearSupport linear;
+    linear.features = fp.linearTilingFeatures;
+    VkImageFormatProperties ip{};
+    linear.imageSupported =
+        vkGetPhysicalDeviceImageFormatProperties(ctx.physicalDevice(), format, VK_IMAGE_TYPE_2D,
+                                                 VK_IMAGE_TILING_LINEAR, usage, 0,
+                                                 &ip) == VK_SUCCESS;
+    linear.maxExtent = ip.maxExtent;
+    return chooseReadback(linear, inPlaceFeatures(blended), ctx.memoryProperties(), ~0u, width,
+                          height);
+}
+
+// A single-sampled plane that the host reads: rendered into a linear image it reads in place
+// where the device allows it (gpu/ReadbackPath.h), else an optimal image copied into `staging`.
+Result<void> TargetMaker::readable(Image& img, Buffer& staging, VkFormat format, bool blended,
+                                   VkDeviceSize bytesPerPixel, const char* name) const {
+    const VkImageUsageFlags usage =
+        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    ReadbackChoice choice = choose(format, usage, blended);
+    if (choice.inPlace) {
+        ImageDesc d;
+        d.format = format;
+        d.width = width;
+        d.height = height;
+        d.usage = usage;
+        d.name = name;
+        d.hostReadable = true;
+        auto r = createImage(ctx, d);
+        if (r) {
+            img = std::move(*r);
+        } else if (r.error().code == ErrorCode::Unsupported) {
+            // The image's own memory types ruled out every host-readable one.
+            choice = {false, "staged: " + r.error().message};
+        } else {
+            return std::move(r).error();
+        }
+    }
+    ctx.log(LogLevel::Debug,
+            std::string(name) + " " + std::to_string(width) + "x" + std::to_string(height) +
+                " read back " + choice.why +
+                (choice.inPlace ? ", rows " + std::to_string(img.rowPitch) + " bytes apart" : ""));
+    if (choice.inPlace) return {};
+    LANTERN_TRY(image(img, format, 1, usage, VK_IMAGE_ASPECT_COLOR_BIT, name));
+    return readback(staging, bytesPerPixel, (std::string(name) + " readback").c_str());
+}
 
 // Points and lines wider than a pixel need a device feature, and the size its range.
 Result<void> checkPointsAndLines(const Context& ctx, const TargetDesc& d) {
@@ -118,27 +175,24 @@ Result<void> checkTarget(const Context& ctx, const TargetDesc& d, std::uint32_t 
     return {};
 }
 
-Result<void> ensureTarget(Context& ctx, Target& t, const TargetDesc& d) {
+Result<void> ensureTarget(Context& ctx, Target& t, const TargetDesc& d, bool inPlace) {
     const bool aov = d.aovs.any();
     if (t.width == d.width && t.height == d.height && t.samples == d.samples && t.aov == aov)
         return {};
     t = Target{};
-    const TargetMaker make{ctx, d.width, d.height};
-    const VkImageUsageFlags single =
-        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    const TargetMaker make{ctx, d.width, d.height, inPlace};
     const VkImageAspectFlags color = VK_IMAGE_ASPECT_COLOR_BIT;
-    LANTERN_TRY(make.image(t.color, kColorFormat, 1, single, color, "colour"));
+    LANTERN_TRY(make.readable(t.color, t.readColor, kColorFormat, true, 16, "colour"));
     if (d.samples > 1)
         LANTERN_TRY(make.image(t.colorMsaa, kColorFormat, d.samples,
                                VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, color, "colour msaa"));
     LANTERN_TRY(make.image(t.depth, kDepthFormat, d.samples,
                            VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT,
                            "depth"));
-    LANTERN_TRY(make.readback(t.readColor, 16, "colour readback"));
     if (aov) {
-        LANTERN_TRY(make.image(t.normalDepth, kNormalDepthFormat, 1, single, color,
-                               "aov normal+depth"));
-        LANTERN_TRY(make.image(t.ids, kIdFormat, 1, single, color, "aov ids"));
+        LANTERN_TRY(make.readable(t.normalDepth, t.readNormalDepth, kNormalDepthFormat, false, 16,
+                                  "aov normal+depth"));
+        LANTERN_TRY(make.readable(t.ids, t.readIds, kIdFormat, false, 8, "aov ids"));
         if (d.samples > 1) {
             // The single-sampled AOV pass draws into these (its colour output is discarded).
             LANTERN_TRY(make.image(t.aovColor, kColorFormat, 1,
@@ -147,8 +201,6 @@ Result<void> ensureTarget(Context& ctx, Target& t, const TargetDesc& d) {
                                    VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                                    VK_IMAGE_ASPECT_DEPTH_BIT, "aov pass depth"));
         }
-        LANTERN_TRY(make.readback(t.readNormalDepth, 16, "aov normal+depth readback"));
-        LANTERN_TRY(make.readback(t.readIds, 8, "aov ids readback"));
     }
     t.width = d.width;
     t.height = d.height;

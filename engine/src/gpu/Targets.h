@@ -1,6 +1,8 @@
 // Targets.h: a frame slot's render targets: the float colour image (and its multisampled
 // twin), depth, the AOV attachments (eye normal + depth bits, draw + primitive ids), the
 // single-sampled AOV pass that multisampling needs, and the host-visible readback buffers.
+// The planes the host reads (colour, the AOVs) are read in place where the device allows it:
+// linear images in host-visible memory, with no readback buffer (gpu/ReadbackPath.h).
 // Made for a TargetDesc, kept while the next frame asks for the same size and kind.
 #pragma once
 
@@ -20,6 +22,8 @@ struct Target {
     bool aov = false;
     Image color, colorMsaa, depth, normalDepth, ids;
     Image aovColor, aovDepth;  ///< the single-sampled AOV pass, with MSAA
+    /// The staging buffers of the planes read back through a copy (empty for a plane read in
+    /// place, whose image is mapped: Image::mapped).
     Buffer readColor, readNormalDepth, readIds;
 
     bool multisampled() const { return samples > 1; }
@@ -28,8 +32,10 @@ struct Target {
     bool separateAovPass() const { return aov && samples > 1; }
 };
 
-/// (Re)makes `target` for `desc` unless it already matches.
-Result<void> ensureTarget(Context& ctx, Target& target, const TargetDesc& desc);
+/// (Re)makes `target` for `desc` unless it already matches. `inPlace`: planes may be read in
+/// place where the device allows it (false: every plane staged, as tests compare).
+Result<void> ensureTarget(Context& ctx, Target& target, const TargetDesc& desc,
+                          bool inPlace = true);
 
 /// Refuses what a device cannot make, before anything is allocated: an empty or too large
 /// image, an unsupported sample count, AOVs without primitive ids, more memory than the

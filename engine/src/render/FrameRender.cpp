@@ -116,7 +116,9 @@ Result<ProbeReport> probe(gpu::Device& device, const std::shared_ptr<gpu::SceneB
     single.msaa = 1;
     single.aovs.depth = single.aovs.normal = true;
     LANTERN_TRY(checkOptions(device, single));
-    auto f = renderFrame(device, scene, sceneData, single, time, stats);
+    FrameEdits edits;
+    edits.list = [](gpu::DrawList& list) { list.target.ids = true; };
+    auto f = renderFrame(device, scene, sceneData, single, time, stats, edits);
     if (!f) return std::move(f).error();
     return ref::probePixel(sceneData, f->frame, f->readback.image, f->readback.ids, x, y);
 }

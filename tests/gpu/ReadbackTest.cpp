@@ -1,0 +1,234 @@
+// Reading frames back on the test machine's device: the path each plane takes is the one its
+// properties allow (gpu/ReadbackPath.h), and a frame read in place is bit-identical to the
+// same frame staged through a buffer (LANTERN_TEST_READBACK=staged), with multisampling,
+// AOVs, the probe's ids, odd sizes (a linear image's rows may be padded) and a sequence with
+// two frames in flight.
+#include "TestSupport.h"
+
+#include "gpu/Context.h"
+#include "gpu/ReadbackPath.h"
+#include "gpu/Targets.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <mutex>
+
+namespace {
+
+using namespace lantern;
+using lantern::test::testOutputDir;
+
+// A renderer with validation (and synchronisation validation) whose debug log is kept, made
+// with every plane staged when `staged`.
+struct LoggedRenderer {
+    std::mutex mutex;
+    std::vector<std::string> lines;
+    std::optional<Renderer> renderer;
+
+    explicit LoggedRenderer(bool staged) {
+        if (staged) ::setenv("LANTERN_TEST_READBACK", "staged", 1);
+        RendererDesc desc;
+        desc.validation = true;
+        desc.synchronizationValidation = true;
+        desc.log = [this](LogLevel, std::string_view m) {
+            std::lock_guard lock(mutex);
+            lines.emplace_back(m);
+        };
+        auto r = Renderer::create(desc);
+        if (r) renderer.emplace(std::move(*r));
+        ::unsetenv("LANTERN_TEST_READBACK");
+    }
+    // The log line that names how `plane` of a width x height target is read back.
+    std::string choice(const std::string& plane, int w, int h) {
+        const std::string prefix =
+            plane + " " + std::to_string(w) + "x" + std::to_string(h) + " read back ";
+        std::lock_guard lock(mutex);
+        for (const std::string& l : lines)
+            if (l.rfind(prefix, 0) == 0) return l.substr(prefix.size());
+        return "(not logged)";
+    }
+};
+
+// The device's own answer for the float colour plane, from its properties alone.
+gpu::ReadbackChoice deviceChoice(std::uint32_t w, std::uint32_t h) {
+    gpu::ContextDesc desc;
+    auto ctx = gpu::Context::create(desc);
+    if (!ctx) return {false, "no context: " + ctx.error().describe()};
+    VkFormatProperties fp{};
+    vkGetPhysicalDeviceFormatProperties((*ctx)->physicalDevice(), gpu::kColorFormat, &fp);
+    gpu::LinearSupport linear;
+    linear.features = fp.linearTilingFeatures;
+    VkImageFormatProperties ip{};
+    linear.imageSupported =
+        vkGetPhysicalDeviceImageFormatProperties(
+            (*ctx)->physicalDevice(), gpu::kColorFormat, VK_IMAGE_TYPE_2D, VK_IMAGE_TILING_LINEAR,
+            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, 0,
+            &ip) == VK_SUCCESS;
+    linear.maxExtent = ip.maxExtent;
+    return gpu::chooseReadback(linear, gpu::inPlaceFeatures(true), (*ctx)->memoryProperties(),
+                               ~0u, w, h);
+}
+
+bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+class Readback : public ::testing::Test {
+protected:
+    void SetUp() override {
+        LANTERN_SKIP_IF_MISSING(lantern::test::missingVulkanDevice());
+        inPlace = std::make_unique<LoggedRenderer>(false);
+        staged = std::make_unique<LoggedRenderer>(true);
+        ASSERT_TRUE(inPlace->renderer && staged->renderer);
+    }
+    void TearDown() override {
+        if (!inPlace) return;
+        EXPECT_EQ(inPlace->renderer->validationMessageCount(), 0u);
+        EXPECT_EQ(staged->renderer->validationMessageCount(), 0u);
+    }
+    // Skips the comparisons when the device reads everything staged anyway (they would
+    // compare the staged path with itself).
+    void requireInPlace(int w, int h) {
+        RenderOptions o;
+        o.width = w;
+        o.height = h;
+        ASSERT_TRUE(inPlace->renderer->render(*builtinScene("spheres"), o, 0.0));
+        const std::string how = inPlace->choice("colour", w, h);
+        if (how.rfind("in place", 0) != 0) GTEST_SKIP() << "this device reads back " << how;
+    }
+    std::unique_ptr<LoggedRenderer> inPlace, staged;
+};
+
+TEST_F(Readback, ThePathFollowsTheDeviceProperties) {
+    auto scene = builtinScene("spheres");
+    ASSERT_TRUE(scene);
+    RenderOptions o;
+    o.width = 67;
+    o.height = 45;
+    ASSERT_TRUE(inPlace->renderer->render(*scene, o, 0.0));
+    ASSERT_TRUE(staged->renderer->render(*scene, o, 0.0));
+    const gpu::ReadbackChoice expected = deviceChoice(67, 45);
+    // The logged choice is the device's, followed for an in-place plane by its row pitch.
+    EXPECT_EQ(inPlace->choice("colour", 67, 45).rfind(expected.why, 0), 0u)
+        << inPlace->choice("colour", 67, 45) << " / " << expected.why;
+    EXPECT_EQ(staged->choice("colour", 67, 45), "staged: reading in place switched off (LANTERN_TEST_READBACK=staged)");
+    // A device whose every memory type is device-local, host-visible and host-cached (a CPU
+    // device such as lavapipe) and whose float format renders linear reads in place.
+    gpu::ContextDesc desc;
+    auto ctx = gpu::Context::create(desc);
+    ASSERT_TRUE(ctx);
+    const auto& mem = (*ctx)->memoryProperties();
+    bool allHostMemory = mem.memoryTypeCount > 0;
+    for (std::uint32_t i = 0; i < mem.memoryTypeCount; ++i)
+        allHostMemory &= (mem.memoryTypes[i].propertyFlags & 0xF) == 0xF;
+    VkFormatProperties fp{};
+    vkGetPhysicalDeviceFormatProperties((*ctx)->physicalDevice(), gpu::kColorFormat, &fp);
+    const VkFormatFeatureFlags needed = gpu::inPlaceFeatures(true);
+    if (allHostMemory && (fp.linearTilingFeatures & needed) == needed) {
+        EXPECT_TRUE(expected.inPlace) << expected.why;
+    }
+}
+
+// Colour, depth and normal planes, and the probe's ids, identical to the bit on both paths.
+void compareFrames(LoggedRenderer& a, LoggedRenderer& b, const RenderOptions& o) {
+    auto scene = builtinScene("spheres");
+    ASSERT_TRUE(scene);
+    auto x = a.renderer->render(*scene, o, 0.0);
+    auto y = b.renderer->render(*scene, o, 0.0);
+    ASSERT_TRUE(x && y);
+    EXPECT_EQ(a.renderer->lastFrameStats().nonFinite, 0u);
+    EXPECT_TRUE(sameBits(x->rgba, y->rgba));
+    EXPECT_TRUE(sameBits(x->depth, y->depth));
+    EXPECT_TRUE(sameBits(x->normal, y->normal));
+    EXPECT_EQ(x->depth.size(), o.aovs.depth ? x->pixelCount() : 0u);
+    EXPECT_EQ(x->normal.size(), o.aovs.normal ? x->pixelCount() * 3 : 0u);
+    std::size_t covered = 0;
+    for (std::size_t i = 3; i < x->rgba.size(); i += 4) covered += x->rgba[i] > 0.5f;
+    EXPECT_GT(covered, x->pixelCount() / 4);  // something was drawn, not just cleared
+    // The probe reads the ids plane: the same triangle under the same pixel.
+    for (const auto& [px, py] : {std::pair{33, 30}, std::pair{10, 40}, std::pair{60, 5}}) {
+        auto p = a.renderer->probe(*scene, o, 0.0, px, py);
+        auto q = b.renderer->probe(*scene, o, 0.0, px, py);
+        ASSERT_TRUE(p && q);
+        EXPECT_EQ(p->hit, q->hit);
+        EXPECT_EQ(p->node, q->node);
+        EXPECT_EQ(p->primitive, q->primitive);
+        EXPECT_EQ(p->triangle, q->triangle);
+    }
+}
+
+TEST_F(Readback, InPlaceIsBitIdenticalToStaged) {
+    requireInPlace(67, 45);
+    RenderOptions o;
+    o.width = 67;  // rows of 1072 bytes: a linear image may pad them
+    o.height = 45;
+    compareFrames(*inPlace, *staged, o);
+}
+
+TEST_F(Readback, InPlaceIsBitIdenticalToStagedWithMsaaAndAovs) {
+    RenderOptions o;
+    o.width = 67;
+    o.height = 45;
+    o.aovs.depth = o.aovs.normal = true;
+    ASSERT_TRUE(inPlace->renderer->render(*builtinScene("spheres"), o, 0.0));
+    requireInPlace(67, 45);
+    EXPECT_EQ(inPlace->choice("aov normal+depth", 67, 45).rfind("in place", 0), 0u);
+    compareFrames(*inPlace, *staged, o);
+    o.aovs.normal = false;  // depth alone
+    compareFrames(*inPlace, *staged, o);
+    o.msaa = 4;
+    o.aovs.normal = true;
+    compareFrames(*inPlace, *staged, o);
+    o.aovs = {};
+    compareFrames(*inPlace, *staged, o);
+}
+
+// Two frames in flight: frame k+1 renders into the other slot's images while frame k is read;
+// an animated scene makes every frame differ, so a slot overwritten too early would show.
+TEST_F(Readback, ASequenceInPlaceMatchesStagedFrameForFrame) {
+    auto scene = builtinScene("spheres-animated");
+    ASSERT_TRUE(scene);
+    RenderOptions o;
+    o.width = 48;
+    o.height = 32;
+    o.aovs.depth = true;
+    ASSERT_TRUE(inPlace->renderer->render(*scene, o, 0.0));
+    requireInPlace(48, 32);
+    SequenceOptions s;
+    s.frames = {0, 5};
+    s.fps = 10;
+    s.encoderThreads = 2;
+    const auto shared = std::make_shared<const Scene>(std::move(*scene));
+    std::vector<Image> frames[2];
+    const auto dir = testOutputDir();  // made empty by each call
+    for (int i = 0; i < 2; ++i) {
+        LoggedRenderer& r = i == 0 ? *inPlace : *staged;
+        auto prepared = r.renderer->prepare(shared);
+        ASSERT_TRUE(prepared);
+        s.outputs = {(dir / (std::to_string(i) + "_##.exr")).string()};
+        auto report = r.renderer->renderSequence(*prepared, o, s);
+        ASSERT_TRUE(report) << report.error().describe();
+        ASSERT_EQ(report->framesWritten.size(), 6u);
+        for (int frame = 0; frame <= 5; ++frame) {  // framesWritten is in the order of encoding
+            char name[32];
+            std::snprintf(name, sizeof name, "%d_%02d.exr", i, frame);
+            auto img = readExr(dir / name);
+            ASSERT_TRUE(img) << img.error().describe();
+            frames[i].push_back(std::move(*img));
+        }
+    }
+    for (std::size_t k = 0; k < frames[0].size(); ++k) {
+        EXPECT_TRUE(sameBits(frames[0][k].rgba, frames[1][k].rgba))
+            << "frame " << k << " differs by up to "
+            << lantern::test::maxAbsDifference(frames[0][k], frames[1][k]);
+        EXPECT_TRUE(sameBits(frames[0][k].depth, frames[1][k].depth)) << "frame " << k;
+        if (k > 0) {
+            EXPECT_FALSE(sameBits(frames[0][k].rgba, frames[0][k - 1].rgba)) << "frame " << k;
+        }
+    }
+}
+
+} // namespace
