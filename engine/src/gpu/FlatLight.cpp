@@ -196,22 +196,7 @@ Result<void> FlatLighter::prepare(FlatSlot& slot, const DrawList& list, const Sc
 }
 
 Result<void> FlatLighter::ensureDescriptorSet(FlatSlot& slot) {
-    if (slot.pool) return {};
-    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3};
-    VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    dpci.maxSets = 1;
-    dpci.poolSizeCount = 1;
-    dpci.pPoolSizes = &size;
-    VkDescriptorPool pool = VK_NULL_HANDLE;
-    LANTERN_VK_TRY(vkCreateDescriptorPool(m_ctx.device(), &dpci, nullptr, &pool));
-    slot.pool = UniqueDescriptorPool(m_ctx.device(), pool);
-    VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-    ai.descriptorPool = pool;
-    ai.descriptorSetCount = 1;
-    const VkDescriptorSetLayout layout = m_setLayout.get();
-    ai.pSetLayouts = &layout;
-    LANTERN_VK_TRY(vkAllocateDescriptorSets(m_ctx.device(), &ai, &slot.set));
-    return {};
+    return ensureStorageSet(m_ctx, m_setLayout.get(), 3, slot.pool, slot.set);
 }
 
 void FlatLighter::record(VkCommandBuffer cmd, const FlatSlot& slot, VkDescriptorSet frameSet,

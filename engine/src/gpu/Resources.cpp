@@ -226,6 +226,25 @@ Result<void> uploadToBuffer(Context& ctx, Buffer& dst, VkDeviceSize offset, cons
     });
 }
 
+Result<void> ensureStorageSet(Context& ctx, VkDescriptorSetLayout layout, std::uint32_t storageBuffers,
+                              UniqueDescriptorPool& pool, VkDescriptorSet& set) {
+    if (pool) return {};
+    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, storageBuffers};
+    VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    dpci.maxSets = 1;
+    dpci.poolSizeCount = 1;
+    dpci.pPoolSizes = &size;
+    VkDescriptorPool handle = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkCreateDescriptorPool(ctx.device(), &dpci, nullptr, &handle));
+    pool = UniqueDescriptorPool(ctx.device(), handle);
+    VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    ai.descriptorPool = handle;
+    ai.descriptorSetCount = 1;
+    ai.pSetLayouts = &layout;
+    LANTERN_VK_TRY(vkAllocateDescriptorSets(ctx.device(), &ai, &set));
+    return {};
+}
+
 void writeBufferDescriptors(Context& ctx, VkDescriptorSet set, std::initializer_list<BufferBinding> bindings) {
     std::vector<VkWriteDescriptorSet> writes(bindings.size());
     std::size_t i = 0;

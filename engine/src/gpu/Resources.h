@@ -90,6 +90,11 @@ struct BufferBinding {
 /// Points each binding of `set` at its buffer range (the set must not be in use by the device).
 void writeBufferDescriptors(Context& ctx, VkDescriptorSet set, std::initializer_list<BufferBinding> bindings);
 
+/// Makes `pool`, holding one set of `layout` whose bindings are `storageBuffers` storage
+/// buffers, and allocates that set into `set`; does nothing when `pool` already exists.
+Result<void> ensureStorageSet(Context& ctx, VkDescriptorSetLayout layout, std::uint32_t storageBuffers,
+                              UniqueDescriptorPool& pool, VkDescriptorSet& set);
+
 /// Copies `size` bytes from host memory into a device-local buffer at `offset`, through a
 /// temporary staging buffer (or directly when the buffer is host-visible).
 Result<void> uploadToBuffer(Context& ctx, Buffer& dst, VkDeviceSize offset, const void* data,
