@@ -102,16 +102,6 @@ DeformJob planJob(const DeformCommand& c, const PrimitiveBuffers& gp, bool flatP
     return job;
 }
 
-// Grows `buffer` to twice `bytes` when it holds fewer.
-Result<void> ensureSize(Context& ctx, Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage,
-                        MemoryUsage memory, const char* name) {
-    if (buffer.size >= bytes) return {};
-    auto b = createBuffer(ctx, bytes * 2, usage, memory, name);
-    if (!b) return std::move(b).error();
-    buffer = std::move(*b);
-    return {};
-}
-
 } // namespace
 
 Result<void> Deformer::prepare(DeformSlot& slot, const DrawList& list, const SceneBuffers& scene,

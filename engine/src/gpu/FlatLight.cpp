@@ -49,16 +49,6 @@ FlatJob planJob(const DrawCommand& d, const PrimitiveBuffers& gp, const DeformSt
     return j;
 }
 
-// Grows `buffer` to twice `bytes` when it holds fewer.
-Result<void> ensureSize(Context& ctx, Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage,
-                        MemoryUsage memory, const char* name) {
-    if (buffer.size >= bytes) return {};
-    auto b = createBuffer(ctx, bytes * 2, usage, memory, name);
-    if (!b) return std::move(b).error();
-    buffer = std::move(*b);
-    return {};
-}
-
 } // namespace
 
 Result<std::unique_ptr<FlatLighter>> FlatLighter::create(Context& ctx, Pipelines& pipelines) {

@@ -226,6 +226,15 @@ Result<void> uploadToBuffer(Context& ctx, Buffer& dst, VkDeviceSize offset, cons
     });
 }
 
+Result<void> ensureSize(Context& ctx, Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage,
+                        MemoryUsage memory, const char* name) {
+    if (buffer.size >= bytes) return {};
+    auto b = createBuffer(ctx, bytes * 2, usage, memory, name);
+    if (!b) return std::move(b).error();
+    buffer = std::move(*b);
+    return {};
+}
+
 Result<void> ensureStorageSet(Context& ctx, VkDescriptorSetLayout layout, std::uint32_t storageBuffers,
                               UniqueDescriptorPool& pool, VkDescriptorSet& set) {
     if (pool) return {};

@@ -90,6 +90,10 @@ struct BufferBinding {
 /// Points each binding of `set` at its buffer range (the set must not be in use by the device).
 void writeBufferDescriptors(Context& ctx, VkDescriptorSet set, std::initializer_list<BufferBinding> bindings);
 
+/// Replaces `buffer` with one of twice `bytes` when it holds fewer (its contents are not kept).
+Result<void> ensureSize(Context& ctx, Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage,
+                        MemoryUsage memory, const char* name);
+
 /// Makes `pool`, holding one set of `layout` whose bindings are `storageBuffers` storage
 /// buffers, and allocates that set into `set`; does nothing when `pool` already exists.
 Result<void> ensureStorageSet(Context& ctx, VkDescriptorSetLayout layout, std::uint32_t storageBuffers,
