@@ -234,3 +234,40 @@ TEST_F(Readback, ASequenceInPlaceMatchesStagedFrameForFrame) {
 }
 
 } // namespace
+
+// Renderer::render(..., Image& into) reuses the Image's memory: the pixels, AOV planes and
+// metadata it leaves are those render() returns, whatever the Image held before (a larger
+// picture with AOVs, a smaller one without), and no plane keeps stale values.
+TEST_F(Readback, RenderIntoAnImageGivesWhatRenderReturns) {
+    auto scene = builtinScene("spheres");
+    ASSERT_TRUE(scene);
+    auto prepared = inPlace->renderer->prepare(std::make_shared<const Scene>(std::move(*scene)));
+    ASSERT_TRUE(prepared) << prepared.error().describe();
+    Image into;
+    RenderOptions big;
+    big.width = 80;
+    big.height = 50;
+    big.aovs.depth = big.aovs.normal = true;
+    RenderOptions small;
+    small.width = 33;
+    small.height = 21;
+    small.shading = ShadingMode::Flat;
+    for (const RenderOptions* o : {&big, &small, &big, &small}) {
+        auto fresh = inPlace->renderer->render(*prepared, *o, 0.25);
+        ASSERT_TRUE(fresh) << fresh.error().describe();
+        const float* before = into.rgba.empty() ? nullptr : into.rgba.data();
+        ASSERT_TRUE(inPlace->renderer->render(*prepared, *o, 0.25, into));
+        EXPECT_EQ(into.width, o->width);
+        EXPECT_EQ(into.height, o->height);
+        EXPECT_TRUE(sameBits(into.rgba, fresh->rgba));
+        EXPECT_TRUE(sameBits(into.depth, fresh->depth));
+        EXPECT_TRUE(sameBits(into.normal, fresh->normal));
+        EXPECT_EQ(into.metadata, fresh->metadata);
+        ASSERT_TRUE(into.camera && fresh->camera);
+        EXPECT_EQ(into.camera->viewFromWorld, fresh->camera->viewFromWorld);
+        // The small picture fits in the big one's memory: no new allocation.
+        if (o == &small && before) {
+            EXPECT_EQ(into.rgba.data(), before);
+        }
+    }
+}

@@ -196,6 +196,14 @@ public:
     Result<Image> render(const PreparedScene& scene, const RenderOptions& options,
                          double timeSeconds);
 
+    /// The same, into `into`, whose memory is reused (its previous pixels are replaced): a
+    /// host that renders frame after frame of one size allocates nothing. It matters for
+    /// pictures the C library maps afresh for every allocation (glibc: above 32 MiB, a float
+    /// picture larger than 1920x1080), whose pages the kernel must fault in and zero each
+    /// frame. On failure `into` is left empty.
+    Result<void> render(const PreparedScene& scene, const RenderOptions& options,
+                        double timeSeconds, Image& into);
+
     /// Convenience: validates, uploads and renders `scene` in one call (the upload is not
     /// kept; prepare() once to render many frames).
     Result<Image> render(const Scene& scene, const RenderOptions& options, double timeSeconds);

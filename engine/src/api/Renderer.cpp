@@ -120,18 +120,26 @@ Result<PreparedScene> Renderer::prepare(std::shared_ptr<const Scene> scene) {
 
 Result<Image> Renderer::render(const PreparedScene& prepared, const RenderOptions& options,
                                double time) {
+    Image image;
+    LANTERN_TRY(render(prepared, options, time, image));
+    return image;
+}
+
+Result<void> Renderer::render(const PreparedScene& prepared, const RenderOptions& options,
+                              double time, Image& into) {
     if (!prepared) return makeError(ErrorCode::Usage, "render() needs a prepared scene");
     gpu::Device& device = *m_impl->device;
     LANTERN_TRY(render::checkOptions(device, options));
     auto frame = render::renderFrame(device, prepared.m_gpu, prepared.scene(), options, time,
-                                     m_impl->stats);
+                                     m_impl->stats, {}, std::move(into));
+    into = Image{};
     if (!frame) return std::move(frame).error();
     if (frame->readback.nonFinite > 0)
         return render::nonFiniteFrame(device, prepared.m_gpu, prepared.scene(), options, time,
                                       frame->readback);
-    Image image = std::move(frame->readback.image);
-    attachMetadata(image, frame->frame, device.info(), time);
-    return image;
+    into = std::move(frame->readback.image);
+    attachMetadata(into, frame->frame, device.info(), time);
+    return {};
 }
 
 Result<Image> Renderer::render(const Scene& scene, const RenderOptions& options, double time) {

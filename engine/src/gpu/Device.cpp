@@ -132,7 +132,9 @@ Result<std::uint32_t> Device::submit(const DrawList& list,
     return m_impl->ring->submit(list, scene);
 }
 
-Result<FrameReadback> Device::collect(std::uint32_t slot) { return m_impl->ring->collect(slot); }
+Result<FrameReadback> Device::collect(std::uint32_t slot, lantern::Image storage) {
+    return m_impl->ring->collect(slot, std::move(storage));
+}
 
 Result<void> Device::drain() {
     FrameRing& ring = *m_impl->ring;

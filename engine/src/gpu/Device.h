@@ -92,8 +92,9 @@ public:
 
     /// Records and submits `list` into the next slot (which must have been collected).
     Result<std::uint32_t> submit(const DrawList& list, const std::shared_ptr<SceneBuffers>& scene);
-    /// Waits for the frame in `slot` and reads it back.
-    Result<FrameReadback> collect(std::uint32_t slot);
+    /// Waits for the frame in `slot` and reads it back, into `storage`'s vectors when given (their
+    /// memory is reused: a host rendering many frames of one size allocates nothing).
+    Result<FrameReadback> collect(std::uint32_t slot, lantern::Image storage = {});
     /// Collects every slot still in flight (their pictures are dropped).
     Result<void> drain();
     bool busy(std::uint32_t slot) const;

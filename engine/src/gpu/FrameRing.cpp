@@ -282,7 +282,7 @@ Result<std::uint32_t> FrameRing::submit(const DrawList& list,
     return index;
 }
 
-Result<FrameReadback> FrameRing::collect(std::uint32_t index) {
+Result<FrameReadback> FrameRing::collect(std::uint32_t index, lantern::Image storage) {
     Slot& slot = m_slots[index];
     if (!slot.busy)
         return makeError(ErrorCode::Usage, "frame slot " + std::to_string(index) + " holds no frame");
@@ -293,7 +293,7 @@ Result<FrameReadback> FrameRing::collect(std::uint32_t index) {
     slot.scene.reset();
     if (wait != VK_SUCCESS) return vkError(wait, "vkWaitForFences");
     if (injected != VK_SUCCESS) return vkError(injected, "vkWaitForFences");
-    return readBack(m_ctx, slot);
+    return readBack(m_ctx, slot, std::move(storage));
 }
 
 } // namespace lantern::gpu

@@ -45,7 +45,7 @@ public:
 
     Result<std::uint32_t> submit(const DrawList& list, const std::shared_ptr<SceneBuffers>& scene,
                                  const SubmitHooks& hooks = {});
-    Result<FrameReadback> collect(std::uint32_t slot);
+    Result<FrameReadback> collect(std::uint32_t slot, lantern::Image storage = {});
     bool busy(std::uint32_t slot) const { return m_slots[slot].busy; }
     std::uint32_t nextSlot() const { return m_next; }
     std::uint32_t slotCount() const { return std::uint32_t(m_slots.size()); }
@@ -108,7 +108,7 @@ void recordFrame(VkPipelineLayout layout, const OverlayPipelines* overlays,
                  const std::vector<VkPipeline>& aovPipelines, const SubmitHooks& hooks);
 
 /// Converts a finished slot's readback buffers into a FrameReadback (every NaN or Inf counted
-/// and replaced, so none leaves the renderer).
-Result<FrameReadback> readBack(Context& ctx, const FrameRing::Slot& slot);
+/// and replaced, so none leaves the renderer), reusing `storage`'s memory for the planes.
+Result<FrameReadback> readBack(Context& ctx, const FrameRing::Slot& slot, lantern::Image storage);
 
 } // namespace lantern::gpu

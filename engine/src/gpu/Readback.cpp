@@ -135,8 +135,19 @@ void readAovs(const HostPlane& nd, const HostPlane* ids, const TargetDesc& desc,
 
 } // namespace
 
-Result<FrameReadback> readBack(Context& ctx, const FrameRing::Slot& slot) {
+Result<FrameReadback> readBack(Context& ctx, const FrameRing::Slot& slot, lantern::Image storage) {
     FrameReadback r;
+    if (slot.readback) {
+        // The caller's vectors keep their capacity (Renderer::render into an Image): no
+        // allocation, and for large pictures no fresh pages to fault in.
+        r.image = std::move(storage);
+        r.image.rgba.clear();
+        r.image.depth.clear();
+        r.image.normal.clear();
+        r.image.metadata.clear();
+        r.image.camera.reset();
+        r.image.framesPerSecond = 0.0;
+    }
     r.draws = slot.draws;
     r.flatTriangles = slot.flat.triangles;
     if (slot.queries) {

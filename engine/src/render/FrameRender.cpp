@@ -59,7 +59,7 @@ Result<PlannedFrame> planFrame(const Scene& scene, const RenderOptions& options,
 
 Result<RenderedFrame> renderFrame(gpu::Device& device, const std::shared_ptr<gpu::SceneBuffers>& scene,
                                   const Scene& sceneData, const RenderOptions& options, double time,
-                                  FrameStats& stats, const FrameEdits& edits) {
+                                  FrameStats& stats, const FrameEdits& edits, Image storage) {
     const auto t0 = Clock::now();
     auto f = frame::buildFrame(sceneData, options, time);
     if (!f) return std::move(f).error();
@@ -77,7 +77,7 @@ Result<RenderedFrame> renderFrame(gpu::Device& device, const std::shared_ptr<gpu
     stats = FrameStats{};
     stats.cpuMs = msSince(t0);
     const auto t1 = Clock::now();
-    auto readback = device.collect(*slot);
+    auto readback = device.collect(*slot, std::move(storage));
     if (!readback) return std::move(readback).error();
     stats.waitMs = msSince(t1);
     stats.gpuMs = readback->gpuMs;

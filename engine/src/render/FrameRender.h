@@ -40,11 +40,12 @@ struct FrameEdits {
     std::function<void(gpu::DrawList&)> list;
 };
 
-/// Renders synchronously: waits for any slot still in flight, submits, collects. `stats`
-/// receives the frame's measurements.
+/// Renders synchronously: waits for any slot still in flight, submits, collects (into
+/// `storage`'s memory when given). `stats` receives the frame's measurements.
 Result<RenderedFrame> renderFrame(gpu::Device& device, const std::shared_ptr<gpu::SceneBuffers>& scene,
                                   const Scene& sceneData, const RenderOptions& options, double time,
-                                  FrameStats& stats, const FrameEdits& edits = {});
+                                  FrameStats& stats, const FrameEdits& edits = {},
+                                  Image storage = {});
 
 /// The refusal of a frame whose readback held NaN or Inf (never written to a file): exit 3,
 /// with the count, the first such pixel and the object drawn there (found by probing it);
