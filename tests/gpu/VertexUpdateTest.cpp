@@ -69,6 +69,31 @@ TEST_F(VertexUpdate, MovedVerticesAreDrawnWhereTheyNowAre) {
     }
 }
 
+// Flat lines are drawn from per-corner streams built from the vertices (SceneBuffers'
+// flat streams): those follow the moved vertices too.
+TEST_F(VertexUpdate, FlatLinesFollowTheirMovedVertices) {
+    test::SimpleScene simple;
+    Primitive& lines = simple.primitive;
+    lines.topology = Topology::Lines;
+    for (int i = 0; i <= 10; ++i) {
+        const float y = -1.0f + 0.2f * float(i);
+        lines.positions.insert(lines.positions.end(), {{-1.0f, y, 0.0f}, {1.0f, y, 0.0f}});
+        lines.normals.insert(lines.normals.end(), 2, glm::vec3(0.0f, 0.0f, 1.0f));
+    }
+    auto scene = std::make_shared<Scene>(simple.build());
+    auto prepared = renderer().prepare(scene);
+    ASSERT_TRUE(prepared) << prepared.error().describe();
+    auto before = renderer().render(*prepared, options(ShadingMode::Flat), 0.0);
+    ASSERT_TRUE(before) << before.error().describe();
+    ASSERT_GT(test::countCovered(*before), 100u);
+    for (glm::vec3& p : scene->meshes[0].primitives[0].positions)
+        p.x += 0.25f;
+    ASSERT_TRUE(renderer().updateVertices(*prepared, 0, 0));
+    auto after = renderer().render(*prepared, options(ShadingMode::Flat), 0.0);
+    ASSERT_TRUE(after) << after.error().describe();
+    EXPECT_NEAR(centroidX(*after) - centroidX(*before), 4.0, 0.05);
+}
+
 TEST_F(VertexUpdate, EditsItCannotTakeAreRefusedNamingThePrimitive) {
     auto loaded = builtinScene("teapot");
     ASSERT_TRUE(loaded);
