@@ -101,6 +101,28 @@ void defineScene(py::module_& m) {
              "spot (both); color is its diffuse and specular, linear RGB")
         .def("clear_lights", &PyScene::clearLights,
              "Removes every light (a scene without lights gets GL's default light 0)")
+        .def_property_readonly("nodes", &PyScene::nodes,
+                               "The nodes: name, mesh, translation, rotation (x, y, z, w), "
+                               "scale, matrix (4 rows, or None), children")
+        .def("set_transform", &PyScene::setNodeTransform, py::arg("node"), py::kw_only(),
+             py::arg("translation") = py::none(), py::arg("rotation") = py::none(),
+             py::arg("scale") = py::none(), py::arg("matrix") = py::none(),
+             "Moves node `node` (index or name) relative to its parent: any of translation, "
+             "rotation (a quaternion x, y, z, w) and scale, or a 4x4 matrix given as rows; "
+             "the next render uses it (no upload)")
+        .def("positions", &PyScene::positions, py::arg("mesh"), py::arg("primitive") = 0,
+             "A copy of a primitive's vertex positions: an (n, 3) float32 array")
+        .def("normals", &PyScene::normals, py::arg("mesh"), py::arg("primitive") = 0,
+             "A copy of a primitive's vertex normals, (n, 3) float32, or None")
+        .def("set_vertices", &PyScene::setVertices, py::arg("mesh"), py::arg("positions"),
+             py::kw_only(), py::arg("primitive") = 0, py::arg("normals") = py::none(),
+             "Replaces a primitive's vertex positions (and normals when given; else they are "
+             "kept): (n, 3) arrays of the same n; the next render writes that primitive's "
+             "vertices again, not the whole scene")
+        .def_property_readonly(
+            "upload_count", [](const PyScene& s) { return s.uploads; },
+            "How many times the whole scene was uploaded to a device (a light added or "
+            "removed, or another renderer, uploads it again; moved nodes and vertices do not)")
         .def("__repr__", [](const PyScene& s) {
             return "<lantern.Scene " + s.scene->sourcePath + ">";
         });

@@ -207,13 +207,21 @@ py::object PyRenderer::render(PyScene& s, const RenderArgs& a) {
         throw py::value_error(message);
     }
     // The upload is kept with the scene: a loop of renders reuses it, and only a structural
-    // edit (a light added or removed) or another renderer uploads again.
+    // edit (a light added or removed) or another renderer uploads again. Moved vertices are
+    // written again for their primitives alone.
     if (s.preparedFor != id || s.preparedGeneration != s.generation) {
         auto prepared = renderer->prepare(s.scene);
         if (!prepared) raise(prepared.error());
         s.prepared = std::move(*prepared);
         s.preparedFor = id;
         s.preparedGeneration = s.generation;
+        ++s.uploads;
+        s.movedVertices.clear();
+    }
+    for (auto it = s.movedVertices.begin(); it != s.movedVertices.end();) {
+        if (auto r = renderer->updateVertices(s.prepared, it->first, it->second); !r)
+            raise(r.error());
+        it = s.movedVertices.erase(it);
     }
     auto image = renderer->render(s.prepared, options, a.time);
     if (!image) raise(image.error());

@@ -12,7 +12,9 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace lantern::python {
@@ -28,13 +30,29 @@ struct LanternException : std::runtime_error {
 [[noreturn]] void raise(const Error& error);
 
 /// A scene and the upload of it to the renderer that last drew it. Structural edits (lights
-/// added or removed) bump `generation`, so the next render uploads it again.
+/// added or removed) bump `generation`, so the next render uploads it again; moved vertices
+/// are listed in `movedVertices`, so the next render writes only those primitives again
+/// (Renderer::updateVertices); node transforms are read afresh by every render.
 struct PyScene {
     std::shared_ptr<Scene> scene;
     std::uint64_t generation = 0;
     std::uint64_t preparedFor = 0;          ///< PyRenderer::id of the upload (0: none)
     std::uint64_t preparedGeneration = 0;
     PreparedScene prepared;
+    std::uint64_t uploads = 0;  ///< whole uploads made (Python: Scene.upload_count)
+    std::set<std::pair<int, int>> movedVertices;  ///< (mesh, primitive) edited since the upload
+
+    // PythonEdit.cpp: nodes and vertices edited between renders.
+    py::list nodes() const;
+    void setNodeTransform(const py::object& node, std::optional<std::vector<double>> translation,
+                          std::optional<std::vector<double>> rotation,
+                          std::optional<std::vector<double>> scale,
+                          std::optional<std::vector<std::vector<double>>> matrix);
+    py::array_t<float> positions(int mesh, int primitive) const;
+    py::object normals(int mesh, int primitive) const;
+    void setVertices(int mesh,
+                     const py::array_t<float, py::array::c_style | py::array::forcecast>& positions,
+                     int primitive, const py::object& normals);
 
     void addLight(const std::string& type, std::optional<std::vector<double>> position,
                   std::optional<std::vector<double>> direction, std::vector<double> color,

@@ -128,7 +128,10 @@ TEST_F(CliOutput, InfoDevicesNamesTheChosenDeviceAndWhy) {
     const auto r = runLantern({"info", "--devices"}, {"DISPLAY=", "WAYLAND_DISPLAY="});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const std::string name = renderer().device().name;
-    EXPECT_NE(r.out.find("  * " + name + "\n"), std::string::npos) << r.out;
+    // "  * [i] NAME": the chosen one, numbered as --device and LANTERN_DEVICE take it.
+    const std::size_t chosenAt = r.out.find("  * [");
+    ASSERT_NE(chosenAt, std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("] " + name + "\n", chosenAt), r.out.find(']', chosenAt)) << r.out;
     EXPECT_NE(r.out.find("chosen: " + name + ": the best-ranked usable device"), std::string::npos)
         << r.out;
     EXPECT_NE(r.out.find("Vulkan loader: " + buildInfo().vulkanLoader), std::string::npos);

@@ -59,8 +59,11 @@ Nothing is ever written half: an output file appears complete or not at all.
   gives round(T x fps) (24 fps unless `--fps`), neither gives 0. Missing folders of an output
   are created.
 - **Devices**: the best usable Vulkan device (discrete GPUs first, then integrated, virtual,
-  CPU); `--device NAME` picks one by name. `lantern info --devices` lists them, the one chosen
-  and why, and the sample counts each supports.
+  CPU); `--device NAME` picks one by name, `--device N` by its index in `lantern info
+  --devices`, which lists them, the one chosen and why, and the sample counts each supports.
+  The environment variable `LANTERN_DEVICE` (an index or a name) does the same for every
+  subcommand and the library; `--device` wins over it. A choice that matches no usable device
+  fails (exit 3) listing the devices found.
 - **Mistyped names**: `lantern rendr` answers "did you mean `render`?", and `--widht` "did you
   mean --width?" (exit 2).
 )";

@@ -316,7 +316,9 @@ Result<void> makeParentFolders(const std::vector<std::string>& paths, int frame,
 }
 
 void DeviceOptions::add(CLI::App& app) {
-    app.add_option("--device", device, "Use the first Vulkan device whose name contains NAME");
+    app.add_option("--device", device,
+                   "The Vulkan device: its index in `lantern info --devices`, or the best one "
+                   "whose name contains NAME; wins over LANTERN_DEVICE");
     app.add_flag("--validation", validation, "Enable the Khronos validation layer");
     app.add_flag("-v,--verbose", verbose, "Print the device chosen and other information");
 }

@@ -198,8 +198,9 @@ int runDevices(const InfoArgs& a) {
     if (!list) return report(list.error());
     std::cout << "devices: " << list->devices.size() << "\n";
     const DeviceListing* chosen = nullptr;
-    for (const DeviceListing& d : list->devices) {
-        std::cout << (d.chosen ? "  * " : "    ") << d.name << "\n"
+    for (std::size_t i = 0; i < list->devices.size(); ++i) {
+        const DeviceListing& d = list->devices[i];
+        std::cout << (d.chosen ? "  * " : "    ") << "[" << i << "] " << d.name << "\n"
                   << "      type " << d.type << ", Vulkan " << d.apiVersion
                   << (d.driver.empty() ? "" : ", driver " + d.driver) << "\n"
                   << "      " << (d.usable ? "usable" : "not usable: " + d.whyNot)

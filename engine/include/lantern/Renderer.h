@@ -30,8 +30,11 @@ struct ExternalDevice;  // lantern/ExternalDevice.h (includes vulkan.h)
 
 /// How the renderer is created.
 struct RendererDesc {
-    /// Use the first device whose name contains this text (case-insensitive); empty: the
-    /// first device that can render (discrete GPUs first, then integrated, virtual, CPU).
+    /// The device to render on: a whole number is its index in listDevices() (the loader's
+    /// order), other text picks the best usable device whose name contains it
+    /// (case-insensitive). Empty: the environment variable LANTERN_DEVICE (same forms) when it
+    /// is set, else the best usable device (discrete GPUs first, then integrated, virtual,
+    /// CPU). A request that matches no usable device is NoDevice, listing the devices found.
     std::string deviceName;
     /// Enable the Khronos validation layer when it is installed; its messages go to `log` at
     /// Warning or Error level and are counted (validationMessageCount()).
@@ -127,9 +130,12 @@ struct DeviceList {
     std::string choice;
 };
 
-/// Lists the Vulkan devices (on an instance of its own, created and destroyed here) with what
-/// each lacks and the one Renderer::create(desc with this deviceName) would choose. NoDevice
-/// when no Vulkan driver can be loaded; an empty list is not an error.
+/// Lists the Vulkan devices (on an instance of its own, created and destroyed here) in the
+/// loader's order (the index RendererDesc::deviceName and LANTERN_DEVICE may give) with what
+/// each lacks and the one Renderer::create(desc with this deviceName) would choose (LANTERN_DEVICE
+/// applies when `deviceName` is empty). NoDevice, naming the driver manifests the loader could
+/// read and how to install lavapipe, when no Vulkan driver can be loaded; an empty list is not
+/// an error (DeviceList::choice then says the same).
 LANTERN_API Result<DeviceList> listDevices(const std::string& deviceName = {});
 
 /// The Vulkan loader's version ("1.3.239"), or an empty string when no loader can be queried.
@@ -164,8 +170,10 @@ LANTERN_API Result<FeatureReport> explainScene(const Scene& scene, const RenderO
 /// The headless renderer. Move-only; one per thread (see docs/library.md for thread rules).
 class LANTERN_API Renderer {
 public:
-    /// Creates the Vulkan instance and device. Fails with NoDevice when no device exists (or
-    /// none matches RendererDesc::deviceName; the message lists the devices present).
+    /// Creates the Vulkan instance and device. Fails with NoDevice when no device exists (the
+    /// message names the driver manifests the loader read and how to install lavapipe), or
+    /// when none matches RendererDesc::deviceName or LANTERN_DEVICE (the message lists the
+    /// devices found with their indices).
     static Result<Renderer> create(const RendererDesc& desc = {});
 
     /// Creates a renderer on the host's own Vulkan instance, device and queue (include
@@ -179,8 +187,9 @@ public:
     Renderer& operator=(Renderer&&) noexcept;
     ~Renderer();
 
-    /// Validates `scene` and uploads it. While prepared, the Scene's geometry must not change:
-    /// meshes (their primitives' vertex data and material indices) and textures; nor may
+    /// Validates `scene` and uploads it. While prepared, the Scene's geometry must not change
+    /// (but see updateVertices): meshes (their primitives' vertex data and material indices)
+    /// and textures; nor may
     /// materials, lights, cameras or nodes be removed (they are referred to by index).
     /// Everything else is read afresh for every frame, when render() (or a WindowTarget frame)
     /// is called, so a host may edit it between such calls, on the thread that renders:
@@ -189,6 +198,15 @@ public:
     /// Scene::validate() accepts (they are not checked again); frames already submitted keep
     /// the values they were built with.
     Result<PreparedScene> prepare(std::shared_ptr<const Scene> scene);
+
+    /// Uploads again the positions and normals of primitive `primitive` of mesh `mesh` after
+    /// the host changed them in place in the prepared Scene (it keeps a non-const pointer to
+    /// the Scene it prepared), the count unchanged. Only that primitive's ranges are written
+    /// (with its skinning inputs and flat-shading streams); the renderer, its device and the
+    /// rest of the upload stay. Waits for frames in flight first; call it on the thread that
+    /// renders. InvalidInput naming the primitive when its vertex count changed or a value is
+    /// not finite; Usage for a primitive that does not exist or a scene of another renderer.
+    Result<void> updateVertices(const PreparedScene& scene, int mesh, int primitive);
 
     /// Renders a prepared scene at `timeSeconds` and reads the picture back. Options are
     /// checked first (InvalidInput on bad values; OutOfMemory for images too large, refused

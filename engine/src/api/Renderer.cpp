@@ -118,6 +118,16 @@ Result<PreparedScene> Renderer::prepare(std::shared_ptr<const Scene> scene) {
     return prepared;
 }
 
+Result<void> Renderer::updateVertices(const PreparedScene& prepared, int mesh, int primitive) {
+    if (!prepared) return makeError(ErrorCode::Usage, "updateVertices() needs a prepared scene");
+    if (mesh < 0 || primitive < 0)
+        return makeError(ErrorCode::Usage, "the scene has no such primitive",
+                         "mesh " + std::to_string(mesh) + " primitive " +
+                             std::to_string(primitive));
+    return m_impl->device->updateVertices(*prepared.m_gpu, std::uint32_t(mesh),
+                                          std::uint32_t(primitive));
+}
+
 Result<Image> Renderer::render(const PreparedScene& prepared, const RenderOptions& options,
                                double time) {
     Image image;

@@ -4,6 +4,7 @@
 #include "gpu/Context.h"
 
 #include "gpu/DeviceSelection.h"
+#include "gpu/DriverReport.h"
 
 #if defined(LANTERN_ASAN)
 #include "core/SanitizerSupport.h"
@@ -89,9 +90,10 @@ Result<std::shared_ptr<Context>> Context::create(const ContextDesc& desc) {
     std::shared_ptr<Context> ctx(new Context());
     ctx->m_log = desc.log;
     LANTERN_TRY(ctx->createInstance(desc));
-    Result<ChosenDevice> chosen =
-        choosePhysicalDevice(ctx->m_instance, desc.deviceName, desc.swapchain);
+    const DeviceRequest request = deviceRequest(desc.deviceName);
+    Result<ChosenDevice> chosen = choosePhysicalDevice(ctx->m_instance, request, desc.swapchain);
     if (!chosen) return std::move(chosen).error();
+    if (!request.text.empty()) ctx->log(LogLevel::Info, "device chosen by " + request.label);
     ctx->m_physical = chosen->device;
     ctx->m_queueFamily = chosen->queueFamily;
     const VkPhysicalDeviceFeatures core = ctx->readOptionalFeatures();
@@ -151,8 +153,9 @@ Result<void> Context::createInstance(const ContextDesc& desc) {
     const VkResult r = vkCreateInstance(&ici, nullptr, &m_instance);
     if (r == VK_ERROR_INCOMPATIBLE_DRIVER || r == VK_ERROR_INITIALIZATION_FAILED)
         return makeError(ErrorCode::NoDevice,
-                         std::string("no Vulkan driver could be loaded (") + vkResultName(r) +
-                             "); install mesa-vulkan-drivers for the lavapipe CPU device");
+                         noDeviceMessage(std::string("no Vulkan driver could be loaded "
+                                                     "(vkCreateInstance: ") +
+                                         vkResultName(r) + ")"));
     if (r != VK_SUCCESS) return vkError(r, "vkCreateInstance");
     if (debugUtils) LANTERN_TRY(createMessenger(messengerInfo));
     return {};

@@ -26,7 +26,7 @@
 namespace lantern::gpu {
 
 struct ContextDesc {
-    std::string deviceName;  ///< substring match, case-insensitive; empty: best available
+    std::string deviceName;  ///< an index or a name substring; empty: LANTERN_DEVICE, else best
     bool validation = false;
     bool synchronizationValidation = false;
     std::vector<std::string> instanceExtensions;  ///< e.g. surface extensions for a window

@@ -122,6 +122,14 @@ Result<std::shared_ptr<SceneBuffers>> Device::upload(std::shared_ptr<const Scene
 
 const Scene& Device::sceneOf(const SceneBuffers& buffers) { return buffers.scene(); }
 
+Result<void> Device::updateVertices(SceneBuffers& buffers, std::uint32_t mesh,
+                                    std::uint32_t prim) {
+    if (buffers.context() != m_impl->ctx.get())
+        return makeError(ErrorCode::Usage, "the scene was prepared by another renderer",
+                         "updateVertices");
+    return buffers.updateVertices(mesh, prim);
+}
+
 Result<void> Device::checkTarget(const TargetDesc& target, const Overlays& overlays) const {
     LANTERN_TRY(gpu::checkTarget(*m_impl->ctx, target, m_impl->ring->slotCount()));
     return OverlayPipelines::check(*m_impl->ctx, overlays, target.aovs);

@@ -29,7 +29,7 @@ class FrameRing;
 class SceneBuffers;
 
 struct DeviceDesc {
-    std::string deviceName;  ///< substring match, case-insensitive; empty: the best device
+    std::string deviceName;  ///< an index or a name substring; empty: LANTERN_DEVICE, else the best
     bool validation = false;
     bool synchronizationValidation = false;
     std::vector<std::string> instanceExtensions;  ///< e.g. the surface extensions of a window
@@ -85,6 +85,10 @@ public:
     Result<std::shared_ptr<SceneBuffers>> upload(std::shared_ptr<const Scene> scene);
     /// The scene an upload holds.
     static const Scene& sceneOf(const SceneBuffers& buffers);
+    /// Writes again the positions and normals of one primitive of an upload of this device
+    /// after the host edited them in its Scene (SceneBuffers::updateVertices); Usage for an
+    /// upload of another device.
+    Result<void> updateVertices(SceneBuffers& buffers, std::uint32_t mesh, std::uint32_t prim);
 
     /// Refuses, before anything is allocated, a target or overlay this device cannot make:
     /// InvalidInput, Unsupported or OutOfMemory naming the option.

@@ -4,12 +4,14 @@
 // Context::adopt.
 #include "gpu/DeviceSelection.h"
 
+#include "gpu/DriverReport.h"
 #include "gpu/PipelineCache.h"
 
 #include <lantern/Renderer.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <sstream>
@@ -93,6 +95,44 @@ const Candidate* bestCandidate(const std::vector<Candidate>& candidates,
             chosen = &c;
     }
     return chosen;
+}
+
+// "[0] llvmpipe (LLVM 15.0.6, 256 bits) (cpu) [1] ...": every device found, with the index a
+// request may give and why a device cannot be used.
+std::string candidateList(const std::vector<Candidate>& candidates) {
+    std::ostringstream out;
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+        const Candidate& c = candidates[i];
+        out << (i ? " " : "") << "[" << i << "] " << c.props.deviceName << " ("
+            << deviceTypeName(c.props.deviceType) << ")"
+            << (c.rejection.empty() ? "" : ": " + c.rejection);
+    }
+    return out.str();
+}
+
+// The candidate `request` picks, or NoDevice saying why none fits and listing every device.
+Result<const Candidate*> pickCandidate(const std::vector<Candidate>& candidates,
+                                       const DeviceRequest& request) {
+    const std::string found = "; the loader found " + std::to_string(candidates.size()) +
+                              (candidates.size() == 1 ? " device: " : " devices: ") +
+                              candidateList(candidates);
+    if (request.index) {
+        const std::size_t i = *request.index;
+        if (i >= candidates.size())
+            return makeError(ErrorCode::NoDevice, request.label + ": there is no device " +
+                                                      std::to_string(i) + found);
+        if (!candidates[i].rejection.empty())
+            return makeError(ErrorCode::NoDevice,
+                             request.label + ": device " + std::to_string(i) + " (" +
+                                 candidates[i].props.deviceName + ") cannot be used" + found);
+        return &candidates[i];
+    }
+    if (const Candidate* c = bestCandidate(candidates, lower(request.text))) return c;
+    return makeError(ErrorCode::NoDevice,
+                     request.text.empty()
+                         ? "no usable Vulkan device" + found
+                         : request.label + ": no usable Vulkan device's name contains \"" +
+                               request.text + "\"" + found);
 }
 
 EnabledFeatures readEnabledFeatures(const ExternalDevice& e) {
@@ -234,34 +274,41 @@ std::vector<VkExtensionProperties> deviceExtensions(VkPhysicalDevice pd) {
     return exts;
 }
 
-Result<ChosenDevice> choosePhysicalDevice(VkInstance instance, const std::string& deviceName,
+DeviceRequest deviceRequest(const std::string& deviceName) {
+    DeviceRequest r;
+    // An explicit name (RendererDesc::deviceName, --device) wins over the environment.
+    const char* fromEnv = std::getenv("LANTERN_DEVICE");
+    if (!deviceName.empty()) {
+        r.text = deviceName;
+        r.label = "device \"" + deviceName + "\"";
+    } else if (fromEnv && *fromEnv) {
+        r.text = fromEnv;
+        r.label = "LANTERN_DEVICE=" + r.text;
+    }
+    if (!r.text.empty() && r.text.size() <= 9 &&
+        std::all_of(r.text.begin(), r.text.end(), [](unsigned char c) { return std::isdigit(c); }))
+        r.index = std::size_t(std::stoul(r.text));
+    return r;
+}
+
+Result<ChosenDevice> choosePhysicalDevice(VkInstance instance, const DeviceRequest& request,
                                           bool swapchain) {
     std::uint32_t nd = 0;
     VkResult r = vkEnumeratePhysicalDevices(instance, &nd, nullptr);
     if (r != VK_SUCCESS && r != VK_INCOMPLETE) return vkError(r, "vkEnumeratePhysicalDevices");
     if (nd == 0)
         return makeError(ErrorCode::NoDevice,
-                         "no Vulkan device found; install mesa-vulkan-drivers for the lavapipe "
-                         "CPU device, or a GPU driver");
+                         noDeviceMessage("the loader found 0 physical devices"));
     std::vector<VkPhysicalDevice> devices(nd);
     vkEnumeratePhysicalDevices(instance, &nd, devices.data());
+    devices.resize(nd);
 
     std::vector<Candidate> candidates;
     for (VkPhysicalDevice pd : devices)
         candidates.push_back(examine(pd, swapchain));
-    const std::string wanted = lower(deviceName);
-    const Candidate* chosen = bestCandidate(candidates, wanted);
-    if (!chosen) {
-        std::ostringstream msg;
-        msg << (wanted.empty() ? "no usable Vulkan device"
-                               : "no usable Vulkan device matches \"" + deviceName + "\"")
-            << "; devices present:";
-        for (const Candidate& c : candidates)
-            msg << " [" << c.props.deviceName << " (" << deviceTypeName(c.props.deviceType) << ")"
-                << (c.rejection.empty() ? "" : ": " + c.rejection) << "]";
-        return makeError(ErrorCode::NoDevice, msg.str());
-    }
-    return ChosenDevice{chosen->device, chosen->queueFamily};
+    Result<const Candidate*> chosen = pickCandidate(candidates, request);
+    if (!chosen) return std::move(chosen).error();
+    return ChosenDevice{(*chosen)->device, (*chosen)->queueFamily};
 }
 
 Result<EnabledFeatures> checkExternalDevice(const ExternalDevice& e, bool swapchain) {
@@ -351,8 +398,9 @@ Result<DeviceList> listDevices(const std::string& deviceName) {
     const VkResult r = vkCreateInstance(&ici, nullptr, &instance);
     if (r != VK_SUCCESS)
         return makeError(ErrorCode::NoDevice,
-                         std::string("no Vulkan driver could be loaded (") + gpu::vkResultName(r) +
-                             "); install mesa-vulkan-drivers for the lavapipe CPU device");
+                         gpu::noDeviceMessage(std::string("no Vulkan driver could be loaded "
+                                                          "(vkCreateInstance: ") +
+                                              gpu::vkResultName(r) + ")"));
     std::uint32_t n = 0;
     vkEnumeratePhysicalDevices(instance, &n, nullptr);
     std::vector<VkPhysicalDevice> devices(n);
@@ -361,23 +409,27 @@ Result<DeviceList> listDevices(const std::string& deviceName) {
     std::vector<gpu::Candidate> candidates;
     for (VkPhysicalDevice pd : devices)
         candidates.push_back(gpu::examine(pd, false));
-    const std::string wanted = gpu::lower(deviceName);
-    const gpu::Candidate* best = gpu::bestCandidate(candidates, wanted);
+    const gpu::DeviceRequest request = gpu::deviceRequest(deviceName);
+    Result<const gpu::Candidate*> best = gpu::pickCandidate(candidates, request);
     DeviceList list;
     for (const gpu::Candidate& c : candidates) {
         list.devices.push_back(describe(c));
-        list.devices.back().chosen = &c == best;
+        list.devices.back().chosen = best && &c == *best;
     }
     vkDestroyInstance(instance, nullptr);
     const std::string ranking = "discrete GPUs first, then integrated, virtual, CPU";
-    if (best)
-        list.choice = wanted.empty() ? "the best-ranked usable device (" + ranking + ")"
-                                     : "the best-ranked usable device whose name contains \"" +
-                                           deviceName + "\" (" + ranking + ")";
+    if (!best)
+        list.choice = "none: " + (candidates.empty() ? gpu::noDeviceMessage(
+                                                           "the loader found 0 physical devices")
+                                                     : best.error().message);
+    else if (request.index)
+        list.choice = "device " + std::to_string(*request.index) + " of the list, as " +
+                      request.label + " asks";
+    else if (!request.text.empty())
+        list.choice = "the best-ranked usable device whose name contains \"" + request.text +
+                      "\" (" + request.label + "; " + ranking + ")";
     else
-        list.choice = wanted.empty() ? "none: no device has what Lantern needs"
-                                     : "none: no usable device's name contains \"" + deviceName +
-                                           "\"";
+        list.choice = "the best-ranked usable device (" + ranking + ")";
     return list;
 }
 

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <lantern/ExternalDevice.h>
 #include <lantern/Result.h>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,11 +24,23 @@ struct ChosenDevice {
     std::uint32_t queueFamily = 0; ///< the first family with graphics
 };
 
-/// The best usable device of `instance` (discrete before integrated before virtual before
-/// CPU) whose name contains `deviceName` (case-insensitive; empty: any). NoDevice, listing
-/// every device with the reason it was passed over, when none is usable. `swapchain`:
-/// VK_KHR_swapchain is needed.
-Result<ChosenDevice> choosePhysicalDevice(VkInstance instance, const std::string& deviceName,
+/// Which device the host asked for: RendererDesc::deviceName (the CLI's --device) when it is
+/// set, else the environment variable LANTERN_DEVICE, else none. A whole number is an index
+/// into the device list (the loader's order, as listDevices() lists them); any other text a
+/// substring of the device's name, case-insensitive.
+struct DeviceRequest {
+    std::string text;                  ///< empty: the best-ranked usable device
+    std::string label;                 ///< for messages: `device "x"` or `LANTERN_DEVICE=x`
+    std::optional<std::size_t> index;  ///< set when `text` is a whole number
+};
+DeviceRequest deviceRequest(const std::string& deviceName);
+
+/// The device `request` picks among `instance`'s devices: the one at its index, or the best
+/// usable one (discrete before integrated before virtual before CPU) whose name contains its
+/// text. NoDevice, listing every device found with its index and the reason any was passed
+/// over, when none fits; NoDevice with the drivers the loader saw and how to install lavapipe
+/// when there is no device at all. `swapchain`: VK_KHR_swapchain is needed.
+Result<ChosenDevice> choosePhysicalDevice(VkInstance instance, const DeviceRequest& request,
                                           bool swapchain);
 
 /// The features a host enabled on its device, gathered from what it gave vkCreateDevice.

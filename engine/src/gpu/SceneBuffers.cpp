@@ -218,10 +218,19 @@ Result<void> SceneBuffers::ensureFlatStreams(bool triangles) {
     if (!buffer) return std::move(buffer).error();
     if (m_flatGeometry.get()) m_retiredFlat.push_back(std::move(m_flatGeometry));
     m_flatGeometry = std::move(*buffer);
+    LANTERN_TRY(fillFlatStreams());
+    m_flatReady = true;
+    return {};
+}
+
+// Writes the per-corner streams of every primitive that has them from the Scene's vertices
+// into the flat-geometry buffer laid out by ensureFlatStreams (again after updateVertices).
+Result<void> SceneBuffers::fillFlatStreams() {
+    const Scene& s = *m_scene;
     auto fill = beginFill(*m_ctx, m_flatGeometry);
     if (!fill) return std::move(fill).error();
     char* dst = fill->dst;
-    k = 0;
+    std::size_t k = 0;
     for (const Mesh& mesh : s.meshes)
         for (const Primitive& p : mesh.primitives) {
             const PrimitiveBuffers& gp = m_primitives[k++];
@@ -248,9 +257,7 @@ Result<void> SceneBuffers::ensureFlatStreams(bool triangles) {
                 }
             }
         }
-    LANTERN_TRY(endFill(*m_ctx, m_flatGeometry, *fill));
-    m_flatReady = true;
-    return {};
+    return endFill(*m_ctx, m_flatGeometry, *fill);
 }
 
 // Primitives with joints or morph targets: base positions and normals, joints and weights

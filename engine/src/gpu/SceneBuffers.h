@@ -67,6 +67,12 @@ public:
     /// Builds the per-corner flat-shading streams of the points and lines, and of the triangles
     /// when `triangles`, if they do not exist yet (thread-safe).
     Result<void> ensureFlatStreams(bool triangles);
+    /// Writes again the positions and normals of primitive `prim` of mesh `mesh` (and what is
+    /// derived from them: the deformation inputs, the per-corner flat streams) from the Scene,
+    /// which the host has edited in place. Waits for the device to be idle first: no frame
+    /// reads the buffers while they change. InvalidInput naming the primitive when its vertex
+    /// count changed or a value is not finite (nothing is written then).
+    Result<void> updateVertices(std::uint32_t mesh, std::uint32_t prim);
     /// Bytes of the per-corner flat streams built so far (0: none).
     std::size_t flatGeometryBytes() const { return std::size_t(m_flatGeometry.size); }
     std::size_t geometryBytes() const { return std::size_t(m_geometry.size); }
@@ -80,6 +86,12 @@ private:
     Result<void> createSamplers();
     Result<void> createTextureSets(VkDescriptorSetLayout layout);
     Result<void> uploadDeformInputs();
+    Result<void> fillFlatStreams();
+    /// Writes `bytes` at `offset` of `target` (mapped, or through a staging copy), for frames
+    /// that read it at `dstStage`.
+    Result<void> writeRange(Buffer& target, VkDeviceSize offset, const void* data,
+                            VkDeviceSize bytes, VkPipelineStageFlags2 dstStage,
+                            VkAccessFlags2 dstAccess);
 
     std::shared_ptr<Context> m_ctx;
     std::shared_ptr<const Scene> m_scene;
