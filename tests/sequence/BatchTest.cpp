@@ -204,6 +204,12 @@ TEST(Batch, CollidingOrUnknownTemplatesAreRefusedBeforeRendering) {
         EXPECT_NE(r.err.find(c.says), std::string::npos) << r.err;
         EXPECT_FALSE(fs::exists(out)) << c.says << ": something was written";
     }
+    // {index} (the scene's position) tells files of the same name apart.
+    const auto r = runLantern({"render", a.string(), b.string(), "--dry-run", "-o",
+                               (out / "{index}_{scene}.png").string()});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("would write " + (out / "0_same.png").string()), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("would write " + (out / "1_same.png").string()), std::string::npos) << r.out;
 }
 
 TEST(Batch, OneDeviceRendersTheWholeBatch) {

@@ -1,6 +1,6 @@
 // Batch.h: `lantern render` over many files times many views (docs/sequences.md, "Batches"):
 // the scenes named by paths, globs and list files, the views of --views, the output templates
-// ({scene}, {view}, {frame}), the jobs and their shard, and the run that renders them on one
+// ({scene}, {index}, {view}, {frame}), the jobs and their shard, and the run that renders them on one
 // device, skipping finished outputs and going on past a file that fails.
 #pragma once
 
@@ -99,10 +99,17 @@ Result<std::vector<BatchView>> parseViews(const std::string& text, std::uint64_t
 /// {"name", "camera_to_world": 16 numbers, row-major}, optional "yfov_deg", "near", "far".
 Result<std::vector<BatchView>> readPoseFile(const std::string& path, std::uint64_t maxBytes);
 
-/// Replaces {scene}, {view} and {frame} (and '#' runs, by the frame) in `pattern`; a brace
-/// that starts no known placeholder is a usage error.
-Result<std::string> expandOutputTemplate(const std::string& pattern, const std::string& scene,
-                                         const std::string& view, int frame);
+/// What the placeholders of an output template stand for in one job.
+struct TemplateValues {
+    std::string scene;  ///< {scene}: the scene's stem
+    std::string index;  ///< {index}: the scene's position in the batch, zero-padded
+    std::string view;   ///< {view}: the view's name
+    int frame = 0;      ///< {frame}, and '#' runs zero-padded to their length
+};
+
+/// Replaces {scene}, {index}, {view} and {frame} (and '#' runs, by the frame) in `pattern`; a
+/// brace that starts no known placeholder is a usage error.
+Result<std::string> expandOutputTemplate(const std::string& pattern, const TemplateValues& v);
 
 /// Every job of the batch in its order (scene, then view, then frame), or a usage error when
 /// two of them would write the same file.

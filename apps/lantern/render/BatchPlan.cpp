@@ -165,6 +165,13 @@ Result<std::vector<BatchScene>> expandList(const std::string& list,
     return scenes;
 }
 
+// `i` zero-padded to the width of the largest index below `count` (names sort in order).
+std::string padded(std::size_t i, std::size_t count) {
+    const std::string s = std::to_string(i);
+    const std::size_t width = std::to_string(count > 0 ? count - 1 : 0).size();
+    return std::string(width - std::min(width, s.size()), '0') + s;
+}
+
 } // namespace
 
 void BatchCliArgs::add(CLI::App& app) {
@@ -236,9 +243,9 @@ Result<std::vector<BatchScene>> expandScenes(const std::vector<std::string>& arg
     return scenes;
 }
 
-Result<std::string> expandOutputTemplate(const std::string& pattern, const std::string& scene,
-                                         const std::string& view, int frame) {
-    static const std::map<std::string, int> kNames = {{"{scene}", 0}, {"{view}", 1}, {"{frame}", 2}};
+Result<std::string> expandOutputTemplate(const std::string& pattern, const TemplateValues& v) {
+    const std::map<std::string, const std::string*> names = {
+        {"{scene}", &v.scene}, {"{index}", &v.index}, {"{view}", &v.view}};
     std::string out;
     for (std::size_t i = 0; i < pattern.size();) {
         if (pattern[i] != '{') {
@@ -248,16 +255,16 @@ Result<std::string> expandOutputTemplate(const std::string& pattern, const std::
         const std::size_t close = pattern.find('}', i);
         const std::string name =
             close == std::string::npos ? pattern.substr(i) : pattern.substr(i, close - i + 1);
-        const auto known = kNames.find(name);
-        if (known == kNames.end())
+        const auto known = names.find(name);
+        if (known == names.end() && name != "{frame}")
             return makeError(ErrorCode::Usage,
                              "unknown placeholder " + name + " in \"" + pattern +
-                                 "\" (known: {scene}, {view}, {frame})",
+                                 "\" (known: {scene}, {index}, {view}, {frame})",
                              "--output");
-        out += known->second == 0 ? scene : known->second == 1 ? view : std::to_string(frame);
+        out += known != names.end() ? *known->second : std::to_string(v.frame);
         i = close + 1;
     }
-    return expandFramePattern(out, frame);
+    return expandFramePattern(out, v.frame);
 }
 
 Result<std::vector<BatchJob>> planJobs(const std::vector<BatchScene>& scenes,
@@ -273,8 +280,9 @@ Result<std::vector<BatchJob>> planJobs(const std::vector<BatchScene>& scenes,
             for (std::size_t f = 0; f < frames.size(); ++f) {
                 BatchJob job{s, v, f, {}};
                 for (const std::string& pattern : outputs) {
-                    auto out = expandOutputTemplate(pattern, scenes[s].stem, views[v].name,
-                                                    frames[f].number);
+                    auto out = expandOutputTemplate(
+                        pattern, {scenes[s].stem, padded(s, scenes.size()), views[v].name,
+                                  frames[f].number});
                     if (!out) return std::move(out).error();
                     const std::string key = fs::path(*out).lexically_normal().string();
                     if (auto [it, fresh] = writer.emplace(key, jobs.size()); !fresh) {
@@ -284,7 +292,7 @@ Result<std::vector<BatchJob>> planJobs(const std::vector<BatchScene>& scenes,
                             "the batch would write " + *out + " twice (" +
                                 scenes[other.scene].path + " view " + views[other.view].name +
                                 " and " + scenes[s].path + " view " + views[v].name +
-                                "); put {scene}, {view} and {frame} in the output name",
+                                "); put {scene} (or {index}), {view} and {frame} in the output name",
                             "--output");
                     }
                     job.outputs.push_back(*out);
