@@ -310,6 +310,11 @@ TEST(Batch, ADryRunListsTheJobsAndWritesNothing) {
     for (const char* name : {"spheres_orbit1.png", "teapot_orbit0.png", "teapot_orbit3.png"})
         EXPECT_NE(r.out.find(name), std::string::npos) << name << r.out;
     EXPECT_FALSE(fs::exists(dir / "out"));
+    // '#' runs of the template are the frame; a '#' in a file name stays.
+    const auto h = runLantern({"render", (dir / "a#1.gltf").string(), "--frames", "2-3",
+                               "--dry-run", "-o", (dir / "out" / "{scene}_##.png").string()});
+    ASSERT_EQ(h.exitCode, 0) << h.err;
+    EXPECT_NE(h.out.find("would write " + (dir / "out" / "a#1_03.png").string()), std::string::npos) << h.out;
 }
 
 }  // namespace

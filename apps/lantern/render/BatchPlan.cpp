@@ -244,27 +244,32 @@ Result<std::vector<BatchScene>> expandScenes(const std::vector<std::string>& arg
 }
 
 Result<std::string> expandOutputTemplate(const std::string& pattern, const TemplateValues& v) {
-    const std::map<std::string, const std::string*> names = {
-        {"{scene}", &v.scene}, {"{index}", &v.index}, {"{view}", &v.view}};
-    std::string out;
+    const std::map<std::string, std::string> names = {{"{scene}", v.scene},
+                                                      {"{index}", v.index},
+                                                      {"{view}", v.view},
+                                                      {"{frame}", std::to_string(v.frame)}};
+    // '#' runs are expanded in the template's own text only: a '#' in a file or view name
+    // stays as it is.
+    std::string out, literal;
     for (std::size_t i = 0; i < pattern.size();) {
         if (pattern[i] != '{') {
-            out += pattern[i++];
+            literal += pattern[i++];
             continue;
         }
         const std::size_t close = pattern.find('}', i);
         const std::string name =
             close == std::string::npos ? pattern.substr(i) : pattern.substr(i, close - i + 1);
         const auto known = names.find(name);
-        if (known == names.end() && name != "{frame}")
+        if (known == names.end())
             return makeError(ErrorCode::Usage,
                              "unknown placeholder " + name + " in \"" + pattern +
                                  "\" (known: {scene}, {index}, {view}, {frame})",
                              "--output");
-        out += known != names.end() ? *known->second : std::to_string(v.frame);
+        out += expandFramePattern(literal, v.frame) + known->second;
+        literal.clear();
         i = close + 1;
     }
-    return expandFramePattern(out, v.frame);
+    return out + expandFramePattern(literal, v.frame);
 }
 
 Result<std::vector<BatchJob>> planJobs(const std::vector<BatchScene>& scenes,

@@ -67,7 +67,12 @@ Result<void> renderJob(const BatchRequest& r, Renderer& renderer, const Prepared
     auto image = renderer.render(prepared, options, frame.time);
     if (!image) return std::move(image).error();
     for (const std::string& out : job.outputs) {
-        LANTERN_TRY(makeParentFolders({out}, frame.number, "--output"));
+        const std::filesystem::path parent = std::filesystem::path(out).parent_path();
+        std::error_code ec;
+        if (!parent.empty() && !std::filesystem::create_directories(parent, ec) && ec)
+            return makeError(ErrorCode::IoError,
+                             "cannot create the folder " + parent.string() + ": " + ec.message(),
+                             "--output", out);
         std::uint64_t clamped = 0;
         ExrOptions exr = r.exr;
         exr.clampedCount = &clamped;
