@@ -424,6 +424,8 @@ int runBatchArgs(const RenderArgs& a, const RenderOptions& options, const ExrOpt
 }
 
 int run(const RenderArgs& a) {
+    if (a.scenes.empty() && a.batch.lists.empty())
+        return report(makeError(ErrorCode::Usage, "give a scene (or --list FILE)", "scene"));
     auto options = renderOptions(a);
     if (!options) return report(options.error());
     ExrOptions exr;
@@ -521,8 +523,7 @@ Runner addRenderCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand("render", "Render a scene headless to EXR/PNG");
     cmd->add_option("scene", args->scenes,
                     "glTF/GLB file, or builtin:NAME; several, a quoted glob or @LIST render a "
-                    "batch (docs/sequences.md)")
-        ->required();
+                    "batch (docs/sequences.md); required unless --list is given");
     cmd->add_option("-o,--output", args->outputs,
                     "Output file(s): .exr or .png, repeat to write several; '#' runs are the "
                     "frame number; missing folders are created (default out/render.exr, "
