@@ -38,14 +38,14 @@ t0=$(now)
     { cat "$out/batch.err" >&2; exit 1; }
 t1=$(now)
 echo -n "lantern, one batch:        "; rate $((count * 4)) "$t0" "$t1"
-tail -1 "$out/batch.err" | grep -v '^lantern: batch: failed' || true
+grep '^lantern: batch: [0-9]' "$out/batch.err"
 
 head -n "$per_image" "$out/list.txt" >"$out/per-image.txt"
 t0=$(now)
 i=0
 while read -r s; do
     for v in front right back left; do
-        "$lantern" render "$s" --view "$v" "${size[@]}" -o "$out/single/${i}_$v.png" >/dev/null
+        "$lantern" render "$s" --view "$v" "${size[@]}" -o "$out/single/${i}_$v.png" >/dev/null 2>&1
     done
     i=$((i + 1))
 done <"$out/per-image.txt"

@@ -4,6 +4,8 @@
 // device, skipping finished outputs and going on past a file that fails.
 #pragma once
 
+#include "common/CliSupport.h"
+
 #include <CLI/CLI.hpp>
 #include <lantern/Lantern.h>
 #include <lantern/Sequence.h>
@@ -69,6 +71,11 @@ struct BatchCliArgs {
     bool overwrite = false;
     void add(CLI::App& app);
 };
+
+/// Refuses (Usage) what a batch cannot do: `single` (an option that concerns one picture, such
+/// as --compare; null when none is given), and with --views any option that chooses a camera.
+Result<void> checkBatchOptions(const BatchCliArgs& batch, const CameraOptions& camera,
+                               const char* single);
 
 /// The frames of a batch: the range or list (every frame; --shard splits jobs, not frames), or
 /// the one frame of --frame N (time N / fps) or --time T (frame round(T x fps)).

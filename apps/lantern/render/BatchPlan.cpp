@@ -186,6 +186,25 @@ void BatchCliArgs::add(CLI::App& app) {
                  "In a batch, render jobs whose outputs exist already (default: skip them)");
 }
 
+Result<void> checkBatchOptions(const BatchCliArgs& batch, const CameraOptions& c,
+                               const char* single) {
+    if (single)
+        return makeError(ErrorCode::Usage,
+                         "concerns one picture: it cannot be combined with a batch (several "
+                         "scenes, a glob, a list, --views or an output template)",
+                         single);
+    const bool chosen = !c.cameras.empty() || c.defaultCamera || !c.lookAt.empty() ||
+                        !c.perspective.empty() || !c.ortho.empty() || !c.frustum.empty() ||
+                        !c.viewports.empty() || !c.layout.empty() || !c.view.empty();
+    if (!batch.views.empty() && chosen)
+        return makeError(ErrorCode::Usage,
+                         "--views chooses the cameras: --camera, --default-camera, --look-at, "
+                         "--view, the projections, --viewport and --layout cannot be combined "
+                         "with it",
+                         "--views");
+    return {};
+}
+
 Result<std::vector<BatchFrame>> batchFrames(const std::string& range, const std::string& list,
                                             double fps, std::optional<int> frame, double time) {
     std::vector<int> numbers;

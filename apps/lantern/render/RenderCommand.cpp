@@ -366,40 +366,40 @@ Result<SingleFrame> singleFrame(const RenderArgs& a) {
     return SingleFrame{a.time, int(number)};
 }
 
-// A batch (render/Batch.h): many scenes times many views on one device. Options that concern
-// one picture are refused; with --views, the views choose the camera.
-int runBatchArgs(const RenderArgs& a, const RenderOptions& options, const ExrOptions& exr) {
+// The EXR options (--half, --compression, --zip-level).
+Result<ExrOptions> exrOptions(const RenderArgs& a) {
+    ExrOptions exr;
+    exr.half = a.half;
+    const auto compression = parseExrCompression(a.compression);
+    if (!compression)
+        return makeError(ErrorCode::InvalidInput, "unknown compression \"" + a.compression + "\"",
+                         "--compression");
+    exr.compression = *compression;
+    exr.zipLevel = a.zipLevel;
+    return exr;
+}
+
+// A batch (render/Batch.h): many scenes times many views on one device.
+int runBatchArgs(const RenderArgs& a) {
     const char* single = !a.compareRef.empty() ? "--compare"
                          : !a.probe.empty()    ? "--probe"
                          : a.explain           ? "--explain"
                                                : nullptr;
-    if (single)
+    if (auto c = checkBatchOptions(a.batch, a.camera, single); !c) return report(c.error());
+    auto options = renderOptions(a);
+    if (!options) return report(options.error());
+    auto exr = exrOptions(a);
+    if (!exr) return report(exr.error());
+    if (int(!a.frames.empty()) + int(!a.frameList.empty()) + int(a.frameGiven) + int(a.timeGiven) > 1)
         return report(makeError(ErrorCode::Usage,
-                                "concerns one picture: it cannot be combined with a batch "
-                                "(several scenes, a glob, a list, --views or an output template)",
-                                single));
-    const CameraOptions& c = a.camera;
-    if (!a.batch.views.empty() &&
-        (!c.cameras.empty() || c.defaultCamera || !c.lookAt.empty() || !c.perspective.empty() ||
-         !c.ortho.empty() || !c.frustum.empty() || !c.viewports.empty() || !c.layout.empty() ||
-         !c.view.empty()))
-        return report(makeError(ErrorCode::Usage,
-                                "--views chooses the cameras: --camera, --default-camera, "
-                                "--look-at, --view, the projections, --viewport and --layout "
-                                "cannot be combined with it",
-                                "--views"));
-    const bool sequence = !a.frames.empty() || !a.frameList.empty();
-    if (int(sequence) + int(a.frameGiven) + int(a.timeGiven) > 1)
-        return report(makeError(ErrorCode::Usage,
-                                "give one of --frames, --frame-list, --frame and --time",
-                                "--frames"));
+                                "give one of --frames, --frame-list, --frame and --time", "--frames"));
     if (!(a.time >= 0.0 && a.time <= 1e9))
         return report(makeError(ErrorCode::InvalidInput,
                                 "must be a number of seconds from 0 to 1e9", "--time"));
     BatchRequest r{a.scenes, a.batch.lists, a.batch.views, a.outputs};
     if (r.outputs.empty())
         r.outputs.push_back(std::string("out/{scene}") + (a.batch.views.empty() ? "" : "_{view}") +
-                            (sequence ? "_####" : "") + ".exr");
+                            (a.frames.empty() && a.frameList.empty() ? "" : "_####") + ".exr");
     if (auto p = checkImagePaths(r.outputs, "--output"); !p) return report(p.error());
     auto frames = batchFrames(a.frames, a.frameList, a.fps,
                               a.frameGiven ? std::optional<int>(a.frame) : std::nullopt, a.time);
@@ -412,8 +412,8 @@ int runBatchArgs(const RenderArgs& a, const RenderOptions& options, const ExrOpt
     }
     r.overwrite = a.batch.overwrite;
     r.dryRun = a.dryRun;
-    r.options = options;
-    r.exr = exr;
+    r.options = *options;
+    r.exr = *exr;
     r.load.maxBytes = a.maxSize;
     r.load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
     r.load.log = stderrSink(a.device.verbose);
@@ -424,24 +424,15 @@ int runBatchArgs(const RenderArgs& a, const RenderOptions& options, const ExrOpt
 }
 
 int run(const RenderArgs& a) {
-    if (a.scenes.empty() && a.batch.lists.empty())
-        return report(makeError(ErrorCode::Usage, "give a scene (or --list FILE)", "scene"));
     auto options = renderOptions(a);
     if (!options) return report(options.error());
-    ExrOptions exr;
-    exr.half = a.half;
-    const auto compression = parseExrCompression(a.compression);
-    if (!compression)
-        return report(makeError(ErrorCode::InvalidInput,
-                                "unknown compression \"" + a.compression + "\"", "--compression"));
-    exr.compression = *compression;
-    exr.zipLevel = a.zipLevel;
+    auto exrChecked = exrOptions(a);
+    if (!exrChecked) return report(exrChecked.error());
+    const ExrOptions exr = *exrChecked;
     const bool sequence = !a.frames.empty() || !a.frameList.empty();
     if (!a.frames.empty() && !a.frameList.empty())
         return report(makeError(ErrorCode::Usage, "--frames and --frame-list cannot be combined",
                                 "--frame-list"));
-    if (wantsBatch(a.scenes, a.batch.lists, a.batch.views, a.outputs))
-        return runBatchArgs(a, *options, exr);
     std::vector<std::string> outputs = a.outputs;
     if (outputs.empty()) outputs.push_back(sequence ? "out/frame_####.exr" : "out/render.exr");
     if (sequence && (a.timeGiven || a.frameGiven))
@@ -585,7 +576,11 @@ Runner addRenderCommand(CLI::App& app) {
         if (!cmd->parsed()) return -1;
         args->timeGiven = cmd->count("--time") > 0;
         args->frameGiven = cmd->count("--frame") > 0;
-        return run(*args);
+        if (args->scenes.empty() && args->batch.lists.empty())
+            return report(makeError(ErrorCode::Usage, "give a scene (or --list FILE)", "scene"));
+        const RenderArgs& a = *args;
+        return wantsBatch(a.scenes, a.batch.lists, a.batch.views, a.outputs) ? runBatchArgs(a)
+                                                                             : run(a);
     };
 }
 
