@@ -153,6 +153,7 @@ TEST(FarmSubmit, RefusesBadInputAndWritesNothing) {
         {{"-o", out, "--bogus"}, true, 2, "an option neither farm nor render knows"},
         {{"-o", out, "--shard", "0/2"}, true, 2, "the shard is the scheduler's to set"},
         {{"-o", out, "--frame-list", "1"}, true, 2, "so is the frame list"},
+        {{"-o", out, "--views", "orbit:4"}, true, 2, "a batch is a plain job array, not a farm sequence"},
         {{}, true, 2, "no -o"},
         {{"-o", (dir / "f.exr").string()}, true, 1, "no '#' for the frame number"},
         {{"-o", (dir / "f_#.jpg").string()}, true, 1, "not .exr or .png"},

@@ -48,6 +48,10 @@ Result<RenderPart> splitRenderArguments(const std::vector<std::string>& extras) 
         const std::string name = arg.substr(0, arg.find('='));
         if (name == "--shard" || name == "--frame-list")
             return usage("farm submit sets " + name + " for each task itself", name);
+        if (name == "--views" || name == "--list" || name == "--overwrite")
+            return usage("farm submit renders sequences; run a batch as a plain job array "
+                         "with --shard (docs/farm.md)",
+                         name);
         const CLI::Option* opt = render->get_option_no_throw(name);
         if (!opt)
             return usage("unknown option " + name +

@@ -2,6 +2,7 @@
 #include "common/CliSupport.h"
 #include "common/Commands.h"
 #include "common/CompareCli.h"
+#include "render/Batch.h"
 
 #include <algorithm>
 #include <atomic>
@@ -95,7 +96,8 @@ struct SingleFrame {
 };
 
 struct RenderArgs {
-    std::string scene;
+    std::vector<std::string> scenes;  // one, or a batch's paths, globs and @lists
+    BatchCliArgs batch;               // --list, --views, --overwrite (render/Batch.h)
     std::vector<std::string> outputs;
     int width = 1280, height = 720;
     int sceneIndex = -1;
@@ -282,7 +284,7 @@ int reportDryRun(const RenderArgs& a, const Scene& scene, const std::optional<Se
         frames = sequenceFrames(*seq);
     else
         frames.push_back(frame.number);
-    std::cout << "dry run: " << a.scene << " (" << scene.nodes.size() << " nodes, "
+    std::cout << "dry run: " << a.scenes.front() << " (" << scene.nodes.size() << " nodes, "
               << scene.meshes.size() << " meshes), " << frames.size() << " frame"
               << (frames.size() == 1 ? "" : "s") << " of " << a.width << "x" << a.height << "\n";
     const std::size_t shown = std::min<std::size_t>(frames.size(), 3);
@@ -364,17 +366,69 @@ Result<SingleFrame> singleFrame(const RenderArgs& a) {
     return SingleFrame{a.time, int(number)};
 }
 
-int run(const RenderArgs& a) {
-    auto options = renderOptions(a);
-    if (!options) return report(options.error());
+// The EXR options (--half, --compression, --zip-level).
+Result<ExrOptions> exrOptions(const RenderArgs& a) {
     ExrOptions exr;
     exr.half = a.half;
     const auto compression = parseExrCompression(a.compression);
     if (!compression)
-        return report(makeError(ErrorCode::InvalidInput,
-                                "unknown compression \"" + a.compression + "\"", "--compression"));
+        return makeError(ErrorCode::InvalidInput, "unknown compression \"" + a.compression + "\"",
+                         "--compression");
     exr.compression = *compression;
     exr.zipLevel = a.zipLevel;
+    return exr;
+}
+
+// A batch (render/Batch.h): many scenes times many views on one device.
+int runBatchArgs(const RenderArgs& a) {
+    const char* single = !a.compareRef.empty() ? "--compare"
+                         : !a.probe.empty()    ? "--probe"
+                         : a.explain           ? "--explain"
+                                               : nullptr;
+    if (auto c = checkBatchOptions(a.batch, a.camera, single); !c) return report(c.error());
+    auto options = renderOptions(a);
+    if (!options) return report(options.error());
+    auto exr = exrOptions(a);
+    if (!exr) return report(exr.error());
+    if (int(!a.frames.empty()) + int(!a.frameList.empty()) + int(a.frameGiven) + int(a.timeGiven) > 1)
+        return report(makeError(ErrorCode::Usage,
+                                "give one of --frames, --frame-list, --frame and --time", "--frames"));
+    if (!(a.time >= 0.0 && a.time <= 1e9))
+        return report(makeError(ErrorCode::InvalidInput,
+                                "must be a number of seconds from 0 to 1e9", "--time"));
+    BatchRequest r{a.scenes, a.batch.lists, a.batch.views, a.outputs};
+    if (r.outputs.empty())
+        r.outputs.push_back(std::string("out/{scene}") + (a.batch.views.empty() ? "" : "_{view}") +
+                            (a.frames.empty() && a.frameList.empty() ? "" : "_####") + ".exr");
+    if (auto p = checkImagePaths(r.outputs, "--output"); !p) return report(p.error());
+    auto frames = batchFrames(a.frames, a.frameList, a.fps,
+                              a.frameGiven ? std::optional<int>(a.frame) : std::nullopt, a.time);
+    if (!frames) return report(frames.error());
+    r.frames = std::move(*frames);
+    if (!a.shard.empty()) {
+        auto shard = parseShard(a.shard);
+        if (!shard) return report(shard.error());
+        r.shard = *shard;
+    }
+    r.overwrite = a.batch.overwrite;
+    r.dryRun = a.dryRun;
+    r.options = *options;
+    r.exr = *exr;
+    r.load.maxBytes = a.maxSize;
+    r.load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
+    r.load.log = stderrSink(a.device.verbose);
+    r.device = a.device.desc();
+    r.verbose = a.device.verbose;
+    r.checkDevice = [&a](const DeviceInfo& d) { return a.shading.checkDevice(d); };
+    return runBatch(r);
+}
+
+int run(const RenderArgs& a) {
+    auto options = renderOptions(a);
+    if (!options) return report(options.error());
+    auto exrChecked = exrOptions(a);
+    if (!exrChecked) return report(exrChecked.error());
+    const ExrOptions exr = *exrChecked;
     const bool sequence = !a.frames.empty() || !a.frameList.empty();
     if (!a.frames.empty() && !a.frameList.empty())
         return report(makeError(ErrorCode::Usage, "--frames and --frame-list cannot be combined",
@@ -426,12 +480,12 @@ int run(const RenderArgs& a) {
     load.maxBytes = a.maxSize;
     load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
     load.log = stderrSink(a.device.verbose);
-    auto scene = loadScene(a.scene, load);
+    auto scene = loadScene(a.scenes.front(), load);
     if (!scene) return report(scene.error());
     auto shared = std::make_shared<const Scene>(std::move(*scene));
     // A valid file may draw nothing: say why the image is only the background.
     if (auto why = nothingToDraw(*shared, options->root))
-        std::cerr << "lantern: warning: " << a.scene << ": nothing to draw (" << *why
+        std::cerr << "lantern: warning: " << a.scenes.front() << ": nothing to draw (" << *why
                   << "); the image is the background\n";
 
     if (a.dryRun) return reportDryRun(a, *shared, seq, frame, outputs);
@@ -458,7 +512,9 @@ int run(const RenderArgs& a) {
 Runner addRenderCommand(CLI::App& app) {
     auto args = std::make_shared<RenderArgs>();
     CLI::App* cmd = app.add_subcommand("render", "Render a scene headless to EXR/PNG");
-    cmd->add_option("scene", args->scene, "glTF/GLB file, or builtin:NAME")->required();
+    cmd->add_option("scene", args->scenes,
+                    "glTF/GLB file, or builtin:NAME; several, a quoted glob or @LIST render a "
+                    "batch (docs/sequences.md); required unless --list is given");
     cmd->add_option("-o,--output", args->outputs,
                     "Output file(s): .exr or .png, repeat to write several; '#' runs are the "
                     "frame number; missing folders are created (default out/render.exr, "
@@ -515,11 +571,16 @@ Runner addRenderCommand(CLI::App& app) {
                     "Compare the picture with this reference (.exr or .png) as `lantern compare` "
                     "does, with its thresholds; exit 1 when it fails");
     args->compare.add(*cmd);
+    args->batch.add(*cmd);
     return [args, cmd]() {
         if (!cmd->parsed()) return -1;
         args->timeGiven = cmd->count("--time") > 0;
         args->frameGiven = cmd->count("--frame") > 0;
-        return run(*args);
+        if (args->scenes.empty() && args->batch.lists.empty())
+            return report(makeError(ErrorCode::Usage, "give a scene (or --list FILE)", "scene"));
+        const RenderArgs& a = *args;
+        return wantsBatch(a.scenes, a.batch.lists, a.batch.views, a.outputs) ? runBatchArgs(a)
+                                                                             : run(a);
     };
 }
 
