@@ -35,6 +35,37 @@ std::vector<glm::dmat3> worldFromEyeNormals(const frame::Frame& frame) {
     return out;
 }
 
+// The world-space normal of each pixel from its eye normal and its draw's view (0: nothing).
+void worldNormals(const std::vector<DrawIds>& table, const std::vector<glm::dmat3>& worldFromEye,
+                  gpu::FrameReadback& r) {
+    Image& img = r.image;
+    const std::size_t pixels = img.pixelCount();
+    img.worldNormal.assign(pixels * 3, 0.0f);
+    if (img.normal.size() != pixels * 3) return;
+    for (std::size_t i = 0; i < pixels; ++i) {
+        const std::uint32_t id = r.ids[i * 2];
+        if (id == 0 || id > table.size()) continue;  // the background
+        const float* n = img.normal.data() + i * 3;
+        const glm::dvec3 w = worldFromEye[table[id - 1].view] * glm::dvec3(n[0], n[1], n[2]);
+        const double len = glm::length(w);
+        if (!(len > 0.0)) continue;
+        for (int c = 0; c < 3; ++c) img.worldNormal[i * 3 + std::size_t(c)] = float(w[c] / len);
+    }
+}
+
+// One id plane: per pixel, the column's value for the pixel's draw id (column[0] is the
+// background's). Ids beyond the table cannot come from the GPU; they read as the background.
+void fillIds(const std::vector<std::uint32_t>& ids, const std::vector<std::uint32_t>& column,
+             std::vector<std::uint32_t>& plane) {
+    const std::size_t pixels = ids.size() / 2;
+    plane.resize(pixels);
+    const std::uint32_t last = std::uint32_t(column.size() - 1);
+    for (std::size_t i = 0; i < pixels; ++i) {
+        const std::uint32_t id = ids[i * 2];
+        plane[i] = column[id <= last ? id : 0u];
+    }
+}
+
 } // namespace
 
 std::vector<std::uint32_t> nodeSemantics(const Scene& scene) {
@@ -72,32 +103,18 @@ void resolveAovPlanes(const Scene& scene, const frame::Frame& frame, const AovSe
     const std::size_t pixels = img.pixelCount();
     if (!aovs.anyId() || r.ids.size() != pixels * 2) return;
     const std::vector<DrawIds> table = drawTable(scene, frame);
-    const std::vector<glm::dmat3> worldFromEye = worldFromEyeNormals(frame);
-    auto plane = [pixels](bool asked, std::vector<std::uint32_t>& p) {
-        if (asked) p.assign(pixels, kNoId);
+    // The table as one column per plane, the background first.
+    auto column = [&](std::uint32_t background, std::uint32_t DrawIds::*field) {
+        std::vector<std::uint32_t> c{background};
+        for (const DrawIds& d : table) c.push_back(d.*field);
+        return c;
     };
-    plane(aovs.instance, img.instance);
-    plane(aovs.primitive, img.mesh);
-    plane(aovs.primitive, img.primitive);
-    plane(aovs.material, img.material);
-    if (aovs.semantic) img.semantic.assign(pixels, 0);
-    if (aovs.worldNormal) img.worldNormal.assign(pixels * 3, 0.0f);
-    for (std::size_t i = 0; i < pixels; ++i) {
-        const std::uint32_t id = r.ids[i * 2];
-        if (id == 0 || id > table.size()) continue;  // the background
-        const DrawIds& d = table[id - 1];
-        if (aovs.instance) img.instance[i] = d.node;
-        if (aovs.primitive) img.mesh[i] = d.mesh, img.primitive[i] = d.primitive;
-        if (aovs.material) img.material[i] = d.material;
-        if (aovs.semantic) img.semantic[i] = d.semantic;
-        if (aovs.worldNormal && img.normal.size() == pixels * 3) {
-            const float* n = img.normal.data() + i * 3;
-            const glm::dvec3 w = worldFromEye[d.view] * glm::dvec3(n[0], n[1], n[2]);
-            const double len = glm::length(w);
-            if (!(len > 0.0)) continue;
-            for (int c = 0; c < 3; ++c) img.worldNormal[i * 3 + std::size_t(c)] = float(w[c] / len);
-        }
-    }
+    if (aovs.instance) fillIds(r.ids, column(kNoId, &DrawIds::node), img.instance);
+    if (aovs.primitive) fillIds(r.ids, column(kNoId, &DrawIds::mesh), img.mesh);
+    if (aovs.primitive) fillIds(r.ids, column(kNoId, &DrawIds::primitive), img.primitive);
+    if (aovs.material) fillIds(r.ids, column(kNoId, &DrawIds::material), img.material);
+    if (aovs.semantic) fillIds(r.ids, column(0, &DrawIds::semantic), img.semantic);
+    if (aovs.worldNormal) worldNormals(table, worldFromEyeNormals(frame), r);
     if (!aovs.normal) img.normal = {};
 }
 
