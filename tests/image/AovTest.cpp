@@ -375,6 +375,17 @@ TEST_F(Aov, TheCommandWritesTheChannelsAndRefusesUnknownNames) {
         EXPECT_NE(std::find(image->instance.begin(), image->instance.end(), node),
                   image->instance.end())
             << node;
+    // A sequence (frames collected two in flight) writes the same planes in every frame.
+    const auto seq = test::runLantern({"render", scene.string(), "-o", (dir / "f_#.exr").string(),
+                                       "--frames", "0-1", "--width", "64", "--height", "64",
+                                       "--aov", "instance,semantic"});
+    ASSERT_EQ(seq.exitCode, 0) << seq.err;
+    for (const char* name : {"f_0.exr", "f_1.exr"}) {
+        auto frame = readExr(dir / name);
+        ASSERT_TRUE(frame) << name;
+        EXPECT_EQ(frame->instance, image->instance) << name;
+        EXPECT_EQ(frame->semantic.size(), n) << name;
+    }
     const auto bad = test::runLantern({"render", scene.string(), "-o", (dir / "x.exr").string(),
                                        "--aov", "depth,ids"});
     EXPECT_EQ(bad.exitCode, 1);
