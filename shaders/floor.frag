@@ -12,5 +12,5 @@ layout(location = 2) centroid in vec4 vColor;
 layout(location = 3) centroid in vec2 vTexcoord;
 
 void main() {
-    writeOutputs(vec3(1.0), 1.0, vNormal, vEyePosition);
+    writeOutputs(vec3(1.0), 1.0, vNormal, vEyePosition, vTexcoord);
 }

@@ -60,11 +60,11 @@ void main() {
     }
 #ifdef LANTERN_FLAT_PRIMITIVE
 #ifdef LANTERN_AOV
-    writeOutputs(c, alpha, flatNormals[triangle].xyz, vEyePosition);
+    writeOutputs(c, alpha, flatNormals[triangle].xyz, vEyePosition, vTexcoord);
 #else
-    writeOutputs(c, alpha, vec3(0.0), vec3(0.0));
+    writeOutputs(c, alpha, vec3(0.0), vec3(0.0), vec2(0.0));
 #endif
 #else
-    writeOutputs(c, alpha, vNormal, vEyePosition);
+    writeOutputs(c, alpha, vNormal, vEyePosition, vTexcoord);
 #endif
 }

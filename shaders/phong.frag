@@ -44,5 +44,5 @@ void main() {
     if ((maps & LANTERN_MAP_EMISSIVE) != 0u) sums.emissiveSpecular += mappedEmissionChange(side, u);
     vec3 base, textured;
     splitColour(sums, ambientM, diffuseM, base, textured);
-    writeOutputs(base + texel.rgb * textured, alpha, n, vEyePosition);
+    writeOutputs(base + texel.rgb * textured, alpha, n, vEyePosition, vTexcoord);
 }

@@ -154,11 +154,14 @@ void defineRenderer(py::module_& m) {
                std::optional<std::vector<double>> perspective,
                std::optional<std::vector<double>> ortho, std::optional<int> camera,
                std::optional<bool> twoSided, std::optional<bool> localViewer, bool clamp,
-               bool glCompat, bool depth, bool normal, double pointSize, double lineWidth) {
+               bool glCompat, bool depth, bool normal, double pointSize, double lineWidth,
+               std::vector<std::string> aov, bool unlitExact) {
                 RenderArgs a{time,       width,   height,      std::move(shading),
                              std::move(specular), msaa, std::move(background), std::move(lookAt),
                              std::move(perspective), std::move(ortho), camera, twoSided,
                              localViewer, clamp, glCompat, depth, normal, pointSize, lineWidth};
+                a.aov = std::move(aov);
+                a.unlitExact = unlitExact;
                 return r.render(scene, a);
             },
             py::arg("scene"), py::kw_only(), py::arg("time") = 0.0, py::arg("width") = 1280,
@@ -170,9 +173,11 @@ void defineRenderer(py::module_& m) {
             py::arg("local_viewer") = py::none(), py::arg("clamp") = false,
             py::arg("gl_compat") = false, py::arg("depth") = false, py::arg("normal") = false,
             py::arg("point_size") = 1.0, py::arg("line_width") = 1.0,
+            py::arg("aov") = std::vector<std::string>{}, py::arg("unlit_exact") = false,
             "Renders `scene` at `time` seconds: a (height, width, 4) float32 array of linear, "
             "premultiplied RGBA; with depth=True and/or normal=True a tuple (rgba, depth, "
-            "normal) of the planes asked for");
+            "normal) of the planes asked for; with aov=[names] (docs/aovs.md) a tuple (rgba, "
+            "dict) of float32 data planes and uint32 id planes by name");
 }
 
 } // namespace

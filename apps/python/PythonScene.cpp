@@ -179,6 +179,12 @@ RenderOptions renderOptions(const RenderArgs& a) {
     o.glCompat = a.glCompat;
     o.aovs.depth = a.depth;
     o.aovs.normal = a.normal;
+    for (const std::string& name : a.aov)
+        if (!enableAov(o.aovs, name))
+            throw py::value_error("aov: unknown AOV \"" + name + "\" (" + aovNames() + ")");
+    if (a.unlitExact && a.msaa != 1)
+        throw py::value_error("unlit_exact: needs msaa=1 (no anti-aliasing)");
+    o.unlitExact = a.unlitExact;
     return o;
 }
 
@@ -225,6 +231,7 @@ py::object PyRenderer::render(PyScene& s, const RenderArgs& a) {
     }
     auto image = renderer->render(s.prepared, options, a.time);
     if (!image) raise(image.error());
+    if (!a.aov.empty()) return toAovArrays(std::move(*image));
     return toArrays(std::move(*image), a.depth, a.normal);
 }
 
@@ -252,6 +259,35 @@ py::object toArrays(Image&& image, bool depth, bool normal) {
         planes.append(py::array_t<float>({h, w, py::ssize_t(3)}, {w * 3 * f, 3 * f, f},
                                          held->normal.data(), owner));
     return py::tuple(planes);
+}
+
+py::object toAovArrays(Image&& image) {
+    auto* held = new Image(std::move(image));
+    py::capsule owner(held, [](void* p) { delete static_cast<Image*>(p); });
+    const py::ssize_t h = held->height, w = held->width, f = 4;
+    py::array_t<float> rgba({h, w, py::ssize_t(4)}, {w * 4 * f, 4 * f, f}, held->rgba.data(),
+                            owner);
+    py::dict planes;
+    auto floats = [&](const char* name, std::vector<float>& p, py::ssize_t c) {
+        if (p.empty()) return;
+        if (c == 1) planes[name] = py::array_t<float>({h, w}, {w * f, f}, p.data(), owner);
+        else planes[name] = py::array_t<float>({h, w, c}, {w * c * f, c * f, f}, p.data(), owner);
+    };
+    auto ids = [&](const char* name, std::vector<std::uint32_t>& p) {
+        if (!p.empty())
+            planes[name] = py::array_t<std::uint32_t>({h, w}, {w * f, f}, p.data(), owner);
+    };
+    floats("depth", held->depth, 1);
+    floats("range", held->range, 1);
+    floats("normal", held->normal, 3);
+    floats("world_normal", held->worldNormal, 3);
+    floats("uv", held->uv, 2);
+    ids("instance", held->instance);
+    ids("mesh", held->mesh);
+    ids("primitive", held->primitive);
+    ids("material", held->material);
+    ids("semantic", held->semantic);
+    return py::make_tuple(rgba, planes);
 }
 
 Image fromArrays(const py::array_t<float, py::array::c_style | py::array::forcecast>& rgba,

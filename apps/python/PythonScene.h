@@ -77,6 +77,8 @@ struct RenderArgs {
     bool clamp = false, glCompat = false;
     bool depth = false, normal = false;
     double pointSize = 1.0, lineWidth = 1.0;  ///< pixels across points and lines
+    std::vector<std::string> aov;  ///< aov=: AOV names (docs/aovs.md); a dict of arrays back
+    bool unlitExact = false;       ///< unlit_exact=: exact label colours
 };
 
 /// Builds the RenderOptions (ValueError naming the keyword for a bad value).
@@ -95,6 +97,9 @@ struct PyRenderer {
 /// The picture's planes as NumPy arrays sharing the Image's memory (no copy): RGBA, and the
 /// depth and normal planes when asked for.
 py::object toArrays(Image&& image, bool depth, bool normal);
+/// The planes of aov=: (rgba, {name: array}) sharing the Image's memory; float32 data planes,
+/// uint32 id planes ("primitive" gives "mesh" and "primitive").
+py::object toAovArrays(Image&& image);
 /// An Image from a (H, W, 4) float32 array (and optional (H, W) depth, (H, W, 3) normal).
 Image fromArrays(const py::array_t<float, py::array::c_style | py::array::forcecast>& rgba,
                  const py::object& depth, const py::object& normal);

@@ -49,7 +49,8 @@
 #define LANTERN_OUT_COLOR 0
 #define LANTERN_OUT_NORMAL_DEPTH 1   // AOV variants: float bits of the eye normal and depth
 #define LANTERN_OUT_ID 2             // AOV variants: draw index + 1, primitive id
-#define LANTERN_OUT_COUNT_AOV 3
+#define LANTERN_OUT_SURFACE 3        // AOV variants: float bits of TEXCOORD_0 (u, v), range, 0
+#define LANTERN_OUT_COUNT_AOV 4
 
 // Specialisation constants: the features a pipeline variant compiles in.
 #define LANTERN_SC_LIGHT_TYPES 0     // bit mask of LANTERN_LIGHT_BIT_*

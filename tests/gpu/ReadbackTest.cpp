@@ -145,6 +145,11 @@ void compareFrames(LoggedRenderer& a, LoggedRenderer& b, const RenderOptions& o)
     EXPECT_TRUE(sameBits(x->rgba, y->rgba));
     EXPECT_TRUE(sameBits(x->depth, y->depth));
     EXPECT_TRUE(sameBits(x->normal, y->normal));
+    EXPECT_TRUE(sameBits(x->range, y->range));
+    EXPECT_TRUE(sameBits(x->uv, y->uv));
+    EXPECT_EQ(x->instance, y->instance);
+    EXPECT_EQ(x->range.size(), o.aovs.range ? x->pixelCount() : 0u);
+    EXPECT_EQ(x->instance.size(), o.aovs.instance ? x->pixelCount() : 0u);
     EXPECT_EQ(x->depth.size(), o.aovs.depth ? x->pixelCount() : 0u);
     EXPECT_EQ(x->normal.size(), o.aovs.normal ? x->pixelCount() * 3 : 0u);
     std::size_t covered = 0;
@@ -183,6 +188,11 @@ TEST_F(Readback, InPlaceIsBitIdenticalToStagedWithMsaaAndAovs) {
     compareFrames(*inPlace, *staged, o);
     o.msaa = 4;
     o.aovs.normal = true;
+    compareFrames(*inPlace, *staged, o);
+    o.aovs.range = o.aovs.uv = o.aovs.instance = true;  // the uv+range plane and the ids
+    compareFrames(*inPlace, *staged, o);
+    EXPECT_EQ(inPlace->choice("aov uv+range", 67, 45).rfind("in place", 0), 0u);
+    o.msaa = 1;
     compareFrames(*inPlace, *staged, o);
     o.aovs = {};
     compareFrames(*inPlace, *staged, o);

@@ -38,6 +38,7 @@ struct FrameArgs {
     std::string compression = "zip";
     bool half = false;
     std::string outDir = "/tmp";
+    std::vector<std::string> aovs;  ///< --aov: time the data passes too (docs/aovs.md)
     ShadingOptions shading;
     DeviceOptions device;
 };
@@ -47,6 +48,10 @@ int runFrame(const FrameArgs& a) {
     options.width = a.width;
     options.height = a.height;
     if (auto r = a.shading.apply(options); !r) return report(r.error());
+    for (const std::string& name : a.aovs)
+        if (!enableAov(options.aovs, name))
+            return report(makeError(ErrorCode::InvalidInput,
+                                    "unknown AOV \"" + name + "\" (" + aovNames() + ")", "--aov"));
     auto compression = parseExrCompression(a.compression);
     if (!compression)
         return report(makeError(ErrorCode::InvalidInput, "unknown compression", "--compression"));
@@ -81,10 +86,13 @@ int runFrame(const FrameArgs& a) {
     }
     std::error_code ec;
     std::filesystem::remove(path, ec);
-    std::printf("scene %s, %dx%d, %s, device %s, %d runs after %d warm-up\n", a.scene.c_str(),
-                a.width, a.height,
+    std::string aovs;
+    for (const std::string& name : a.aovs) aovs += (aovs.empty() ? "" : ",") + name;
+    std::printf("scene %s, %dx%d, %s, aov %s, device %s, %d runs after %d warm-up\n",
+                a.scene.c_str(), a.width, a.height,
                 a.shading.shading.empty() ? "scene shading" : a.shading.shading.c_str(),
-                renderer->device().name.c_str(), a.runs, a.warmup);
+                aovs.empty() ? "none" : aovs.c_str(), renderer->device().name.c_str(), a.runs,
+                a.warmup);
     std::printf("%-34s %10s %10s\n", "", "median ms", "min ms");
     std::printf("%-34s %10.2f\n", "first frame (pipeline JIT)", firstMs);
     std::printf("%-34s %10.2f %10.2f\n", "render only: GPU render pass", median(gpu), minimum(gpu));
@@ -116,6 +124,8 @@ Runner addBenchCommand(CLI::App& app) {
     frame->add_option("--compression", args->compression, "EXR compression for the write timing")
         ->capture_default_str();
     frame->add_flag("--half", args->half, "Time half-float EXR writes");
+    frame->add_option("--aov", args->aovs, "AOVs to render and write too, comma-separated")
+        ->delimiter(',');
     frame->add_option("--tmp", args->outDir, "Folder for the temporary EXR")->capture_default_str();
     args->shading.add(*frame);
     args->device.add(*frame);

@@ -106,6 +106,7 @@ struct RenderArgs {
     int frame = 0;           // --frame N: the frame at time N / fps
     bool frameGiven = false;
     std::vector<std::string> aovs;
+    bool unlitExact = false;
     bool half = false;
     bool explain = false;
     bool dryRun = false;  // --dry-run: check everything, render and write nothing
@@ -237,6 +238,15 @@ int runSequence(const RenderArgs& a, Renderer& renderer, const PreparedScene& pr
     return kOk;
 }
 
+// The AOV names of --aov (docs/aovs.md) into `aovs`.
+Result<void> parseAovs(const std::vector<std::string>& items, AovSet& aovs) {
+    for (const std::string& item : items)
+        if (!enableAov(aovs, item))
+            return makeError(ErrorCode::InvalidInput,
+                             "unknown AOV \"" + item + "\" (" + aovNames() + ")", "--aov");
+    return {};
+}
+
 // The options of the picture: size, scene, shading, camera, background and AOVs.
 Result<RenderOptions> renderOptions(const RenderArgs& a) {
     RenderOptions options;
@@ -250,14 +260,16 @@ Result<RenderOptions> renderOptions(const RenderArgs& a) {
         if (!background) return std::move(background).error();
         options.background = *background;
     }
-    for (const std::string& item : a.aovs) {
-        if (item == "depth")
-            options.aovs.depth = true;
-        else if (item == "normal")
-            options.aovs.normal = true;
-        else
-            return makeError(ErrorCode::InvalidInput,
-                             "unknown AOV \"" + item + "\" (depth, normal)", "--aov");
+    LANTERN_TRY(parseAovs(a.aovs, options.aovs));
+    if (a.unlitExact) {
+        if (options.msaa != 1)
+            return makeError(ErrorCode::Usage, "--unlit-exact needs --msaa 1 (no anti-aliasing)",
+                             "--unlit-exact");
+        if (a.half)
+            return makeError(ErrorCode::Usage,
+                             "--unlit-exact needs 32-bit float channels: --half rounds the colours",
+                             "--unlit-exact");
+        options.unlitExact = true;
     }
     return options;
 }
@@ -544,8 +556,12 @@ Runner addRenderCommand(CLI::App& app) {
                     "Threads encoding frames (0: one per core; 0 to 256)")
         ->capture_default_str()
         ->check(CLI::Range(0, kMaxEncoderThreads));
-    cmd->add_option("--aov", args->aovs, "Extra EXR channels, comma-separated: depth, normal")
+    cmd->add_option("--aov", args->aovs,
+                    std::string("Extra EXR channels, comma-separated (docs/aovs.md): ") + aovNames())
         ->delimiter(',');
+    cmd->add_flag("--unlit-exact", args->unlitExact,
+                  "Exact label colours: every material unlit, its base colour written bit for "
+                  "bit (no lighting, texture, blending or anti-aliasing)");
     cmd->add_flag("--half", args->half, "Write 16-bit half channels instead of 32-bit float");
     cmd->add_option("--compression", args->compression,
                     "EXR compression: none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab")

@@ -12,11 +12,29 @@
 
 namespace lantern {
 
-/// Which extra planes (arbitrary output values) a render produces.
+/// The value of an id plane where no surface was drawn (the background): no glTF index or
+/// semantic id a scene can hold (semantic ids are limited to 0 .. 2^32 - 2).
+inline constexpr std::uint32_t kNoId = 0xFFFFFFFFu;
+
+/// Which extra planes (arbitrary output values) a render produces (docs/aovs.md). Every plane
+/// holds one surface per pixel, never a blend: with MSAA only the colour is resolved, the AOVs
+/// come from a single-sampled pass (the surface at the pixel centre).
 struct AovSet {
-    bool depth = false;   ///< Z: eye-space distance from the eye to the surface (FLT_MAX: nothing)
+    bool depth = false;   ///< Z: linear eye-space depth -z_eye (FLT_MAX: nothing)
     bool normal = false;  ///< N.X, N.Y, N.Z: unit eye-space normal of the visible side (0: nothing)
-    bool any() const { return depth || normal; }
+    bool range = false;   ///< range: Euclidean distance from the eye |p_eye| (FLT_MAX: nothing)
+    bool worldNormal = false;  ///< Nw.X, Nw.Y, Nw.Z: the normal in world space (0: nothing)
+    bool uv = false;      ///< uv.U, uv.V: TEXCOORD_0 as the mesh holds it (0 where absent)
+    bool instance = false;   ///< id.instance: the glTF node index (kNoId: nothing)
+    bool primitive = false;  ///< id.mesh, id.primitive: mesh index, primitive index in it
+    bool material = false;   ///< id.material: glTF material index (material count: the default)
+    bool semantic = false;   ///< id.semantic: the node's "semantic_id" extra (0: none, background)
+
+    /// Any plane read from the draw and primitive ids.
+    bool anyId() const { return instance || primitive || material || semantic || worldNormal; }
+    /// Any plane of the surface attachment (texture coordinates, range).
+    bool anySurface() const { return range || uv; }
+    bool any() const { return depth || normal || anySurface() || anyId(); }
 };
 
 /// The camera a picture was rendered with (double precision, Lantern's conventions): written to
@@ -35,6 +53,11 @@ struct Image {
     std::vector<float> rgba;    ///< 4 * width * height floats
     std::vector<float> depth;   ///< width * height floats when the depth AOV was asked for
     std::vector<float> normal;  ///< 3 * width * height floats when the normal AOV was asked for
+    std::vector<float> range;        ///< width * height: distance from the eye (AovSet::range)
+    std::vector<float> worldNormal;  ///< 3 * width * height: world-space normal
+    std::vector<float> uv;           ///< 2 * width * height: TEXCOORD_0 (u, v)
+    /// The id planes asked for, width * height each (AovSet; kNoId where nothing was drawn).
+    std::vector<std::uint32_t> instance, mesh, primitive, material, semantic;
     /// Key/value metadata written as EXR string attributes (camera matrices, frame, time...).
     std::vector<std::pair<std::string, std::string>> metadata;
     std::optional<CameraMetadata> camera;  ///< the first view's camera, when rendered

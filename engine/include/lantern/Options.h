@@ -105,6 +105,11 @@ struct RenderOptions {
     CameraSpec camera;       ///< the camera when `views` is empty
     std::vector<View> views; ///< several views in one image; empty: one full-image view
     AovSet aovs;
+    /// Exact colours for label images (docs/aovs.md): every material unlit, its colour the
+    /// base colour as the scene wrote it (no lighting, texture, map, blending or clamp),
+    /// shaded per fragment. Needs msaa 1 (no anti-aliasing); the colour written is the float
+    /// nearest the scene's number, bit for bit.
+    bool unlitExact = false;
     FeatureMode features = FeatureMode::Specialised;
     /// Linear, premultiplied. Opaque black by default, as `lantern render` and `lantern view`
     /// (one rule, docs/cli.md); {0, 0, 0, 0} for a transparent background, whose alpha is then
@@ -122,5 +127,10 @@ struct RenderOptions {
     /// Length of the normal lines in world units; 0: 3% of the radius of the drawn bounds.
     double normalLength = 0.0;
 };
+
+/// The AOV names of `lantern render --aov` and Python's aov= (docs/aovs.md), comma-separated.
+LANTERN_API const char* aovNames() noexcept;
+/// Switches on the AOV called `name` (one of aovNames()); false for an unknown name.
+LANTERN_API bool enableAov(AovSet& aovs, std::string_view name) noexcept;
 
 } // namespace lantern

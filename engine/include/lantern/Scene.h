@@ -246,6 +246,10 @@ struct LANTERN_API Node {
     int light = -1;
     int skin = -1;                ///< index into Scene::skins; -1: none
     std::vector<double> weights;  ///< morph weights overriding the mesh's (empty: the mesh's)
+    /// The semantic id of the node and the nodes below it that set none (glTF node extras
+    /// "semantic_id", 0 .. 2^32 - 2; docs/aovs.md): the id.semantic AOV. Unset: the parent's,
+    /// 0 at a root.
+    std::optional<std::uint32_t> semantic;
 
     /// parentFromNode: `matrix`, or T * R * S.
     glm::dmat4 localTransform() const;

@@ -1,6 +1,7 @@
 // Renderer::renderSequence: writing sequences, above the renderer: frames double buffered
 // through the device's frame slots and encoded in parallel by an EncodePool (io/).
 #include "api/RendererImpl.h"
+#include "render/AovPlanes.h"
 #include "render/FrameRender.h"
 
 #include "io/AtomicFile.h"
@@ -184,6 +185,7 @@ private:
             return render::nonFiniteFrame(m_device, *m_buffers, *m_scene, *m_options, f.time, *result,
                                           f.frame);
         }
+        render::resolveAovPlanes(*m_scene, f.model, m_options->aovs, *result);
         Image image = std::move(result->image);
         attachMetadata(image, f.model, m_device.info(), f.time);
         image.metadata.emplace_back("lantern:frame", std::to_string(f.frame));

@@ -50,6 +50,11 @@ Lighting resolveLighting(const Scene& scene, int root, const RenderOptions& o) {
     case ShadingMode::Flat: r.program = o.glCompat ? Program::GlFlat : Program::Flat; break;
     }
     if (o.features == FeatureMode::Floor) r.program = Program::Floor;
+    // Exact colours: the material's colour read per fragment, never interpolated or clamped.
+    if (o.unlitExact) {
+        r.clamp = Clamp::None;
+        if (r.program != Program::Floor) r.program = Program::Phong;
+    }
     return r;
 }
 

@@ -30,9 +30,24 @@ LightFeatures lightFeatures(const std::vector<EyeLight>& lights, bool glDefault)
     return f;
 }
 
-std::vector<Material> frameMaterials(const Scene& scene, bool glCompat) {
+// A material as --unlit-exact draws it: unlit, its colour the base colour the scene wrote (the
+// metallic-roughness base colour, or a Phong material's diffuse), nothing else applied.
+Material exactLabel(const Material& m) {
+    Material out;
+    out.name = m.name;
+    out.unlit = true;
+    out.front.diffuse = m.pbr ? m.pbr->baseColor : m.front.diffuse;
+    out.alphaMode = m.alphaMode == AlphaMode::Mask ? AlphaMode::Mask : AlphaMode::Opaque;
+    out.alphaCutoff = m.alphaCutoff;
+    out.doubleSided = m.doubleSided;
+    return out;
+}
+
+std::vector<Material> frameMaterials(const Scene& scene, bool glCompat, bool unlitExact) {
     std::vector<Material> out = scene.materials;
     out.emplace_back();  // GL's default material, for primitives without one
+    if (unlitExact)
+        for (Material& m : out) m = exactLabel(m);
     if (glCompat)
         for (Material& m : out) {
             m.front.shininess = std::clamp(m.front.shininess, 0.0, 128.0);
@@ -195,7 +210,7 @@ Result<Frame> buildFrame(const Scene& scene, const RenderOptions& o, double time
     frame.time = time;
     frame.pose = evaluatePose(scene, frame.root, time);
     frame.lighting = resolveLighting(scene, frame.root, o);
-    frame.materials = frameMaterials(scene, frame.lighting.glCompat);
+    frame.materials = frameMaterials(scene, frame.lighting.glCompat, o.unlitExact);
     // Which lights exist does not depend on the camera: place them once to learn their needs.
     bool anyLight = false;
     for (std::size_t i = 0; i < scene.nodes.size(); ++i)

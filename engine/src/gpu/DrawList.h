@@ -25,6 +25,7 @@ struct PipelineKey {
     std::array<std::uint32_t, LANTERN_SC_COUNT> constants{};
     bool blend = false;
     bool aov = false;  ///< the fragment stage also writes the AOV attachments
+    bool aovSurface = false;  ///< with aov: the surface attachment (uv, range) exists
     std::uint32_t samples = 1;
     bool reversedZ = true;
     /// Set by gpu/ (never by render/): flat triangles lit once per triangle by the pre-pass
@@ -72,6 +73,8 @@ struct TargetDesc {
     std::uint32_t samples = 1;
     AovSet aovs;              ///< AOV planes to read back (any: the AOV attachments exist)
     bool ids = false;         ///< with AOVs, read back the draw and primitive ids too (the probe)
+    /// The draw and primitive ids are read back: the probe's, or an id plane asked for.
+    bool readIds() const { return ids || aovs.anyId(); }
     bool reversedZ = true;    ///< depth clears to 0 (far) instead of 1
     glm::vec4 clear{0.0f};    ///< linear, premultiplied
     float pointSize = 1.0f;   ///< pixels across a point (GL_POINTS)

@@ -100,7 +100,7 @@ Result<void> FrameRing::preparePipelines(const DrawList& list, SceneBuffers& sce
             PipelineKey key = d.pipeline;
             key.flatPerTriangle = FlatLighter::perTriangle(d.pipeline, flatPerTriangle);
             PipelineKey single = key;
-            if (aovPass) key.aov = false;
+            if (aovPass) key.aov = key.aovSurface = false;
             mainKeys.push_back(key);
             if (aovPass) {
                 single.samples = 1;

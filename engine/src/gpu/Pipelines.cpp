@@ -80,6 +80,7 @@ std::size_t PipelineKeyHash::operator()(const PipelineKey& k) const noexcept {
     for (std::uint32_t c : k.constants) h = h * 31u + c;
     h = h * 31u + (k.blend ? 1u : 0u);
     h = h * 31u + (k.aov ? 1u : 0u);
+    h = h * 31u + (k.aovSurface ? 1u : 0u);
     h = h * 31u + k.samples;
     h = h * 31u + (k.reversedZ ? 1u : 0u);
     h = h * 31u + (k.flatPerTriangle ? 1u : 0u);
@@ -161,11 +162,16 @@ Result<GraphicsPipelineDesc> Pipelines::describe(const PipelineKey& key) {
         d.bindings.push_back({at.location, at.stride, VK_VERTEX_INPUT_RATE_VERTEX});
         d.attributes.push_back({at.location, at.location, at.format, 0});
     }
-    d.colorFormats.assign(key.aov ? LANTERN_OUT_COUNT_AOV : 1, VK_FORMAT_UNDEFINED);
+    // Without the surface plane the pipeline has no attachment at its location, and the
+    // shader's writes there are discarded (a null attachment would need its format undefined,
+    // which the validation layer reports against the shader's output type).
+    d.colorFormats.assign(key.aov ? (key.aovSurface ? LANTERN_OUT_COUNT_AOV : LANTERN_OUT_SURFACE) : 1,
+                          VK_FORMAT_UNDEFINED);
     d.colorFormats[LANTERN_OUT_COLOR] = kColorFormat;
     if (key.aov) {
         d.colorFormats[LANTERN_OUT_NORMAL_DEPTH] = kNormalDepthFormat;
         d.colorFormats[LANTERN_OUT_ID] = kIdFormat;
+        if (key.aovSurface) d.colorFormats[LANTERN_OUT_SURFACE] = kSurfaceFormat;
     }
     d.depthFormat = kDepthFormat;
     d.samples = VkSampleCountFlagBits(key.samples);

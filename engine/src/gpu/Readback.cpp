@@ -112,12 +112,14 @@ void readAovs(const HostPlane& nd, const HostPlane* ids, const TargetDesc& desc,
     lantern::Image& img = r.image;
     const std::size_t w = desc.width;
     if (aovs.depth) img.depth.resize(w * desc.height);
-    if (aovs.normal) img.normal.resize(w * desc.height * 3);
+    // The world normal is made from the eye normal (render/AovPlanes.h), which drops it after.
+    const bool normal = aovs.normal || aovs.worldNormal;
+    if (normal) img.normal.resize(w * desc.height * 3);
     for (std::uint32_t y = 0; y < desc.height; ++y) {
         const std::uint32_t* row = nd.row<std::uint32_t>(y);
         const std::size_t base = std::size_t(y) * w;
         for (std::size_t x = 0; x < w; ++x) {
-            if (aovs.normal)
+            if (normal)
                 for (std::size_t c = 0; c < 3; ++c)
                     img.normal[(base + x) * 3 + c] =
                         finiteOr(bitsFloat(row[x * 4 + c]), 0.0f, r.nonFinite);
@@ -130,6 +132,26 @@ void readAovs(const HostPlane& nd, const HostPlane* ids, const TargetDesc& desc,
     for (std::uint32_t y = 0; y < desc.height; ++y) {
         const std::uint32_t* row = ids->row<std::uint32_t>(y);
         r.ids.insert(r.ids.end(), row, row + w * 2);
+    }
+}
+
+// The surface plane: texture coordinates and range, as the frame asked for them.
+void readSurface(const HostPlane& s, const TargetDesc& desc, FrameReadback& r) {
+    lantern::Image& img = r.image;
+    const std::size_t w = desc.width;
+    if (desc.aovs.uv) img.uv.resize(w * desc.height * 2);
+    if (desc.aovs.range) img.range.resize(w * desc.height);
+    for (std::uint32_t y = 0; y < desc.height; ++y) {
+        const std::uint32_t* row = s.row<std::uint32_t>(y);
+        const std::size_t base = std::size_t(y) * w;
+        for (std::size_t x = 0; x < w; ++x) {
+            if (desc.aovs.uv)
+                for (std::size_t c = 0; c < 2; ++c)
+                    img.uv[(base + x) * 2 + c] =
+                        finiteOr(bitsFloat(row[x * 4 + c]), 0.0f, r.nonFinite);
+            if (desc.aovs.range)
+                img.range[base + x] = finiteOr(bitsFloat(row[x * 4 + 2]), FLT_MAX, r.nonFinite);
+        }
     }
 }
 
@@ -166,13 +188,19 @@ Result<FrameReadback> readBack(Context& ctx, const FrameRing::Slot& slot, lanter
     if (t.aov) {
         auto nd = hostPlane(ctx, t.normalDepth, t.readNormalDepth, std::size_t(t.width) * 16);
         if (!nd) return std::move(nd).error();
-        std::optional<HostPlane> ids;
-        if (slot.desc.ids) {
+        std::optional<HostPlane> ids, surface;
+        if (slot.desc.readIds()) {
             auto plane = hostPlane(ctx, t.ids, t.readIds, std::size_t(t.width) * 8);
             if (!plane) return std::move(plane).error();
             ids = *plane;
         }
+        if (t.surface) {
+            auto plane = hostPlane(ctx, t.surfaceUvRange, t.readSurface, std::size_t(t.width) * 16);
+            if (!plane) return std::move(plane).error();
+            surface = *plane;
+        }
         readAovs(*nd, ids ? &*ids : nullptr, slot.desc, r);
+        if (surface) readSurface(*surface, slot.desc, r);
     }
     return r;
 }

@@ -43,6 +43,7 @@ void FrameRecorder::beginAttachments() const {
         colorImages.push_back(t.normalDepth.get());
         colorImages.push_back(t.ids.get());
     }
+    if (t.surface) colorImages.push_back(t.surfaceUvRange.get());
     if (t.separateAovPass()) {
         colorImages.push_back(t.aovColor.get());
         depthImages.push_back(t.aovDepth.get());
@@ -234,6 +235,20 @@ VkRenderingAttachmentInfo attachment(const Image& target, const Image* multisamp
     return a;
 }
 
+// The AOV attachments of one pass, after the colour: normal+depth, ids and, when the frame asks
+// for uv or range, the surface plane (otherwise the pass has one attachment fewer and the
+// shader's writes to that location are discarded).
+void aovAttachments(const Target& t, std::vector<VkRenderingAttachmentInfo>& colors) {
+    colors.resize(t.surface ? LANTERN_OUT_COUNT_AOV : LANTERN_OUT_SURFACE);
+    VkClearValue normalDepthClear{};
+    normalDepthClear.color.uint32[3] = floatBits(FLT_MAX);  // background depth: the largest float
+    VkClearValue surfaceClear{};
+    surfaceClear.color.uint32[2] = floatBits(FLT_MAX);  // background range; uv 0
+    colors[LANTERN_OUT_NORMAL_DEPTH] = attachment(t.normalDepth, nullptr, normalDepthClear);
+    colors[LANTERN_OUT_ID] = attachment(t.ids, nullptr, VkClearValue{});
+    if (t.surface) colors[LANTERN_OUT_SURFACE] = attachment(t.surfaceUvRange, nullptr, surfaceClear);
+}
+
 } // namespace
 
 void recordFrame(VkPipelineLayout layout, const OverlayPipelines* overlays,
@@ -253,21 +268,17 @@ void recordFrame(VkPipelineLayout layout, const OverlayPipelines* overlays,
 
     VkClearValue colorClear{};
     std::memcpy(colorClear.color.float32, &list.target.clear[0], 4 * sizeof(float));
-    VkClearValue normalDepthClear{};
-    normalDepthClear.color.uint32[3] = floatBits(FLT_MAX);  // background depth: the largest float
     std::vector<VkRenderingAttachmentInfo> colors(
         t.aov && !t.multisampled() ? LANTERN_OUT_COUNT_AOV : 1);
     colors[LANTERN_OUT_COLOR] = attachment(t.color, t.multisampled() ? &t.colorMsaa : nullptr, colorClear);
-    if (t.aov && !t.multisampled()) {
-        colors[LANTERN_OUT_NORMAL_DEPTH] = attachment(t.normalDepth, nullptr, normalDepthClear);
-        colors[LANTERN_OUT_ID] = attachment(t.ids, nullptr, VkClearValue{});
-    }
+    if (t.aov && !t.multisampled()) aovAttachments(t, colors);
     r.pass(colors, t.depth, pipelines);
     if (t.separateAovPass()) {
+        // With MSAA the AOVs come from this single-sampled pass: each plane holds the surface
+        // at the pixel centre, never a resolve of several samples.
         std::vector<VkRenderingAttachmentInfo> aov(LANTERN_OUT_COUNT_AOV);
         aov[LANTERN_OUT_COLOR] = attachment(t.aovColor, nullptr, colorClear);
-        aov[LANTERN_OUT_NORMAL_DEPTH] = attachment(t.normalDepth, nullptr, normalDepthClear);
-        aov[LANTERN_OUT_ID] = attachment(t.ids, nullptr, VkClearValue{});
+        aovAttachments(t, aov);
         r.pass(aov, t.aovDepth, aovPipelines);
     }
     if (slot.queries)
@@ -276,8 +287,9 @@ void recordFrame(VkPipelineLayout layout, const OverlayPipelines* overlays,
     r.copyOut(t.color, t.readColor, hooks.readback);
     if (t.aov) {
         r.copyOut(t.normalDepth, t.readNormalDepth, hooks.readback);
-        r.copyOut(t.ids, t.readIds, hooks.readback && list.target.ids);
+        r.copyOut(t.ids, t.readIds, hooks.readback && list.target.readIds());
     }
+    if (t.surface) r.copyOut(t.surfaceUvRange, t.readSurface, hooks.readback);
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                   VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     if (hooks.afterRender)

@@ -21,6 +21,7 @@ double slotBytes(const TargetDesc& d) {
     double perPixel = 16 + 16 + 4 * samples;
     if (d.samples > 1) perPixel += 16.0 * samples;
     if (d.aovs.any()) perPixel += (16 + 8) * 2.0 + (d.samples > 1 ? 16 + 4 : 0);
+    if (d.aovs.anySurface()) perPixel += 16 * 2.0;
     return pixels * perPixel;
 }
 
@@ -176,8 +177,9 @@ Result<void> checkTarget(const Context& ctx, const TargetDesc& d, std::uint32_t 
 }
 
 Result<void> ensureTarget(Context& ctx, Target& t, const TargetDesc& d, bool inPlace) {
-    const bool aov = d.aovs.any();
-    if (t.width == d.width && t.height == d.height && t.samples == d.samples && t.aov == aov)
+    const bool aov = d.aovs.any(), surface = d.aovs.anySurface();
+    if (t.width == d.width && t.height == d.height && t.samples == d.samples && t.aov == aov &&
+        t.surface == surface)
         return {};
     t = Target{};
     const TargetMaker make{ctx, d.width, d.height, inPlace};
@@ -193,6 +195,9 @@ Result<void> ensureTarget(Context& ctx, Target& t, const TargetDesc& d, bool inP
         LANTERN_TRY(make.readable(t.normalDepth, t.readNormalDepth, kNormalDepthFormat, false, 16,
                                   "aov normal+depth"));
         LANTERN_TRY(make.readable(t.ids, t.readIds, kIdFormat, false, 8, "aov ids"));
+        if (surface)
+            LANTERN_TRY(make.readable(t.surfaceUvRange, t.readSurface, kSurfaceFormat, false, 16,
+                                      "aov uv+range"));
         if (d.samples > 1) {
             // The single-sampled AOV pass draws into these (its colour output is discarded).
             LANTERN_TRY(make.image(t.aovColor, kColorFormat, 1,
@@ -206,6 +211,7 @@ Result<void> ensureTarget(Context& ctx, Target& t, const TargetDesc& d, bool inP
     t.height = d.height;
     t.samples = d.samples;
     t.aov = aov;
+    t.surface = surface;
     return {};
 }
 

@@ -1,5 +1,6 @@
 // Targets.h: a frame slot's render targets: the float colour image (and its multisampled
-// twin), depth, the AOV attachments (eye normal + depth bits, draw + primitive ids), the
+// twin), depth, the AOV attachments (eye normal + depth bits, draw + primitive ids and, when
+// asked for, the surface plane: texture coordinates and range), the
 // single-sampled AOV pass that multisampling needs, and the host-visible readback buffers.
 // The planes the host reads (colour, the AOVs) are read in place where the device allows it:
 // linear images in host-visible memory, with no readback buffer (gpu/ReadbackPath.h).
@@ -15,16 +16,18 @@ namespace lantern::gpu {
 inline constexpr VkFormat kColorFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 inline constexpr VkFormat kNormalDepthFormat = VK_FORMAT_R32G32B32A32_UINT;
 inline constexpr VkFormat kIdFormat = VK_FORMAT_R32G32_UINT;
+inline constexpr VkFormat kSurfaceFormat = VK_FORMAT_R32G32B32A32_UINT;
 inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 
 struct Target {
     std::uint32_t width = 0, height = 0, samples = 0;
     bool aov = false;
-    Image color, colorMsaa, depth, normalDepth, ids;
+    bool surface = false;  ///< the surface plane (uv, range) exists: only when asked for
+    Image color, colorMsaa, depth, normalDepth, ids, surfaceUvRange;
     Image aovColor, aovDepth;  ///< the single-sampled AOV pass, with MSAA
     /// The staging buffers of the planes read back through a copy (empty for a plane read in
     /// place, whose image is mapped: Image::mapped).
-    Buffer readColor, readNormalDepth, readIds;
+    Buffer readColor, readNormalDepth, readIds, readSurface;
 
     bool multisampled() const { return samples > 1; }
     /// With MSAA the AOVs are drawn in a second, single-sampled pass: integer attachments

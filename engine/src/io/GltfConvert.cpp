@@ -4,6 +4,8 @@
 // (ExtensionReader). Every value is checked where it is read; messages carry the glTF object path.
 #include "io/GltfInternal.h"
 
+#include <lantern/Image.h>
+
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/quaternion.hpp>
@@ -36,9 +38,25 @@ namespace {
 
 // --- Nodes and scenes ----------------------------------------------------------------------
 
+// The node's semantic id, from its extras {"semantic_id": N} (docs/aovs.md): an integer in
+// 0 .. 2^32 - 2 (2^32 - 1 is kNoId, the background of the other id planes).
+Result<std::optional<std::uint32_t>> readSemantic(const tinygltf::Value& extras,
+                                                  const std::string& obj, const Diagnostics& diag) {
+    if (!extras.IsObject() || !extras.Has("semantic_id")) return std::optional<std::uint32_t>{};
+    const tinygltf::Value& v = extras.Get("semantic_id");
+    const double d = v.IsNumber() ? v.GetNumberAsDouble() : -1.0;
+    if (!(d >= 0.0 && d < double(kNoId) && d == std::floor(d)))
+        return diag.error(obj + ".extras.semantic_id",
+                          "must be an integer from 0 to 4294967294");
+    return std::optional<std::uint32_t>(std::uint32_t(d));
+}
+
 Result<Node> convertNode(const tinygltf::Node& src, std::size_t index, const Diagnostics& diag) {
     const std::string obj = at("nodes", index);
     Node n;
+    auto semantic = readSemantic(src.extras, obj, diag);
+    if (!semantic) return std::move(semantic).error();
+    n.semantic = *semantic;
     n.name = src.name;
     n.mesh = src.mesh;
     n.camera = src.camera;

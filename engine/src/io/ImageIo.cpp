@@ -1,6 +1,7 @@
 // OpenEXR and PNG writers (atomic) and the EXR reader.
 #include <lantern/Io.h>
 
+#include "io/AovChannels.h"
 #include "io/AtomicFile.h"
 #include "io/ImageEncode.h"
 
@@ -62,11 +63,7 @@ Result<void> checkImage(const Image& image, const std::filesystem::path& path) {
     if (image.width <= 0 || image.height <= 0 || image.rgba.size() != image.pixelCount() * 4)
         return makeError(ErrorCode::InvalidInput, "image has no pixels or a wrong pixel count", {},
                          path.string());
-    if (!image.depth.empty() && image.depth.size() != image.pixelCount())
-        return makeError(ErrorCode::InvalidInput, "depth plane has a wrong size", {}, path.string());
-    if (!image.normal.empty() && image.normal.size() != image.pixelCount() * 3)
-        return makeError(ErrorCode::InvalidInput, "normal plane has a wrong size", {}, path.string());
-    return {};
+    return io::checkAovPlanes(image, path);
 }
 
 // OpenEXR's output stream onto an AtomicFile, so that EXR bytes reach the disk through
@@ -213,29 +210,6 @@ void addColorChannels(Imf::Header& header, Imf::FrameBuffer& fb, const Image& im
     }
 }
 
-// The depth (Z) and normal (N.X, N.Y, N.Z) planes the image has. AOVs are always 32-bit float:
-// half has 0.5-unit spacing at depth 1000.
-void addAovChannels(Imf::Header& header, Imf::FrameBuffer& fb, const Image& image) {
-    const int w = image.width;
-    if (!image.depth.empty()) {
-        header.channels().insert("Z", Imf::Channel(Imf::FLOAT));
-        fb.insert("Z",
-                  Imf::Slice(Imf::FLOAT,
-                             const_cast<char*>(reinterpret_cast<const char*>(image.depth.data())),
-                             sizeof(float), sizeof(float) * std::size_t(w)));
-    }
-    if (!image.normal.empty()) {
-        const char* nn[3] = {"N.X", "N.Y", "N.Z"};
-        for (int c = 0; c < 3; ++c) {
-            header.channels().insert(nn[c], Imf::Channel(Imf::FLOAT));
-            fb.insert(nn[c], Imf::Slice(Imf::FLOAT,
-                                        const_cast<char*>(
-                                            reinterpret_cast<const char*>(image.normal.data() + c)),
-                                        sizeof(float) * 3, sizeof(float) * 3 * std::size_t(w)));
-        }
-    }
-}
-
 // The standard worldToCamera and worldToNDC attributes.
 void addCameraAttributes(Imf::Header& header, const CameraMetadata& camera) {
     // OpenEXR's camera space is left-handed, looking down +Z: flip z. Imath's matrices
@@ -279,7 +253,11 @@ Result<void> writeExr(const std::filesystem::path& path, const Image& image,
         Imf::FrameBuffer fb;
         if (options.half) halves = toHalves(image.rgba, clamped);
         addColorChannels(header, fb, image, options.half, halves);
-        addAovChannels(header, fb, image);
+        for (const io::AovChannel& c : io::aovChannels(image)) {
+            const Imf::PixelType type = c.uint ? Imf::UINT : Imf::FLOAT;
+            header.channels().insert(c.name, Imf::Channel(type));
+            fb.insert(c.name, Imf::Slice(type, c.first, c.xStride, c.xStride * std::size_t(image.width)));
+        }
         for (const auto& [key, value] : image.metadata) header.insert(key, Imf::StringAttribute(value));
         if (image.camera) addCameraAttributes(header, *image.camera);
         if (image.framesPerSecond > 0.0)
@@ -316,7 +294,6 @@ Result<Image> readExr(const std::filesystem::path& path) {
         if (!size) return std::move(size).error();
         const int w = size->first;
         Image img{w, size->second};
-        const std::size_t n = img.pixelCount();
         Imf::FrameBuffer fb;
         const char* names[4] = {"R", "G", "B", "A"};
         auto base = [&](float* p, std::size_t comps) {
@@ -326,15 +303,13 @@ Result<Image> readExr(const std::filesystem::path& path) {
             fb.insert(names[c], Imf::Slice(Imf::FLOAT, base(img.rgba.data() + c, 4), 16, 16 * std::size_t(w), 1, 1,
                                            c == 3 ? 1.0 : 0.0));
         const Imf::ChannelList& channels = in.header().channels();
-        if (channels.findChannel("Z")) {
-            img.depth.resize(n);
-            fb.insert("Z", Imf::Slice(Imf::FLOAT, base(img.depth.data(), 1), 4, 4 * std::size_t(w)));
-        }
-        if (channels.findChannel("N.X") && channels.findChannel("N.Y") && channels.findChannel("N.Z")) {
-            img.normal.resize(n * 3);
-            const char* nn[3] = {"N.X", "N.Y", "N.Z"};
-            for (int c = 0; c < 3; ++c)
-                fb.insert(nn[c], Imf::Slice(Imf::FLOAT, base(img.normal.data() + c, 3), 12, 12 * std::size_t(w)));
+        for (const io::AovChannel& c :
+             io::aovChannelsToRead(img, [&](const char* name) { return channels.findChannel(name); })) {
+            // exrSliceBase only does byte arithmetic on its pointer; UINT values are 4 bytes too.
+            char* first = io::exrSliceBase(reinterpret_cast<float*>(c.first), window, c.xStride,
+                                           c.xStride * std::size_t(w));
+            fb.insert(c.name, Imf::Slice(c.uint ? Imf::UINT : Imf::FLOAT, first, c.xStride,
+                                         c.xStride * std::size_t(w)));
         }
         in.setFrameBuffer(fb);
         in.readPixels(dw.min.y, dw.max.y);

@@ -3,6 +3,7 @@
 #include "render/FrameRender.h"
 
 #include "reference/PixelReference.h"
+#include "render/AovPlanes.h"
 #include "render/DrawLists.h"
 #include "render/Variants.h"
 
@@ -42,6 +43,11 @@ Result<void> checkOptions(const gpu::Device& device, const RenderOptions& o) {
     if (o.msaa != 1 && o.msaa != 2 && o.msaa != 4 && o.msaa != 8)
         return makeError(ErrorCode::InvalidInput,
                          "sample count " + std::to_string(o.msaa) + " is not 1, 2, 4 or 8", "--msaa");
+    if (o.unlitExact && o.msaa != 1)
+        return makeError(ErrorCode::InvalidInput,
+                         "exact colours need one sample per pixel (anti-aliasing blends them): "
+                         "use --msaa 1 with --unlit-exact",
+                         "--unlit-exact");
     gpu::Overlays overlays;
     overlays.wireframe = o.wireframe;
     overlays.normals = o.normals;
@@ -79,6 +85,7 @@ Result<RenderedFrame> renderFrame(gpu::Device& device, const std::shared_ptr<gpu
     const auto t1 = Clock::now();
     auto readback = device.collect(*slot, std::move(storage));
     if (!readback) return std::move(readback).error();
+    resolveAovPlanes(sceneData, *f, options.aovs, *readback);
     stats.waitMs = msSince(t1);
     stats.gpuMs = readback->gpuMs;
     stats.draws = readback->draws;

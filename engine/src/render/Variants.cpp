@@ -42,6 +42,7 @@ gpu::PipelineKey pipelineKey(const frame::Frame& frame, const frame::Draw& d,
     k.topology = d.topology;
     k.blend = f.blend;
     k.aov = o.aovs.any();
+    k.aovSurface = o.aovs.anySurface();
     k.samples = std::uint32_t(o.msaa);
     k.reversedZ = o.depth == DepthMode::ReversedZ;
     auto& sc = k.constants;
@@ -105,7 +106,7 @@ std::string describe(const gpu::PipelineKey& k) {
     if (k.topology == Topology::Lines) s << " lines";
     if (k.topology == Topology::Points) s << " points";
     if (k.blend) s << " blend";
-    if (k.aov) s << " aov";
+    if (k.aov) s << (k.aovSurface ? " aov+surface" : " aov");
     if (k.samples > 1) s << " msaa=" << k.samples;
     if (!k.reversedZ) s << " standard-z";
     return s.str();
