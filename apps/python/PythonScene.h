@@ -59,6 +59,13 @@ struct RenderArgs {
     bool clamp = false, glCompat = false;
     bool depth = false, normal = false;
     double pointSize = 1.0, lineWidth = 1.0;  ///< pixels across points and lines
+    /// Computer-vision cameras (docs/python.md): intrinsics (fx, fy, cx, cy) or a 3x3 K in
+    /// OpenCV pixels; a pose as OpenCV's world_to_camera or glTF's camera_to_world (4x4);
+    /// near and far for the intrinsics; a camera JSON file (`camera` given as a path).
+    py::object intrinsics = py::none();
+    std::optional<std::vector<std::vector<double>>> worldToCamera, cameraToWorld;
+    std::optional<double> znear, zfar;
+    std::optional<std::string> cameraFile;
 };
 
 /// Builds the RenderOptions (ValueError naming the keyword for a bad value).

@@ -2,6 +2,7 @@
 #include "common/CliSupport.h"
 #include "common/Commands.h"
 #include "common/CompareCli.h"
+#include "common/CvCameraCli.h"
 
 #include <algorithm>
 #include <atomic>
@@ -98,6 +99,8 @@ struct RenderArgs {
     std::string scene;
     std::vector<std::string> outputs;
     int width = 1280, height = 720;
+    bool widthGiven = false, heightGiven = false;  // a camera file's size applies otherwise
+    bool writeCamera = false;  // --write-camera: each image's camera JSON beside it
     int sceneIndex = -1;
     double time = 0.0;
     bool timeGiven = false;
@@ -194,6 +197,7 @@ Result<SequenceOptions> sequenceOptions(const RenderArgs& a, const ExrOptions& e
     seq.outputs = outputs;
     seq.exr = exr;
     seq.encoderThreads = a.encoderThreads;
+    seq.writeCamera = a.writeCamera;
     return seq;
 }
 
@@ -287,8 +291,12 @@ int reportDryRun(const RenderArgs& a, const Scene& scene, const std::optional<Se
               << (frames.size() == 1 ? "" : "s") << " of " << a.width << "x" << a.height << "\n";
     const std::size_t shown = std::min<std::size_t>(frames.size(), 3);
     for (std::size_t i = 0; i < shown; ++i)
-        for (const std::string& out : outputs)
+        for (const std::string& out : outputs) {
             std::cout << "  would write " << expandFramePattern(out, frames[i]) << "\n";
+            if (a.writeCamera)
+                std::cout << "  would write "
+                          << cameraFilePath(expandFramePattern(out, frames[i])).string() << "\n";
+        }
     if (frames.size() > shown)
         std::cout << "  ... and " << frames.size() - shown << " more frames\n";
     return kOk;
@@ -328,6 +336,9 @@ int renderFrame(const RenderArgs& a, const SingleFrame& frame, Renderer& rendere
         const std::string out = expandFramePattern(pattern, frame.number);
         std::uint64_t clamped = 0;
         exr.clampedCount = &clamped;
+        // The camera first: a finished image always has its camera beside it.
+        if (a.writeCamera)
+            if (auto w = writeImageCamera(out, *image); !w) return report(w.error());
         if (auto w = writeImage(out, *image, exr); !w) return report(w.error());
         if (clamped > 0)
             std::cerr << "lantern: warning: " << out << ": " << clamped
@@ -364,8 +375,22 @@ Result<SingleFrame> singleFrame(const RenderArgs& a) {
     return SingleFrame{a.time, int(number)};
 }
 
-int run(const RenderArgs& a) {
+// The options and the image size a camera file sets (into `a`), with --write-camera's checks.
+Result<RenderOptions> renderOptionsAndSize(RenderArgs& a) {
     auto options = renderOptions(a);
+    if (!options) return options;
+    LANTERN_TRY(takeCameraSize(options->camera, a.widthGiven, a.heightGiven, a.width, a.height));
+    options->width = a.width;
+    options->height = a.height;
+    if (a.writeCamera && !options->views.empty())
+        return makeError(ErrorCode::Usage,
+                         "a camera file describes one view: not with --viewport or --layout",
+                         "--write-camera");
+    return options;
+}
+
+int run(RenderArgs a) {
+    auto options = renderOptionsAndSize(a);
     if (!options) return report(options.error());
     ExrOptions exr;
     exr.half = a.half;
@@ -490,6 +515,9 @@ Runner addRenderCommand(CLI::App& app) {
         ->check(CLI::Range(0, kMaxEncoderThreads));
     cmd->add_option("--aov", args->aovs, "Extra EXR channels, comma-separated: depth, normal")
         ->delimiter(',');
+    cmd->add_flag("--write-camera", args->writeCamera,
+                  "Write each image's camera beside it as JSON (same name, .json): size, "
+                  "intrinsics K, the pose in OpenCV's and glTF's axes, near, far, projection");
     cmd->add_flag("--half", args->half, "Write 16-bit half channels instead of 32-bit float");
     cmd->add_option("--compression", args->compression,
                     "EXR compression: none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab")
@@ -519,6 +547,8 @@ Runner addRenderCommand(CLI::App& app) {
         if (!cmd->parsed()) return -1;
         args->timeGiven = cmd->count("--time") > 0;
         args->frameGiven = cmd->count("--frame") > 0;
+        args->widthGiven = cmd->count("--width") > 0;
+        args->heightGiven = cmd->count("--height") > 0;
         return run(*args);
     };
 }
