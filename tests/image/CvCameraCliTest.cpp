@@ -45,8 +45,10 @@ json cameraDoc() {
                 {"far", 60.0}};
 }
 
-std::string writeJson(const std::string& name, const json& doc) {
-    const auto path = testOutputDir() / name;
+// testOutputDir() empties the folder on every call: each test takes it once.
+std::string writeJson(const std::filesystem::path& dir, const std::string& name,
+                      const json& doc) {
+    const auto path = dir / name;
     std::ofstream(path) << doc.dump(2);
     return path.string();
 }
@@ -64,28 +66,30 @@ std::vector<std::string> render(const std::string& out, std::vector<std::string>
 
 class CvCameraCli : public GpuTest {
 protected:
-    Image rendered(const std::string& name, std::vector<std::string> extra) {
-        const std::string out = (testOutputDir() / (name + ".exr")).string();
+    Image rendered(const std::filesystem::path& dir, const std::string& name,
+                   std::vector<std::string> extra) {
+        const std::string out = (dir / (name + ".exr")).string();
         const auto r = runLantern(render(out, std::move(extra)));
         EXPECT_EQ(r.exitCode, 0) << name << ": " << r.err;
         auto image = readExr(out);
-        EXPECT_TRUE(image) << name;
+        EXPECT_TRUE(image) << name << ": " << (image ? "" : image.error().describe());
         return image ? *image : Image();
     }
 };
 
 TEST_F(CvCameraCli, CameraFileRoundTripsThroughWriteCamera) {
+    const auto dir = testOutputDir();
     const json in = cameraDoc();
-    const std::string file = writeJson("camera.json", in);
-    const auto out = testOutputDir() / "round.exr";
+    const std::string file = writeJson(dir, "camera.json", in);
+    const auto out = dir / "round.exr";
     const auto r = runLantern(render(out.string(), {"--camera", file, "--write-camera"}));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     auto image = readExr(out);
-    ASSERT_TRUE(image);
+    ASSERT_TRUE(image) << image.error().describe();
     EXPECT_EQ(image->width, 160) << "the file sets the image size";
     EXPECT_EQ(image->height, 120);
     EXPECT_GT(test::countCovered(*image), 1000u);
-    const auto written = testOutputDir() / "round.json";
+    const auto written = dir / "round.json";
     ASSERT_TRUE(std::filesystem::exists(written)) << r.out;
     const json j = readJson(written);
     EXPECT_EQ(j["width"], 160);
@@ -110,22 +114,30 @@ TEST_F(CvCameraCli, CameraFileRoundTripsThroughWriteCamera) {
         for (int col = 0; col < 4; ++col)
             for (int row = 0; row < 4; ++row)
                 EXPECT_NEAR(poses[p][col][row], expected[p][col][row], 1e-14) << p;
-    // The projection matrix is the one in the EXR's header.
-    ASSERT_TRUE(image->camera);
-    EXPECT_EQ(matrixOf(j["projection_matrix"]), image->camera->clipFromView);
+    // The projection matrix is the intrinsics' Vulkan projection (reversed-Z by default).
+    Intrinsics k;
+    k.width = 160, k.height = 120, k.fx = 150, k.fy = 118, k.cx = 71.3, k.cy = 64.8;
+    k.znear = 0.25, k.zfar = 60;
+    const glm::dmat4 clip = vulkanClipFromView(projectionFromIntrinsics(k), 160.0 / 120.0,
+                                               DepthMode::ReversedZ);
+    const glm::dmat4 matrix = matrixOf(j["projection_matrix"]);
+    for (int col = 0; col < 4; ++col)
+        for (int row = 0; row < 4; ++row)
+            EXPECT_NEAR(matrix[col][row], clip[col][row], 1e-12) << col << "," << row;
     EXPECT_EQ(j["depth"], "reversed");
     // The written file is a camera file: it renders the same picture.
-    const Image again = rendered("again", {"--camera", written.string()});
+    const Image again = rendered(dir, "again", {"--camera", written.string()});
     EXPECT_EQ(test::maxAbsDifference(again, *image), 0.0f);
 }
 
 TEST_F(CvCameraCli, GltfAndOpenCvFilesAndFlagsRenderTheIdenticalImage) {
-    const Image cv = rendered("opencv", {"--camera", writeJson("cv.json", cameraDoc())});
+    const auto dir = testOutputDir();
+    const Image cv = rendered(dir, "opencv", {"--camera", writeJson(dir, "cv.json", cameraDoc())});
     json gltf = cameraDoc();
     gltf.erase("world_to_camera");
     gltf["convention"] = "gltf";
     gltf["camera_to_world"] = rows(glm::inverse(worldToCamera()) * kFlip);
-    const Image g = rendered("gltf", {"--camera", writeJson("gltf.json", gltf)});
+    const Image g = rendered(dir, "gltf", {"--camera", writeJson(dir, "gltf.json", gltf)});
     EXPECT_EQ(test::maxAbsDifference(cv, g), 0.0f) << test::saveComparison(g, cv, "gltf");
     // The same camera from the flags.
     std::string pose;
@@ -135,7 +147,7 @@ TEST_F(CvCameraCli, GltfAndOpenCvFilesAndFlagsRenderTheIdenticalImage) {
             std::snprintf(b, sizeof b, "%s%.17g", pose.empty() ? "" : ",", worldToCamera()[c][r]);
             pose += b;
         }
-    const Image flags = rendered("flags", {"--width", "160", "--height", "120", "--intrinsics",
+    const Image flags = rendered(dir, "flags", {"--width", "160", "--height", "120", "--intrinsics",
                                            "150,118,71.3,64.8,0.25,60", "--world-to-camera",
                                            pose});
     EXPECT_EQ(test::maxAbsDifference(cv, flags), 0.0f) << test::saveComparison(flags, cv, "flags");
@@ -182,7 +194,7 @@ TEST(CvCameraCliErrors, MalformedCameraFilesExit1NamingTheFileAndKey) {
         d[key] = std::move(value);
         return d;
     };
-    const Row rows[] = {
+    const Row cases[] = {
         {"no-width", without("width"), "width", "missing"},
         {"no-k", without("K"), "K", "missing"},
         {"no-pose", without("world_to_camera"), "world_to_camera", "missing"},
@@ -201,9 +213,10 @@ TEST(CvCameraCliErrors, MalformedCameraFilesExit1NamingTheFileAndKey) {
         {"typo", with("word_to_camera", 1), "word_to_camera", "not a camera key"},
         {"height", with("height", 0), "height", "1 to 16384"},
     };
-    for (const Row& row : rows) {
-        const std::string file = writeJson(row.name + ".json", row.doc);
-        const auto out = testOutputDir() / (row.name + ".exr");
+    const auto dir = testOutputDir();
+    for (const Row& row : cases) {
+        const std::string file = writeJson(dir, row.name + ".json", row.doc);
+        const auto out = dir / (row.name + ".exr");
         const auto r = runLantern(render(out.string(), {"--camera", file}));
         EXPECT_EQ(r.exitCode, 1) << row.name << ": " << r.err;
         EXPECT_NE(r.err.find(file), std::string::npos) << row.name << ": " << r.err;
@@ -213,7 +226,6 @@ TEST(CvCameraCliErrors, MalformedCameraFilesExit1NamingTheFileAndKey) {
         EXPECT_FALSE(std::filesystem::exists(out)) << row.name;
     }
     // Not JSON at all, a missing file, a size that contradicts --width.
-    const auto dir = testOutputDir();
     std::ofstream(dir / "broken.json") << "{\"width\": 160,";
     auto r = runLantern(render((dir / "x.exr").string(),
                                {"--camera", (dir / "broken.json").string()}));
@@ -223,7 +235,7 @@ TEST(CvCameraCliErrors, MalformedCameraFilesExit1NamingTheFileAndKey) {
     r = runLantern(render((dir / "x.exr").string(), {"--camera", (dir / "absent.json").string()}));
     EXPECT_EQ(r.exitCode, 1) << r.err;
     EXPECT_NE(r.err.find("neither a scene camera index"), std::string::npos) << r.err;
-    const std::string good = writeJson("good.json", cameraDoc());
+    const std::string good = writeJson(dir, "good.json", cameraDoc());
     r = runLantern(render((dir / "x.exr").string(), {"--camera", good, "--width", "100"}));
     EXPECT_EQ(r.exitCode, 1) << r.err;
     EXPECT_NE(r.err.find("--width"), std::string::npos) << r.err;
@@ -232,8 +244,9 @@ TEST(CvCameraCliErrors, MalformedCameraFilesExit1NamingTheFileAndKey) {
 
 TEST(CvCameraCliErrors, ConflictingCameraOptionsAreUsageErrors) {
     LANTERN_SKIP_IF_MISSING(test::missingVulkanDevice());
-    const std::string good = writeJson("good.json", cameraDoc());
-    const std::string out = (testOutputDir() / "x.exr").string();
+    const auto dir = testOutputDir();
+    const std::string good = writeJson(dir, "good.json", cameraDoc());
+    const std::string out = (dir / "x.exr").string();
     const std::vector<std::vector<std::string>> rows = {
         {"--camera", good, "--look-at", "0,0,5,0,0,0,0,1,0"},
         {"--camera", good, "--perspective", "40,1,0.1,10"},
