@@ -93,7 +93,7 @@ TEST_F(CvCamera, KnownPointsLandWhereKRtPutsThem) {
                                   << test::savedAs(*image, "known-points");
         }
     }
-    std::printf("largest distance from K[R|t] (ramp fit): %.4f px\n", worst);
+    std::printf("largest distance from K[R|t] (ramp fit): %.2e px\n", worst);
 }
 
 TEST_F(CvCamera, BrightSquaresCentroidsAreWithinHalfAPixel) {
