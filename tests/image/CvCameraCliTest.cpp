@@ -177,6 +177,35 @@ TEST_F(CvCameraCli, WriteCameraDescribesEveryCameraAndEveryFrame) {
     EXPECT_FALSE(std::filesystem::exists(dir / "dry.json"));
 }
 
+TEST_F(CvCameraCli, WriteCameraNeverReplacesAFileLanternDidNotWrite) {
+    const auto dir = testOutputDir();
+    const std::string out = (dir / "shot.exr").string();
+    const std::vector<std::string> args{"--width", "32", "--height", "24", "--write-camera"};
+    // Lantern's own camera file is replaced by the next render.
+    auto r = runLantern(render(out, args));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = runLantern(render(out, args));
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    // A user's JSON of that name, or a link there, is not: nothing is written.
+    for (const bool link : {false, true}) {
+        std::filesystem::remove(dir / "shot.exr");
+        std::filesystem::remove(dir / "shot.json");
+        if (link) {
+            std::ofstream(dir / "target.json") << "{}";
+            std::filesystem::create_symlink(dir / "target.json", dir / "shot.json");
+        } else {
+            std::ofstream(dir / "shot.json") << R"({"labels": [1, 2, 3]})";
+        }
+        r = runLantern(render(out, args));
+        EXPECT_EQ(r.exitCode, 3) << r.err;
+        EXPECT_NE(r.err.find("not replaced"), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(dir / "shot.exr")) << "no image without its camera";
+        EXPECT_TRUE(std::filesystem::is_symlink(dir / "shot.json") == link);
+    }
+    std::ifstream in(dir / "target.json");
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), "{}");
+}
+
 TEST(CvCameraCliErrors, MalformedCameraFilesExit1NamingTheFileAndKey) {
     LANTERN_SKIP_IF_MISSING(test::missingVulkanDevice());
     struct Row {

@@ -2,6 +2,8 @@
 // checked and named in errors, written atomically as images are. Format: docs/cameras.md.
 #include <lantern/CameraConventions.h>
 
+#include <lantern/Version.h>
+
 #include "io/AtomicFile.h"
 
 #include <nlohmann/json.hpp>
@@ -22,7 +24,8 @@ constexpr std::uintmax_t kMaxCameraFileBytes = 1 << 20;
 
 const std::set<std::string> kKeys = {"width",  "height", "K",          "convention",
                                      "world_to_camera", "camera_to_world", "near", "far",
-                                     "projection", "gltf", "depth", "projection_matrix"};
+                                     "projection", "gltf", "depth", "projection_matrix",
+                                     "writer"};
 
 // Errors name the file and the key.
 struct Reader {
@@ -247,15 +250,46 @@ std::string cameraJson(const CameraModel& camera, const glm::dmat4& clipFromView
     doc["near"] = k.znear;
     doc["far"] = std::isinf(k.zfar) ? json(nullptr) : json(k.zfar);
     doc["depth"] = reversedDepth ? "reversed" : "standard";
+    doc["writer"] = std::string("lantern ") + versionString();
     doc["projection_matrix"] = rows(clipFromView);
     return doc.dump(2) + "\n";
 }
+
+namespace {
+
+// A file already at `path` is replaced only when Lantern wrote it (its "writer" says so): a
+// user's own JSON beside an image, or a link, is never overwritten.
+Result<void> checkReplaceable(const std::filesystem::path& path) {
+    std::error_code ec;
+    const auto status = std::filesystem::symlink_status(path, ec);
+    if (ec || status.type() == std::filesystem::file_type::not_found) return {};
+    auto refuse = [&] {
+        return makeError(ErrorCode::IoError,
+                         "exists and is not a camera file Lantern wrote: not replaced (move it, "
+                         "or choose another output name)",
+                         {}, path.string());
+    };
+    if (status.type() != std::filesystem::file_type::regular) return refuse();
+    const auto bytes = std::filesystem::file_size(path, ec);
+    if (ec || bytes > kMaxCameraFileBytes) return refuse();
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    const json doc = json::parse(text.str(), nullptr, false);
+    if (!doc.is_object() || !doc.contains("writer") || !doc["writer"].is_string() ||
+        doc["writer"].get<std::string>().rfind("lantern", 0) != 0)
+        return refuse();
+    return {};
+}
+
+} // namespace
 
 Result<void> writeCameraFile(const std::filesystem::path& path, const CameraModel& camera,
                              const glm::dmat4& clipFromView, bool reversedDepth) {
     const std::string text = cameraJson(camera, clipFromView, reversedDepth);
     io::AtomicFile file(path);
     LANTERN_TRY(file.checkWritable());
+    LANTERN_TRY(checkReplaceable(path));
     LANTERN_TRY(file.writeAll(text.data(), text.size()));
     return file.commit();
 }
