@@ -261,6 +261,9 @@ TEST(CvCameraCliErrors, MalformedCameraFilesExit1NamingTheFileAndKey) {
     EXPECT_EQ(r.exitCode, 1) << r.err;
     EXPECT_NE(r.err.find("broken.json"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("not valid JSON"), std::string::npos) << r.err;
+    r = runLantern(render((dir / "x.exr").string(), {"--camera", dir.string()}));
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("not a regular file"), std::string::npos) << r.err;
     r = runLantern(render((dir / "x.exr").string(), {"--camera", (dir / "absent.json").string()}));
     EXPECT_EQ(r.exitCode, 1) << r.err;
     EXPECT_NE(r.err.find("neither a scene camera index"), std::string::npos) << r.err;

@@ -182,6 +182,9 @@ Result<glm::dmat4> Reader::view(PoseConvention convention) const {
 Result<CameraModel> readCameraFile(const std::filesystem::path& path) {
     const std::string file = path.string();
     std::error_code ec;
+    // A folder, device or pipe is refused before it is opened (a pipe would block).
+    if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+        return makeError(ErrorCode::InvalidInput, "is not a regular file", {}, file);
     const auto bytes = std::filesystem::file_size(path, ec);
     if (ec) return makeError(ErrorCode::IoError, "cannot read the camera file: " + ec.message(), {}, file);
     if (bytes > kMaxCameraFileBytes)
