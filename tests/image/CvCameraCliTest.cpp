@@ -293,6 +293,16 @@ TEST(CvCameraCliErrors, ConflictingCameraOptionsAreUsageErrors) {
         const auto r = runLantern(render(out, args));
         EXPECT_EQ(r.exitCode, 2) << args[0] << " " << args[1] << " " << args[2] << ": " << r.err;
     }
+    // The viewer takes scene cameras and --look-at only (checked before a window opens).
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"--camera", good},
+          std::vector<std::string>{"--intrinsics", "100,100,31.5,23.5"}}) {
+        std::vector<std::string> view{"view", "builtin:spheres"};
+        view.insert(view.end(), args.begin(), args.end());
+        const auto r = runLantern(view);
+        EXPECT_EQ(r.exitCode, 2) << args[0] << ": " << r.err;
+        EXPECT_NE(r.err.find("lantern render"), std::string::npos) << r.err;
+    }
     // A pose that is not rigid, given as a flag: exit 1 naming the flag.
     const auto r = runLantern(render(out, {"--world-to-camera",
                                            "2,0,0,0,0,2,0,0,0,0,2,5,0,0,0,1"}));
