@@ -152,16 +152,30 @@ void defineRenderer(py::module_& m) {
                std::optional<std::vector<double>> background,
                std::optional<std::vector<std::vector<double>>> lookAt,
                std::optional<std::vector<double>> perspective,
-               std::optional<std::vector<double>> ortho, std::optional<int> camera,
+               std::optional<std::vector<double>> ortho,
+               std::optional<std::variant<int, std::string>> camera,
                std::optional<bool> twoSided, std::optional<bool> localViewer, bool clamp,
                bool glCompat, bool depth, bool normal, double pointSize, double lineWidth,
-               std::vector<std::string> aov, bool unlitExact) {
+               std::vector<std::string> aov, bool unlitExact, py::object intrinsics,
+               std::optional<std::vector<std::vector<double>>> worldToCamera,
+               std::optional<std::vector<std::vector<double>>> cameraToWorld,
+               std::optional<double> znear, std::optional<double> zfar) {
                 RenderArgs a{time,       width,   height,      std::move(shading),
                              std::move(specular), msaa, std::move(background), std::move(lookAt),
-                             std::move(perspective), std::move(ortho), camera, twoSided,
+                             std::move(perspective), std::move(ortho), std::nullopt, twoSided,
                              localViewer, clamp, glCompat, depth, normal, pointSize, lineWidth};
                 a.aov = std::move(aov);
                 a.unlitExact = unlitExact;
+                // camera=N is a scene camera; camera="PATH" a camera JSON file.
+                if (camera && std::holds_alternative<int>(*camera))
+                    a.camera = std::get<int>(*camera);
+                else if (camera)
+                    a.cameraFile = std::get<std::string>(*camera);
+                a.intrinsics = std::move(intrinsics);
+                a.worldToCamera = std::move(worldToCamera);
+                a.cameraToWorld = std::move(cameraToWorld);
+                a.znear = znear;
+                a.zfar = zfar;
                 return r.render(scene, a);
             },
             py::arg("scene"), py::kw_only(), py::arg("time") = 0.0, py::arg("width") = 1280,
@@ -174,10 +188,16 @@ void defineRenderer(py::module_& m) {
             py::arg("gl_compat") = false, py::arg("depth") = false, py::arg("normal") = false,
             py::arg("point_size") = 1.0, py::arg("line_width") = 1.0,
             py::arg("aov") = std::vector<std::string>{}, py::arg("unlit_exact") = false,
+            py::arg("intrinsics") = py::none(), py::arg("world_to_camera") = py::none(),
+            py::arg("camera_to_world") = py::none(), py::arg("near") = py::none(),
+            py::arg("far") = py::none(),
             "Renders `scene` at `time` seconds: a (height, width, 4) float32 array of linear, "
             "premultiplied RGBA; with depth=True and/or normal=True a tuple (rgba, depth, "
             "normal) of the planes asked for; with aov=[names] (docs/aovs.md) a tuple (rgba, "
-            "dict) of float32 data planes and uint32 id planes by name");
+            "dict) of float32 data planes and uint32 id planes by name. Computer-vision cameras: "
+            "intrinsics=(fx, fy, cx, cy) or a 3x3 K in OpenCV pixels (centres at integers), "
+            "near/far, world_to_camera (OpenCV axes) or camera_to_world (glTF axes) as 4x4 "
+            "matrices, or camera=\"FILE.json\" (docs/cameras.md)");
 }
 
 } // namespace

@@ -5,6 +5,7 @@
 #include "PythonScene.h"
 
 #include <glm/gtx/quaternion.hpp>
+#include <pybind11/stl.h>
 
 #include <algorithm>
 #include <atomic>
@@ -55,6 +56,78 @@ void applyCamera(const RenderArgs& a, RenderOptions& o) {
         o.camera.projection = Projection::makeOrtho(p[0], p[1], p[2], p[3], p[4], p[5]);
         check(checkProjection(*o.camera.projection, "ortho"));
     }
+}
+
+// A 4x4 row-major pose from nested sequences (a NumPy array works), checked to be rigid.
+glm::dmat4 poseMatrix(const std::vector<std::vector<double>>& rows, const char* keyword) {
+    glm::dmat4 m(0.0);
+    if (rows.size() != 4) throw py::value_error(std::string(keyword) + ": expected a 4x4 matrix");
+    for (int r = 0; r < 4; ++r) {
+        if (rows[std::size_t(r)].size() != 4)
+            throw py::value_error(std::string(keyword) + ": expected a 4x4 matrix");
+        for (int c = 0; c < 4; ++c) m[c][r] = rows[std::size_t(r)][std::size_t(c)];
+    }
+    check(checkPose(m, keyword));
+    return m;
+}
+
+// intrinsics=(fx, fy, cx, cy) or a 3x3 K = [[fx, 0, cx], [0, fy, cy], [0, 0, 1]].
+Intrinsics intrinsicsOf(const RenderArgs& a) {
+    Intrinsics k;
+    k.width = a.width, k.height = a.height;
+    std::vector<double> v;
+    try {
+        const auto rows = a.intrinsics.cast<std::vector<std::vector<double>>>();
+        if (rows.size() != 3 || rows[0].size() != 3 || rows[1].size() != 3 || rows[2].size() != 3)
+            throw py::value_error("intrinsics: expected (fx, fy, cx, cy) or a 3x3 K");
+        if (rows[0][1] != 0.0 || rows[1][0] != 0.0 || rows[2][0] != 0.0 || rows[2][1] != 0.0 ||
+            rows[2][2] != 1.0)
+            throw py::value_error("intrinsics: K must be [[fx, 0, cx], [0, fy, cy], [0, 0, 1]] "
+                                  "(no skew)");
+        v = {rows[0][0], rows[1][1], rows[0][2], rows[1][2]};
+    } catch (const py::cast_error&) {
+        v = a.intrinsics.cast<std::vector<double>>();
+    }
+    if (v.size() != 4) throw py::value_error("intrinsics: expected (fx, fy, cx, cy) or a 3x3 K");
+    k.fx = v[0], k.fy = v[1], k.cx = v[2], k.cy = v[3];
+    if (a.znear) k.znear = *a.znear;
+    if (a.zfar) k.zfar = *a.zfar;
+    check(checkIntrinsics(k, "intrinsics"));
+    return k;
+}
+
+// The computer-vision keywords: intrinsics, world_to_camera, camera_to_world, a camera file.
+void applyCvCamera(const RenderArgs& a, RenderOptions& o) {
+    if (a.worldToCamera && a.cameraToWorld)
+        throw py::value_error("give world_to_camera or camera_to_world, not both");
+    if ((a.worldToCamera || a.cameraToWorld) && a.lookAt)
+        throw py::value_error("a pose places the camera: leave out look_at");
+    if (!a.intrinsics.is_none() && (a.perspective || a.ortho))
+        throw py::value_error("intrinsics are the projection: leave out perspective and ortho");
+    if ((a.znear || a.zfar) && a.intrinsics.is_none())
+        throw py::value_error("near and far go with intrinsics");
+    if (a.cameraFile) {
+        if (a.lookAt || a.perspective || a.ortho || !a.intrinsics.is_none() || a.worldToCamera ||
+            a.cameraToWorld)
+            throw py::value_error("a camera file sets the whole camera: leave out the other "
+                                  "camera keywords");
+        auto camera = readCameraFile(*a.cameraFile);
+        if (!camera) raise(camera.error());
+        if (camera->intrinsics.width != a.width || camera->intrinsics.height != a.height)
+            throw py::value_error("camera: the file is for a " +
+                                  std::to_string(camera->intrinsics.width) + "x" +
+                                  std::to_string(camera->intrinsics.height) +
+                                  " image; pass that width and height");
+        o.camera = CameraSpec::fromPose(camera->intrinsics, camera->worldToCamera);
+        return;
+    }
+    if (!a.intrinsics.is_none()) o.camera.intrinsics = intrinsicsOf(a);
+    if (a.worldToCamera)
+        o.camera.viewFromWorld =
+            viewFromPose(poseMatrix(*a.worldToCamera, "world_to_camera"), PoseConvention::OpenCV);
+    if (a.cameraToWorld)
+        o.camera.viewFromWorld =
+            viewFromPose(poseMatrix(*a.cameraToWorld, "camera_to_world"), PoseConvention::Gltf);
 }
 
 std::atomic<std::uint64_t> g_nextRendererId{1};
@@ -173,6 +246,7 @@ RenderOptions renderOptions(const RenderArgs& a) {
                                  float(alpha));
     }
     applyCamera(a, o);
+    applyCvCamera(a, o);
     if (a.twoSided) o.twoSided = *a.twoSided;
     if (a.localViewer) o.localViewer = *a.localViewer;
     o.clamp = a.clamp;

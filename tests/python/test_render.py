@@ -153,3 +153,56 @@ def test_module_level_render_keeps_one_renderer(lantern_module):
     second = lantern_module.render("builtin:teapot", **SIZE)
     assert lantern_module._default_renderer is kept
     assert (first == second).all()
+
+
+def _opencv_camera():
+    """An off-centre OpenCV camera for 64 x 48: K and world_to_camera [R | t] looking at the
+    teapot from (2, 1.5, 6)."""
+    K = np.array([[70.0, 0.0, 29.3], [0.0, 55.0, 25.1], [0.0, 0.0, 1.0]])
+    eye, target = np.array([2.0, 1.5, 6.0]), np.array([0.0, 0.5, 0.0])
+    z = (target - eye) / np.linalg.norm(target - eye)        # forward
+    x = np.cross(z, (0.0, 1.0, 0.0))                           # right
+    x /= np.linalg.norm(x)
+    y = np.cross(z, x)                                         # down: OpenCV's y
+    Rt = np.eye(4)
+    Rt[:3, :3] = np.stack([x, y, z])
+    Rt[:3, 3] = -Rt[:3, :3] @ eye
+    return K, Rt
+
+
+def test_opencv_and_gltf_cameras_render_the_same_picture(renderer, teapot):
+    K, Rt = _opencv_camera()
+    cv = renderer.render(teapot, intrinsics=K, world_to_camera=Rt, near=0.1, far=100, **SIZE)
+    assert cv[..., :3].max() > 0.05, "the teapot is in view"
+    # glTF's camera_to_world: the camera's world matrix with y and z flipped.
+    gltf = np.linalg.inv(Rt) @ np.diag([1.0, -1.0, -1.0, 1.0])
+    other = renderer.render(teapot, intrinsics=(70.0, 55.0, 29.3, 25.1), camera_to_world=gltf,
+                            near=0.1, far=100, **SIZE)
+    assert (cv == other).all()
+
+
+def test_camera_file_is_the_same_as_the_keywords(lantern_module, renderer, teapot, out_dir):
+    import json
+
+    K, Rt = _opencv_camera()
+    path = out_dir / "camera.json"
+    path.write_text(json.dumps({"width": 64, "height": 48, "K": K.tolist(),
+                                "world_to_camera": Rt.tolist(), "near": 0.1, "far": 100}))
+    from_file = renderer.render(teapot, camera=str(path), **SIZE)
+    keywords = renderer.render(teapot, intrinsics=K, world_to_camera=Rt, near=0.1, far=100,
+                               **SIZE)
+    assert (from_file == keywords).all()
+    with pytest.raises(ValueError, match="64x48"):
+        renderer.render(teapot, camera=str(path), width=32, height=48)
+
+
+def test_bad_camera_keywords_raise_value_error(renderer, teapot):
+    K, Rt = _opencv_camera()
+    with pytest.raises(ValueError, match="skew"):
+        renderer.render(teapot, intrinsics=[[70, 1, 29], [0, 55, 25], [0, 0, 1]], **SIZE)
+    with pytest.raises(ValueError, match="world_to_camera"):
+        renderer.render(teapot, intrinsics=K, world_to_camera=2 * Rt, **SIZE)
+    with pytest.raises(ValueError, match="intrinsics"):
+        renderer.render(teapot, intrinsics=(0, 55, 29, 25), **SIZE)
+    with pytest.raises(ValueError, match="not both"):
+        renderer.render(teapot, world_to_camera=Rt, camera_to_world=Rt, **SIZE)

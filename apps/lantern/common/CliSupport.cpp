@@ -1,5 +1,6 @@
 // Shared command-line pieces: error reporting, number lists, camera/shading/device options.
 #include "common/CliSupport.h"
+#include "common/CvCameraCli.h"
 
 #include <algorithm>
 #include <cmath>
@@ -82,8 +83,26 @@ Result<glm::vec4> parseBackground(const std::string& text) {
 }
 
 void CameraOptions::add(CLI::App& app) {
-    app.add_option("--camera", cameras,
-                   "Use the scene's camera N (glTF index); repeat once per --viewport");
+    app.add_option_function<std::vector<std::string>>(
+        "--camera",
+        [this](const std::vector<std::string>& values) {
+            for (const std::string& v : values)
+                if (isCameraIndex(v))
+                    cameras.push_back(cameraIndex(v));
+                else
+                    cameraFiles.push_back(v);
+        },
+        "Use the scene's camera N (glTF index; repeat once per --viewport), or the camera of a "
+        "JSON file: intrinsics K, pose, size (docs/cameras.md)");
+    app.add_option("--intrinsics", intrinsics,
+                   "OpenCV intrinsics in pixels, pixel centres at integers: FX,FY,CX,CY[,NEAR,FAR] "
+                   "(FAR may be inf)");
+    app.add_option("--world-to-camera", worldToCamera,
+                   "Pose as OpenCV's world-to-camera [R|t] (x right, y down, z forward): 16 "
+                   "numbers, row-major");
+    app.add_option("--camera-to-world", cameraToWorld,
+                   "Pose as a glTF camera node's world matrix (x right, y up, looking down -z): 16 "
+                   "numbers, row-major");
     app.add_flag("--default-camera", defaultCamera,
                  "The GL default camera: origin, looking down -Z, orthographic 2x2x2 cube");
     std::vector<std::string> views;
@@ -167,6 +186,7 @@ Result<void> CameraOptions::apply(RenderOptions& o) const {
     if (defaultCamera) spec.source = CameraSpec::Source::GlDefault;
     if (!view.empty()) spec = CameraSpec::framed(*parseViewDirection(view)); // CLI11 checked it
     LANTERN_TRY(applyOverrides(spec));
+    LANTERN_TRY(applyCvCamera(o, spec));
     if (!layout.empty() && !viewports.empty())
         return makeError(ErrorCode::Usage, "--layout and --viewport cannot be combined",
                          "--layout");
@@ -196,6 +216,46 @@ Result<void> CameraOptions::apply(RenderOptions& o) const {
         o.views.push_back(View{int(n[0]), int(n[1]), int(n[2]), int(n[3]), withCamera(spec, i)});
     }
     if (layout == "quad") o.views = quadLayout(o.width, o.height, o.camera);
+    return {};
+}
+
+Result<void> CameraOptions::applyCvCamera(const RenderOptions& o, CameraSpec& spec) const {
+    const bool file = !cameraFiles.empty();
+    if (cameraFiles.size() > 1 || (file && !cameras.empty()))
+        return makeError(ErrorCode::Usage, "give one camera file, without scene camera indices",
+                         "--camera");
+    if (!worldToCamera.empty() && !cameraToWorld.empty())
+        return makeError(ErrorCode::Usage, "give either --world-to-camera or --camera-to-world",
+                         "--world-to-camera");
+    const char* conflict = !lookAt.empty() ? "--look-at" : defaultCamera ? "--default-camera"
+                           : !view.empty() ? "--view" : !perspective.empty() ? "--perspective"
+                           : !ortho.empty() ? "--ortho" : !frustum.empty() ? "--frustum"
+                           : !intrinsics.empty() ? "--intrinsics"
+                           : !worldToCamera.empty() ? "--world-to-camera"
+                           : !cameraToWorld.empty() ? "--camera-to-world" : nullptr;
+    if (file && conflict)
+        return makeError(ErrorCode::Usage,
+                         std::string("a camera file sets the whole camera: leave out ") + conflict,
+                         "--camera");
+    if (!intrinsics.empty() && (!perspective.empty() || !ortho.empty() || !frustum.empty()))
+        return makeError(ErrorCode::Usage,
+                         "--intrinsics is the projection: leave out --perspective, --ortho and "
+                         "--frustum",
+                         "--intrinsics");
+    if ((!worldToCamera.empty() || !cameraToWorld.empty()) && !lookAt.empty())
+        return makeError(ErrorCode::Usage, "a pose places the camera: leave out --look-at",
+                         !worldToCamera.empty() ? "--world-to-camera" : "--camera-to-world");
+    const bool whole = file || !intrinsics.empty();
+    if (whole && (!viewports.empty() || !layout.empty()))
+        return makeError(ErrorCode::Usage,
+                         "intrinsics describe the whole image: not with --viewport or --layout",
+                         file ? "--camera" : "--intrinsics");
+    if (file) LANTERN_TRY(applyCameraFile(cameraFiles.front(), spec));
+    if (!intrinsics.empty()) LANTERN_TRY(applyIntrinsics(intrinsics, o.width, o.height, spec));
+    if (!worldToCamera.empty())
+        LANTERN_TRY(applyPose(worldToCamera, PoseConvention::OpenCV, "--world-to-camera", spec));
+    if (!cameraToWorld.empty())
+        LANTERN_TRY(applyPose(cameraToWorld, PoseConvention::Gltf, "--camera-to-world", spec));
     return {};
 }
 

@@ -81,8 +81,10 @@ void addAllowFolderOption(CLI::App& app, std::vector<std::string>& folders);
 /// The camera and view options shared by render and view.
 struct CameraOptions {
     std::vector<int> cameras; ///< --camera N (repeatable: one per --viewport)
+    std::vector<std::string> cameraFiles;  ///< --camera FILE (a value that is not an index)
     bool defaultCamera = false;
     std::string lookAt, perspective, ortho, frustum;
+    std::string intrinsics, worldToCamera, cameraToWorld;  ///< common/CvCameraCli.h
     std::vector<std::string> viewports;
     std::string layout;
     std::string depth; ///< --depth reversed|standard (default: reversed)
@@ -95,6 +97,8 @@ struct CameraOptions {
 private:
     /// --look-at and the projection options into `spec`.
     Result<void> applyOverrides(CameraSpec& spec) const;
+    /// --camera FILE, --intrinsics, --world-to-camera, --camera-to-world into `spec`.
+    Result<void> applyCvCamera(const RenderOptions& o, CameraSpec& spec) const;
 };
 
 /// The four views of --layout quad for a width x height image: top, front and side

@@ -55,6 +55,7 @@ struct BatchRequest {
     std::optional<Shard> shard;
     bool overwrite = false;  ///< --overwrite: render even when the outputs exist
     bool dryRun = false;
+    bool writeCamera = false;  ///< --write-camera: each image's camera JSON beside it, first
     RenderOptions options;   ///< the camera options' camera when --views is not given
     ExrOptions exr;
     LoadOptions load;

@@ -4,6 +4,7 @@
 #include "render/Batch.h"
 
 #include "common/CliSupport.h"
+#include <lantern/CameraConventions.h>
 
 #include <atomic>
 #include <chrono>
@@ -76,6 +77,8 @@ Result<void> renderJob(const BatchRequest& r, Renderer& renderer, const Prepared
         std::uint64_t clamped = 0;
         ExrOptions exr = r.exr;
         exr.clampedCount = &clamped;
+        // The camera first: a finished image always has its camera beside it.
+        if (r.writeCamera) LANTERN_TRY(writeImageCamera(out, *image));
         LANTERN_TRY(writeImage(out, *image, exr));
         if (clamped > 0)
             std::cerr << "lantern: warning: " << out << ": " << clamped

@@ -2,6 +2,7 @@
 #include "common/CliSupport.h"
 #include "common/Commands.h"
 #include "common/CompareCli.h"
+#include "common/CvCameraCli.h"
 #include "render/Batch.h"
 
 #include <algorithm>
@@ -100,6 +101,8 @@ struct RenderArgs {
     BatchCliArgs batch;               // --list, --views, --overwrite (render/Batch.h)
     std::vector<std::string> outputs;
     int width = 1280, height = 720;
+    bool widthGiven = false, heightGiven = false;  // a camera file's size applies otherwise
+    bool writeCamera = false;  // --write-camera: each image's camera JSON beside it
     int sceneIndex = -1;
     double time = 0.0;
     bool timeGiven = false;
@@ -197,6 +200,7 @@ Result<SequenceOptions> sequenceOptions(const RenderArgs& a, const ExrOptions& e
     seq.outputs = outputs;
     seq.exr = exr;
     seq.encoderThreads = a.encoderThreads;
+    seq.writeCamera = a.writeCamera;
     return seq;
 }
 
@@ -301,8 +305,12 @@ int reportDryRun(const RenderArgs& a, const Scene& scene, const std::optional<Se
               << (frames.size() == 1 ? "" : "s") << " of " << a.width << "x" << a.height << "\n";
     const std::size_t shown = std::min<std::size_t>(frames.size(), 3);
     for (std::size_t i = 0; i < shown; ++i)
-        for (const std::string& out : outputs)
+        for (const std::string& out : outputs) {
             std::cout << "  would write " << expandFramePattern(out, frames[i]) << "\n";
+            if (a.writeCamera)
+                std::cout << "  would write "
+                          << cameraFilePath(expandFramePattern(out, frames[i])).string() << "\n";
+        }
     if (frames.size() > shown)
         std::cout << "  ... and " << frames.size() - shown << " more frames\n";
     return kOk;
@@ -342,6 +350,9 @@ int renderFrame(const RenderArgs& a, const SingleFrame& frame, Renderer& rendere
         const std::string out = expandFramePattern(pattern, frame.number);
         std::uint64_t clamped = 0;
         exr.clampedCount = &clamped;
+        // The camera first: a finished image always has its camera beside it.
+        if (a.writeCamera)
+            if (auto w = writeImageCamera(out, *image); !w) return report(w.error());
         if (auto w = writeImage(out, *image, exr); !w) return report(w.error());
         if (clamped > 0)
             std::cerr << "lantern: warning: " << out << ": " << clamped
@@ -378,6 +389,20 @@ Result<SingleFrame> singleFrame(const RenderArgs& a) {
     return SingleFrame{a.time, int(number)};
 }
 
+// The options and the image size a camera file sets (into `a`), with --write-camera's checks.
+Result<RenderOptions> renderOptionsAndSize(RenderArgs& a) {
+    auto options = renderOptions(a);
+    if (!options) return options;
+    LANTERN_TRY(takeCameraSize(options->camera, a.widthGiven, a.heightGiven, a.width, a.height));
+    options->width = a.width;
+    options->height = a.height;
+    if (a.writeCamera && !options->views.empty())
+        return makeError(ErrorCode::Usage,
+                         "a camera file describes one view: not with --viewport or --layout",
+                         "--write-camera");
+    return options;
+}
+
 // The EXR options (--half, --compression, --zip-level).
 Result<ExrOptions> exrOptions(const RenderArgs& a) {
     ExrOptions exr;
@@ -392,13 +417,13 @@ Result<ExrOptions> exrOptions(const RenderArgs& a) {
 }
 
 // A batch (render/Batch.h): many scenes times many views on one device.
-int runBatchArgs(const RenderArgs& a) {
+int runBatchArgs(RenderArgs a) {
     const char* single = !a.compareRef.empty() ? "--compare"
                          : !a.probe.empty()    ? "--probe"
                          : a.explain           ? "--explain"
                                                : nullptr;
     if (auto c = checkBatchOptions(a.batch, a.camera, single); !c) return report(c.error());
-    auto options = renderOptions(a);
+    auto options = renderOptionsAndSize(a);
     if (!options) return report(options.error());
     auto exr = exrOptions(a);
     if (!exr) return report(exr.error());
@@ -424,6 +449,7 @@ int runBatchArgs(const RenderArgs& a) {
     }
     r.overwrite = a.batch.overwrite;
     r.dryRun = a.dryRun;
+    r.writeCamera = a.writeCamera;
     r.options = *options;
     r.exr = *exr;
     r.load.maxBytes = a.maxSize;
@@ -435,8 +461,8 @@ int runBatchArgs(const RenderArgs& a) {
     return runBatch(r);
 }
 
-int run(const RenderArgs& a) {
-    auto options = renderOptions(a);
+int run(RenderArgs a) {
+    auto options = renderOptionsAndSize(a);
     if (!options) return report(options.error());
     auto exrChecked = exrOptions(a);
     if (!exrChecked) return report(exrChecked.error());
@@ -562,6 +588,9 @@ Runner addRenderCommand(CLI::App& app) {
     cmd->add_flag("--unlit-exact", args->unlitExact,
                   "Exact label colours: every material unlit, its base colour written bit for "
                   "bit (no lighting, texture, blending or anti-aliasing)");
+    cmd->add_flag("--write-camera", args->writeCamera,
+                  "Write each image's camera beside it as JSON (same name, .json): size, "
+                  "intrinsics K, the pose in OpenCV's and glTF's axes, near, far, projection");
     cmd->add_flag("--half", args->half, "Write 16-bit half channels instead of 32-bit float");
     cmd->add_option("--compression", args->compression,
                     "EXR compression: none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab")
@@ -594,6 +623,8 @@ Runner addRenderCommand(CLI::App& app) {
         args->frameGiven = cmd->count("--frame") > 0;
         if (args->scenes.empty() && args->batch.lists.empty())
             return report(makeError(ErrorCode::Usage, "give a scene (or --list FILE)", "scene"));
+        args->widthGiven = cmd->count("--width") > 0;
+        args->heightGiven = cmd->count("--height") > 0;
         const RenderArgs& a = *args;
         return wantsBatch(a.scenes, a.batch.lists, a.batch.views, a.outputs) ? runBatchArgs(a)
                                                                              : run(a);

@@ -50,6 +50,16 @@ int runView(const ViewArgs& a) {
         // The camera options must hold, and name a camera that exists, before a window opens.
         RenderOptions check;
         if (auto r = a.camera.apply(check); !r) return report(r.error());
+        // Intrinsics fix the image size in pixels, and a window is resized at will; the
+        // viewer's camera control and its command line speak gluLookAt.
+        if (check.camera.intrinsics || check.camera.viewFromWorld)
+            return report(makeError(ErrorCode::Usage,
+                                    "computer-vision cameras (intrinsics, poses, camera files) "
+                                    "are for lantern render; the viewer takes scene cameras and "
+                                    "--look-at",
+                                    !a.camera.cameraFiles.empty() ? "--camera"
+                                    : check.camera.intrinsics     ? "--intrinsics"
+                                                                  : "--world-to-camera"));
         if (auto p = resolveCameraPlacement(*scene, check.camera, 1.0, a.sceneIndex, a.time); !p)
             return report(p.error());
     }

@@ -42,6 +42,8 @@ struct AovSet {
 struct CameraMetadata {
     glm::dmat4 viewFromWorld{1.0};  ///< right-handed eye space, camera looking down -Z
     glm::dmat4 clipFromView{1.0};   ///< Vulkan clip space (y down, depth 0..1)
+    bool reversedDepth = true;      ///< clipFromView maps near to 1 (DepthMode::ReversedZ)
+    bool wholeImage = true;         ///< the camera's view covers the whole image (one view)
 };
 
 /// A picture: width x height pixels, top row first, each pixel RGBA as 32-bit floats in

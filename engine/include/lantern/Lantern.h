@@ -3,6 +3,7 @@
 #pragma once
 
 #include <lantern/Camera.h>
+#include <lantern/CameraConventions.h>
 #include <lantern/Compare.h>
 #include <lantern/Image.h>
 #include <lantern/Io.h>

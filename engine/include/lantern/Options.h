@@ -4,6 +4,7 @@
 #pragma once
 
 #include <lantern/Camera.h>
+#include <lantern/CameraConventions.h>
 #include <lantern/Export.h>
 #include <lantern/Image.h>
 #include <lantern/Scene.h>
@@ -53,6 +54,13 @@ struct CameraSpec {
     int sceneCamera = -1;
     std::optional<LookAt> lookAt;          ///< replaces the view (gluLookAt), world space
     std::optional<Projection> projection;  ///< replaces the projection
+    /// Replaces the view with this rigid viewFromWorld, exactly (not with lookAt): see
+    /// viewFromPose() for OpenCV's world_to_camera and glTF's camera_to_world.
+    std::optional<glm::dmat4> viewFromWorld;
+    /// Replaces the projection with OpenCV intrinsics (lantern/CameraConventions.h); the view
+    /// must then be exactly intrinsics.width x intrinsics.height pixels. An automatic near
+    /// plane is fitted to the scene's bounds (docs/cameras.md).
+    std::optional<Intrinsics> intrinsics;
 
     /// The direction automatic framing looks along (world space, towards the scene; need not
     /// be unit length): the three-quarter view by default (framingDirection(ViewDirection)).
@@ -66,6 +74,15 @@ struct CameraSpec {
         s.source = Source::Framing;
         s.framingDirection = lantern::framingDirection(view);
         s.framingOrthographic = orthographic;
+        return s;
+    }
+    /// A computer-vision camera: intrinsics and a pose in OpenCV's or glTF's axes.
+    static CameraSpec fromPose(const Intrinsics& intrinsics, const glm::dmat4& pose,
+                               PoseConvention convention = PoseConvention::OpenCV) {
+        CameraSpec s;
+        s.source = Source::GlDefault;  // every part is replaced
+        s.viewFromWorld = viewFromPose(pose, convention);
+        s.intrinsics = intrinsics;
         return s;
     }
 };

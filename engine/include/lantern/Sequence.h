@@ -81,6 +81,9 @@ struct SequenceOptions {
     /// written to each.
     std::vector<std::string> outputs;
     ExrOptions exr;
+    /// Also write each frame's camera JSON beside each output (writeImageCamera: same name,
+    /// .json), before the image. Needs a single view covering the image.
+    bool writeCamera = false;
     /// Encoder threads (0: one per core; at most kMaxEncoderThreads). Encoding is the expensive
     /// stage on a CPU renderer.
     int encoderThreads = 0;

@@ -46,7 +46,11 @@ void attachMetadata(Image& image, const frame::Frame& p, const DeviceInfo& devic
         md.emplace_back("lantern:camera", p.views[0].camera.description);
         md.emplace_back("lantern:viewFromWorld", matrixText(p.views[0].camera.viewFromWorld));
         md.emplace_back("lantern:clipFromView", matrixText(p.views[0].camera.clipFromView));
-        image.camera = CameraMetadata{p.views[0].camera.viewFromWorld, p.views[0].camera.clipFromView};
+        const frame::View& v = p.views[0];
+        image.camera = CameraMetadata{v.camera.viewFromWorld, v.camera.clipFromView,
+                                      v.camera.depth == DepthMode::ReversedZ,
+                                      p.views.size() == 1 && v.x == 0 && v.y == 0 &&
+                                          v.width == image.width && v.height == image.height};
     }
 }
 

@@ -193,6 +193,7 @@ private:
         io::EncodePool::Job job;
         job.frame = f.frame;
         job.image = std::move(image);
+        job.writeCamera = m_seq.writeCamera;
         for (const std::string& out : m_seq.outputs)
             job.paths.push_back(expandFramePattern(out, f.frame));
         m_pool.push(std::move(job)); // false after a write error: reported below
@@ -241,6 +242,11 @@ Result<SequenceReport> Renderer::renderSequence(const PreparedScene& prepared,
     LANTERN_TRY(render::checkOptions(device, options));
     const std::vector<int> frames = sequenceFrames(seq);
     LANTERN_TRY(checkSequence(seq, frames));
+    if (seq.writeCamera && options.views.size() > 1)
+        return makeError(ErrorCode::Usage,
+                         "a camera file describes one view: it cannot be written for " +
+                             std::to_string(options.views.size()) + " views",
+                         "--write-camera");
     removeStaleTemporaries(seq);
     SequenceRun run(device, seq, frames.size(), encoderThreads(seq));
     run.renderFrames(prepared.scene(), prepared.m_gpu, options, frames);

@@ -132,6 +132,55 @@ Result<ViewCamera> sceneCamera(const Scene& scene, const Pose& pose, int camera,
     return rc;
 }
 
+// The projection of `spec.intrinsics` with automatic near (and, for orthographic, far) planes
+// fitted to the sphere round the animation's bounds as seen from `viewFromWorld`: a pinhole's
+// near plane 1.5 radii before the sphere's centre (at least 1e-3 radii from the eye, so a camera
+// inside the scene still sees it); an orthographic box 1.5 radii either side of the centre.
+Projection intrinsicProjection(const Scene& scene, int root, Intrinsics k,
+                               const glm::dmat4& viewFromWorld) {
+    const bool autoNear = automaticNear(k), autoFar = k.orthographic && std::isinf(k.zfar);
+    if (autoNear || autoFar) {
+        const Bounds b = animationBounds(scene, root);
+        glm::dvec3 c(0.0);
+        double r = 1.0;
+        if (!b.empty()) {
+            c = b.center();
+            r = b.radius();
+            if (!(r > 0.0)) r = std::max(1e-6, glm::length(c) * 1e-6);
+        }
+        const double d = -(viewFromWorld * glm::dvec4(c, 1.0)).z;
+        if (k.orthographic) {
+            if (autoNear) k.znear = d - 1.5 * r;
+            if (autoFar) k.zfar = d + 1.5 * r;
+        } else {
+            k.znear = std::max(d - 1.5 * r, 1e-3 * r);
+            if (!(k.znear < k.zfar)) k.znear = k.zfar * 1e-3;
+        }
+    }
+    return projectionFromIntrinsics(k);
+}
+
+// spec.viewFromWorld and spec.intrinsics, checked, into `rc`.
+Result<void> applyPose(const Scene& scene, const Pose& pose, const CameraSpec& spec,
+                       const std::string& object, ViewCamera& rc) {
+    if (spec.viewFromWorld) {
+        LANTERN_TRY(checkPose(*spec.viewFromWorld, object.empty() ? "viewFromWorld" : object));
+        rc.viewFromWorld = *spec.viewFromWorld;
+    }
+    if (spec.intrinsics) {
+        LANTERN_TRY(checkIntrinsics(*spec.intrinsics, object.empty() ? "intrinsics" : object));
+        rc.projection = intrinsicProjection(scene, pose.root, *spec.intrinsics, rc.viewFromWorld);
+        LANTERN_TRY(checkProjection(rc.projection, object.empty() ? "intrinsics" : object));
+    }
+    if (spec.viewFromWorld && spec.intrinsics)
+        rc.description = "intrinsics and pose";
+    else if (spec.viewFromWorld)
+        rc.description += " with viewFromWorld";
+    else if (spec.intrinsics)
+        rc.description += " with intrinsics";
+    return {};
+}
+
 } // namespace
 
 Bounds animationBounds(const Scene& scene, int root) {
@@ -189,6 +238,13 @@ Result<ViewCamera> resolveCamera(const Scene& scene, const Pose& pose, const Cam
     case Source::Framing:
     case Source::Automatic: rc = framingCamera(scene, pose.root, spec, aspect); break;
     }
+    if (spec.lookAt && spec.viewFromWorld)
+        return makeError(ErrorCode::InvalidInput, "give either lookAt or viewFromWorld, not both",
+                         object.empty() ? "camera" : object);
+    if (spec.projection && spec.intrinsics)
+        return makeError(ErrorCode::InvalidInput,
+                         "give either a projection or intrinsics, not both",
+                         object.empty() ? "camera" : object);
     if (spec.lookAt) {
         LANTERN_TRY(checkLookAt(*spec.lookAt, object.empty() ? "lookAt" : object));
         rc.viewFromWorld = lookAt(spec.lookAt->eye, spec.lookAt->target, spec.lookAt->up);
@@ -199,6 +255,8 @@ Result<ViewCamera> resolveCamera(const Scene& scene, const Pose& pose, const Cam
         rc.projection = *spec.projection;
         rc.description += " with explicit projection";
     }
+    LANTERN_TRY(applyPose(scene, pose, spec, object, rc));
+    rc.depth = depth;
     rc.clipFromView = vulkanClipFromView(rc.projection, aspect, depth);
     return rc;
 }

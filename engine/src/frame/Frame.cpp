@@ -160,6 +160,12 @@ Result<void> checkViewport(const lantern::View& v, const RenderOptions& o) {
 Result<View> buildView(const Scene& scene, const Frame& frame, const RenderOptions& o,
                        const lantern::View& v, const std::string& object) {
     LANTERN_TRY(checkViewport(v, o));
+    if (const auto& k = v.camera.intrinsics; k && (k->width != v.width || k->height != v.height))
+        return makeError(ErrorCode::InvalidInput,
+                         "the intrinsics are for a " + std::to_string(k->width) + "x" +
+                             std::to_string(k->height) + " image but the view is " +
+                             std::to_string(v.width) + "x" + std::to_string(v.height),
+                         object.empty() ? "intrinsics" : object);
     View view;
     view.x = v.x, view.y = v.y, view.width = v.width, view.height = v.height;
     auto cam = resolveCamera(scene, frame.pose, v.camera, double(v.width) / double(v.height),

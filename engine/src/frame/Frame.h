@@ -71,6 +71,7 @@ struct ViewCamera {
     glm::dmat4 viewFromWorld{1.0};
     Projection projection;
     glm::dmat4 clipFromView{1.0};  ///< Vulkan clip space for the view's aspect and depth mode
+    DepthMode depth = DepthMode::ReversedZ;  ///< the depth mode clipFromView is for
     std::string description;       ///< e.g. "camera 0 \"Main\"", "automatic framing"
 };
 

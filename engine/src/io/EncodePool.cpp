@@ -1,6 +1,8 @@
 // Worker threads writing EXR/PNG frames from a bounded queue.
 #include "io/EncodePool.h"
 
+#include <lantern/CameraConventions.h>
+
 #include <algorithm>
 #include <chrono>
 
@@ -51,6 +53,11 @@ void EncodePool::work() {
             ExrOptions options = m_exr;
             std::uint64_t c = 0;
             options.clampedCount = &c;
+            if (auto r = job.writeCamera ? writeImageCamera(path, job.image) : Result<void>{};
+                !r) {
+                error = r.error();
+                break;
+            }
             if (auto r = writeImage(path, job.image, options); !r) {
                 error = r.error();
                 break;

@@ -24,6 +24,9 @@ public:
         int frame = 0;
         Image image;
         std::vector<std::string> paths;
+        /// Write the image's camera JSON beside each path (cameraFilePath), before the image,
+        /// so that a finished image always has its camera.
+        bool writeCamera = false;
     };
     struct Done {
         int frame = 0;
