@@ -1,6 +1,6 @@
-// Flat shading lit once per triangle (gpu/FlatLight.h): where the device has gl_PrimitiveID in
-// fragments the per-corner streams are never built, every triangle of a flat draw goes to the
-// pre-pass once, and every pixel is the reference's colour for its triangle (the equation at
+// Flat shading lit once per triangle (gpu/FlatLight.h): the per-corner streams are never built
+// for triangles, every triangle of a flat draw goes to the pre-pass once, and every pixel is
+// the reference's colour for its triangle (the equation at
 // the centroid with the face normal). The pre-pass skips triangles outside the view and
 // back-facing ones; a skipped triangle the rasteriser drew would show whatever its record held
 // before, so these frames first fill the records with a glaring colour.
@@ -48,15 +48,7 @@ std::uint64_t triangleCount(const Scene& scene) {
     return n;
 }
 
-class FlatPerTriangle : public GpuTest {
-protected:
-    void SetUp() override {
-        GpuTest::SetUp();
-        if (!IsSkipped() && !device().limits().primitiveId)
-            GTEST_SKIP() << "the device lacks gl_PrimitiveID in fragments: flat keeps the "
-                            "per-corner streams";
-    }
-};
+class FlatPerTriangle : public GpuTest {};
 
 TEST_F(FlatPerTriangle, EachTriangleGoesToThePassOnceAndNoCornerStreamsAreBuilt) {
     const Scene scene = edgeSpheres();
