@@ -5,8 +5,8 @@
 // vertex stage (shaders/flat.vert) pulls each corner from the job's index and position words
 // as the pass did and passes the triangle's record index to the fragment stage as a flat
 // varying. (Not gl_PrimitiveID: on llvmpipe a fragment shader reading it sends the draw through
-// a primitive assembler that de-indexes the mesh on the CPU, a fixed cost larger than the
-// lighting saved; docs/performance.md.) Gouraud lights every vertex, the per-corner path three
+// a primitive assembler that de-indexes the mesh on the CPU and reallocates per primitive;
+// docs/performance.md.) Gouraud lights every vertex, the per-corner path three
 // corners per triangle; this pass lights only the triangles that face the camera inside the
 // view, on every core the device has. Taken where the scene's geometry fits one storage-buffer
 // binding; otherwise flat draws keep the per-corner streams (gpu/SceneBuffers.cpp). Points and
