@@ -97,6 +97,27 @@ TEST_F(FlatPerTriangle, EveryPixelIsItsTrianglesReferenceColourAndNoSkippedTrian
     }
 }
 
+// The same triangles without an index list: the pass and the draw's vertex stage take the
+// vertices in order, and every pixel is still its triangle's reference colour.
+TEST_F(FlatPerTriangle, TrianglesWithoutAnIndexListAreTakenInOrder) {
+    Scene scene = edgeSpheres();
+    for (Mesh& m : scene.meshes)
+        for (Primitive& p : m.primitives) {
+            ASSERT_FALSE(p.indices.empty());
+            Primitive loose;
+            for (const std::uint32_t v : p.indices) {
+                loose.positions.push_back(p.positions[v]);
+                loose.normals.push_back(p.normals[v]);
+            }
+            p = loose;
+        }
+    const RenderOptions o = test::optionsFor(96, 64, ShadingMode::Flat);
+    const test::ReferenceComparison c = test::compareWithReference(device(), scene, o);
+    EXPECT_EQ(c.frame.readback.flatTriangles, triangleCount(scene));
+    EXPECT_GT(c.compared, 1500u);
+    EXPECT_LE(c.worst, 1.0 / 255) << c.describe("flat_per_triangle_unindexed");
+}
+
 // Flat points and lines keep the per-corner streams, built for them alone.
 TEST_F(FlatPerTriangle, LinesKeepTheirCornerStreamsAndTrianglesGetNone) {
     LitScene s;
