@@ -1,23 +1,36 @@
-// flat.vert: per-triangle flat shading's vertex stage: the indexed mesh's positions to clip
-// space and its texture coordinates on; the colours were lit once per triangle before the
-// draw (flatlight.comp) and are read per fragment by primitive id (pervertex.frag,
-// LANTERN_FLAT_PRIMITIVE). gl_Position is computed exactly as the pre-pass computes it for
-// its culling.
+// flat.vert: per-triangle flat shading's vertex stage. The draw is non-indexed, three vertices
+// per triangle, with no vertex buffers: vertex 3t + c pulls corner c of triangle t from the
+// draw's FlatJob (flatjob.glsl) exactly as the pre-pass that lit the triangle did
+// (flatlight.comp), and hands the fragment stage the triangle's record (flat.glsl) as a flat
+// varying. The record is not read by gl_PrimitiveID: on llvmpipe a fragment shader that reads
+// it makes every draw go through a primitive assembler that de-indexes the mesh on the CPU
+// (docs/performance.md). gl_Position is computed exactly as the pre-pass computes it for its
+// culling.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "uniforms.glsl"
-
-layout(location = LANTERN_LOC_POSITION) in vec3 inPosition;
-layout(location = LANTERN_LOC_TEXCOORD) in vec2 inTexcoord;
+#include "flatjob.glsl"
 
 layout(location = 5) centroid out vec2 vTexcoord;
 layout(location = 6) centroid out vec3 vEyePosition;
 layout(location = 8) out vec2 vTexcoordCentre;  // at the pixel centre, for derivatives
+layout(location = 9) flat out uint vTriangle;   // the triangle's record
 
 void main() {
-    vec4 eye = draw.viewFromModel * vec4(inPosition, 1.0);
-    vTexcoord = inTexcoord;
-    vTexcoordCentre = inTexcoord;
+    const FlatJob j = jobs[draw.flatJob];
+    const uint t = uint(gl_VertexIndex) / 3u;
+    const uint v = cornerVertex(j, t, uint(gl_VertexIndex) - 3u * t);
+    // Texture coordinates only where the fragment stage samples (on constants).
+    vec2 uv = vec2(0.0);
+    const bool sampled = SC_TEXTURE || (SC_MAPS & LANTERN_MAP_EMISSIVE) != 0u;
+    if (sampled && j.texcoords != LANTERN_DEFORM_NONE) {
+        const uint o = j.texcoords + 2u * v;
+        uv = uintBitsToFloat(uvec2(geometry.words[o], geometry.words[o + 1u]));
+    }
+    vec4 eye = draw.viewFromModel * vec4(position(j, v), 1.0);
+    vTexcoord = uv;
+    vTexcoordCentre = uv;
     vEyePosition = eye.xyz;
+    vTriangle = j.flatBase + t;
     gl_Position = frame.clipFromView * eye;
 }

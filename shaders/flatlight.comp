@@ -1,7 +1,7 @@
 // flatlight.comp: flat shading lit once per triangle, before the draws. One invocation per
-// triangle of one draw (a FlatJob) transforms its corners as flat.vert does, skips it when the
-// rasteriser will certainly not draw it (outside the view volume, or back-facing in a draw that
-// culls back faces), and otherwise evaluates the equation once per lit side at the centroid
+// triangle of one draw (a FlatJob, flatjob.glsl) transforms its corners as flat.vert does,
+// skips it when the rasteriser will certainly not draw it (outside the view volume, or
+// back-facing in a draw that culls back faces), and otherwise evaluates the equation once per lit side at the centroid
 // with the face normal and the mean vertex colour (the rule of the per-corner path in
 // pervertex.vert, LANTERN_FLAT_CENTROID), writing the triangle's record (flat.glsl). The
 // specialisation constants are the draw's, so the same terms are compiled in.
@@ -11,51 +11,13 @@
 #include "lighting.glsl"
 #define LANTERN_FLAT_ACCESS writeonly
 #include "flat.glsl"
+#include "flatjob.glsl"
 
 layout(local_size_x = LANTERN_FLAT_GROUP) in;
-
-// The scene's geometry buffer (gpu/SceneBuffers.cpp) as 32-bit words, and this frame's deformed
-// streams (deform.comp).
-layout(std430, set = LANTERN_SET_FLAT, binding = LANTERN_BINDING_FLAT_GEOMETRY) readonly buffer FlatGeometry {
-    uint words[];
-} geometry;
-layout(std430, set = LANTERN_SET_FLAT, binding = LANTERN_BINDING_FLAT_DEFORMED) readonly buffer FlatDeformed {
-    float values[];
-} deformed;
-
-// Mirrored by gpu::FlatJob (gpu/GpuLayouts.h).
-struct FlatJob {
-    mat4 viewFromModel;
-    vec4 normalMatrix[3];
-    uint materialIndex;
-    uint drawIndex;
-    uint flags;
-    uint flatBase;
-    uint count;        // triangles
-    uint indices;      // words into geometry; LANTERN_DEFORM_NONE: vertices in order
-    uint positions;    // words into geometry, or into deformed when `deformed` is 1
-    uint deformed;
-    uint colors;       // words into geometry (rgba per vertex); LANTERN_DEFORM_NONE: white
-    uint cull;         // LANTERN_FLAT_CULL_BACK | LANTERN_FLAT_FRONT_CLOCKWISE
-    uint writeNormals; // 1: the frame has AOVs, which read the face normal
-    uint view;
-    vec4 viewport;     // xy: half the view's size in pixels
-};
-layout(std430, set = LANTERN_SET_FLAT, binding = LANTERN_BINDING_FLAT_JOBS) readonly buffer FlatJobs {
-    FlatJob jobs[];
-};
 
 layout(push_constant) uniform FlatPush {
     uint job;
 } push;
-
-vec3 position(FlatJob j, uint v) {
-    const uint o = j.positions + 3u * v;
-    if (j.deformed != 0u)
-        return vec3(deformed.values[o], deformed.values[o + 1u], deformed.values[o + 2u]);
-    return vec3(uintBitsToFloat(geometry.words[o]), uintBitsToFloat(geometry.words[o + 1u]),
-                uintBitsToFloat(geometry.words[o + 2u]));
-}
 
 vec4 vertexColor(FlatJob j, uint v) {
     const uint o = j.colors + 4u * v;
@@ -110,12 +72,12 @@ void main() {
     const uint t = gl_GlobalInvocationID.x;
     if (t >= j.count) return;
     draw = DrawData(j.viewFromModel, j.normalMatrix, j.materialIndex, j.drawIndex, j.flags,
-                    j.flatBase);
+                    push.job);
     uint v[3];
     vec3 p[3];
     vec4 clip[3];
     for (uint c = 0u; c < 3u; ++c) {
-        v[c] = j.indices == LANTERN_DEFORM_NONE ? 3u * t + c : geometry.words[j.indices + 3u * t + c];
+        v[c] = cornerVertex(j, t, c);
         p[c] = position(j, v[c]);
         clip[c] = frame.clipFromView * (draw.viewFromModel * vec4(p[c], 1.0));
     }

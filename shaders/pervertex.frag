@@ -1,7 +1,8 @@
 // pervertex.frag: combines the colours lit before the fragment stage with the base-colour
 // texture and the emissive map. Gouraud interpolates them from the vertices (pervertex.vert);
 // LANTERN_FLAT takes them unchanged from one vertex (flat interpolation); LANTERN_FLAT_PRIMITIVE
-// reads them from the triangle's record, lit once per triangle by the pre-pass (flat.glsl).
+// reads them from the triangle's record, lit once per triangle by the pre-pass (flat.glsl), at
+// the index the vertex stage passes (flat.vert).
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "output.glsl"
@@ -10,6 +11,7 @@
 #ifdef LANTERN_FLAT_PRIMITIVE
 #define LANTERN_FLAT_ACCESS readonly
 #include "flat.glsl"
+layout(location = 9) flat in uint vTriangle;
 #else
 #ifdef LANTERN_FLAT
 #define LIT flat
@@ -37,7 +39,7 @@ void main() {
     }
     bool back = SC_TWO_SIDED && !gl_FrontFacing;
 #ifdef LANTERN_FLAT_PRIMITIVE
-    const uint triangle = draw.flatBase + uint(gl_PrimitiveID);
+    const uint triangle = vTriangle;
     const uint at = triangle * flatRecordVectors() + (back ? flatVectorsPerSide() : 0u);
     const vec4 lit = flatColors[at];
     vec3 base = lit.rgb;

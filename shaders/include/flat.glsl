@@ -1,10 +1,11 @@
 // flat.glsl: the records of per-triangle flat shading, written once per triangle by the
-// pre-pass (flatlight.comp) and read by the fragment stage (pervertex.frag, LANTERN_FLAT_PRIMITIVE)
-// at the draw's first record plus gl_PrimitiveID. A record holds per side (the front, then the
-// back when two-sided lighting is on) the lit colour (rgb, alpha) and, when the variant samples
-// a base-colour texture, the part the texel scales (rgb); without one the two are summed, so
-// an untextured triangle costs one vec4. The includer defines LANTERN_FLAT_ACCESS (readonly or
-// writeonly).
+// pre-pass (flatlight.comp) and read by the fragment stage (pervertex.frag,
+// LANTERN_FLAT_PRIMITIVE) at the draw's first record plus the triangle's index, which the
+// vertex stage passes as a flat varying (flat.vert). A record holds per side (the front, then
+// the back when two-sided lighting is on) the lit colour (rgb, alpha) and, when the variant
+// samples a base-colour texture, the part the texel scales (rgb); without one the two are
+// summed, so an untextured triangle costs one vec4. The includer defines LANTERN_FLAT_ACCESS
+// (readonly or writeonly).
 #ifndef LANTERN_FLAT_GLSL
 #define LANTERN_FLAT_GLSL
 

@@ -111,7 +111,7 @@ struct DrawData {
     uint materialIndex;
     uint drawIndex;
     uint flags;
-    uint flatBase;
+    uint flatJob;
 };
 DrawData draw;
 #else
@@ -121,7 +121,7 @@ layout(push_constant, std430) uniform DrawBlock {
     uint materialIndex;
     uint drawIndex;
     uint flags;
-    uint flatBase;          // per-triangle flat: the draw's first record in FlatColors
+    uint flatJob;           // per-triangle flat: the draw's FlatJob (flatjob.glsl)
 } draw;
 #endif
 

@@ -1,6 +1,6 @@
-// Flat shading lit once per triangle (gpu/FlatLight.h): where the device has gl_PrimitiveID in
-// fragments the per-corner streams are never built, every triangle of a flat draw goes to the
-// pre-pass once, and every pixel is the reference's colour for its triangle (the equation at
+// Flat shading lit once per triangle (gpu/FlatLight.h): the per-corner streams are never built
+// for triangles, every triangle of a flat draw goes to the pre-pass once, and every pixel is
+// the reference's colour for its triangle (the equation at
 // the centroid with the face normal). The pre-pass skips triangles outside the view and
 // back-facing ones; a skipped triangle the rasteriser drew would show whatever its record held
 // before, so these frames first fill the records with a glaring colour.
@@ -48,15 +48,7 @@ std::uint64_t triangleCount(const Scene& scene) {
     return n;
 }
 
-class FlatPerTriangle : public GpuTest {
-protected:
-    void SetUp() override {
-        GpuTest::SetUp();
-        if (!IsSkipped() && !device().limits().primitiveId)
-            GTEST_SKIP() << "the device lacks gl_PrimitiveID in fragments: flat keeps the "
-                            "per-corner streams";
-    }
-};
+class FlatPerTriangle : public GpuTest {};
 
 TEST_F(FlatPerTriangle, EachTriangleGoesToThePassOnceAndNoCornerStreamsAreBuilt) {
     const Scene scene = edgeSpheres();
@@ -103,6 +95,27 @@ TEST_F(FlatPerTriangle, EveryPixelIsItsTrianglesReferenceColourAndNoSkippedTrian
         EXPECT_LT(test::brightestColour(c.frame.readback.image), 10.0f)
             << name << ": a skipped triangle's stale record was shown";
     }
+}
+
+// The same triangles without an index list: the pass and the draw's vertex stage take the
+// vertices in order, and every pixel is still its triangle's reference colour.
+TEST_F(FlatPerTriangle, TrianglesWithoutAnIndexListAreTakenInOrder) {
+    Scene scene = edgeSpheres();
+    for (Mesh& m : scene.meshes)
+        for (Primitive& p : m.primitives) {
+            ASSERT_FALSE(p.indices.empty());
+            Primitive loose;
+            for (const std::uint32_t v : p.indices) {
+                loose.positions.push_back(p.positions[v]);
+                loose.normals.push_back(p.normals[v]);
+            }
+            p = loose;
+        }
+    const RenderOptions o = test::optionsFor(96, 64, ShadingMode::Flat);
+    const test::ReferenceComparison c = test::compareWithReference(device(), scene, o);
+    EXPECT_EQ(c.frame.readback.flatTriangles, triangleCount(scene));
+    EXPECT_GT(c.compared, 1500u);
+    EXPECT_LE(c.worst, 1.0 / 255) << c.describe("flat_per_triangle_unindexed");
 }
 
 // Flat points and lines keep the per-corner streams, built for them alone.

@@ -13,6 +13,9 @@
 namespace {
 
 using lantern::shaders::allShaderBlobs;
+using lantern::shaders::ShaderBlob;
+using lantern::shaders::ShaderId;
+using lantern::shaders::shaderBlob;
 
 // Struct name -> member name -> byte offset, from OpName / OpMemberName / OpMemberDecorate.
 using Layouts = std::map<std::string, std::map<std::string, std::uint32_t>>;
@@ -88,7 +91,7 @@ TEST(GpuLayouts, MirrorsMatchTheShippedSpirv) {
         LANTERN_ROW(DrawBlock, viewFromModel),
         LANTERN_ROW(DrawBlock, normalMatrix),    LANTERN_ROW(DrawBlock, materialIndex),
         LANTERN_ROW(DrawBlock, drawIndex),       LANTERN_ROW(DrawBlock, flags),
-        LANTERN_ROW(DrawBlock, flatBase),
+        LANTERN_ROW(DrawBlock, flatJob),
         LANTERN_ROW(FlatJob, viewFromModel),     LANTERN_ROW(FlatJob, normalMatrix),
         LANTERN_ROW(FlatJob, materialIndex),     LANTERN_ROW(FlatJob, drawIndex),
         LANTERN_ROW(FlatJob, flags),             LANTERN_ROW(FlatJob, flatBase),
@@ -96,7 +99,7 @@ TEST(GpuLayouts, MirrorsMatchTheShippedSpirv) {
         LANTERN_ROW(FlatJob, positions),         LANTERN_ROW(FlatJob, deformed),
         LANTERN_ROW(FlatJob, colors),            LANTERN_ROW(FlatJob, cull),
         LANTERN_ROW(FlatJob, writeNormals),      LANTERN_ROW(FlatJob, view),
-        LANTERN_ROW(FlatJob, viewport),
+        LANTERN_ROW(FlatJob, viewport),          LANTERN_ROW(FlatJob, texcoords),
         LANTERN_ROW(DeformJob, count),           LANTERN_ROW(DeformJob, flatMode),
         LANTERN_ROW(DeformJob, vertexCount),     LANTERN_ROW(DeformJob, position),
         LANTERN_ROW(DeformJob, normal),          LANTERN_ROW(DeformJob, joints),
@@ -120,7 +123,7 @@ TEST(GpuLayouts, EveryShaderMemberIsMirrored) {
     // A member added to a shader block but not to the C++ mirror is caught here.
     const std::map<std::string, std::size_t> expectedCounts = {
         {"FrameBlock", 6}, {"LightData", 8}, {"MaterialSideData", 4}, {"MaterialData", 8}, {"DrawBlock", 6},
-        {"DeformJob", 16}, {"FlatJob", 15}};
+        {"DeformJob", 16}, {"FlatJob", 16}};
     const Layouts layouts = allLayouts();
     for (const auto& [type, count] : expectedCounts) {
         auto it = layouts.find(type);
@@ -135,3 +138,53 @@ TEST(GpuLayouts, PushConstantsFitTheGuaranteedMinimum) {
 }
 
 } // namespace
+
+namespace {
+
+// Calls `f(op, operands, operandCount)` for each instruction of a SPIR-V module.
+template <typename F> void forEachInstruction(const ShaderBlob& blob, F&& f) {
+    for (std::size_t i = 5; i < blob.wordCount;) {
+        const std::uint32_t op = blob.words[i] & 0xFFFF, len = blob.words[i] >> 16;
+        if (len == 0) break;
+        f(op, blob.words + i + 1, std::size_t(len - 1));
+        i += len;
+    }
+}
+
+// Whether the module declares the built-in `builtIn` (glslang declares only those it reads).
+bool declaresBuiltIn(const ShaderBlob& blob, std::uint32_t builtIn) {
+    constexpr std::uint32_t kOpDecorate = 71, kBuiltIn = 11;
+    bool found = false;
+    forEachInstruction(blob, [&](std::uint32_t op, const std::uint32_t* w, std::size_t n) {
+        found |= op == kOpDecorate && n >= 3 && w[1] == kBuiltIn && w[2] == builtIn;
+    });
+    return found;
+}
+
+// The module's input variables at a location (a vertex shader's attributes).
+std::size_t locatedInputs(const ShaderBlob& blob) {
+    constexpr std::uint32_t kOpDecorate = 71, kLocation = 30, kOpVariable = 59, kInput = 1;
+    std::map<std::uint32_t, bool> located;
+    std::size_t count = 0;
+    forEachInstruction(blob, [&](std::uint32_t op, const std::uint32_t* w, std::size_t n) {
+        if (op == kOpDecorate && n >= 2 && w[1] == kLocation) located[w[0]] = true;
+        if (op == kOpVariable && n >= 3 && w[2] == kInput && located.count(w[1])) ++count;
+    });
+    return count;
+}
+
+} // namespace
+
+// Per-triangle flat draws pull their corners from storage buffers (no vertex attributes) and
+// pass the triangle's record as a varying: on llvmpipe a fragment shader that reads
+// gl_PrimitiveID sends every draw through a primitive assembler that de-indexes it on the CPU
+// (docs/performance.md). The AOV variant still writes the primitive id AOV, as every mode does.
+TEST(GpuLayouts, PerTriangleFlatDrawsHaveNoAttributesAndReadNoPrimitiveIdOutsideAovs) {
+    constexpr std::uint32_t kPrimitiveId = 7;
+    EXPECT_EQ(locatedInputs(shaderBlob(ShaderId::flatprim_vert)), 0u);
+    EXPECT_GT(locatedInputs(shaderBlob(ShaderId::gouraud_vert)), 0u) << "attributes not seen";
+    EXPECT_FALSE(declaresBuiltIn(shaderBlob(ShaderId::flatprim_frag), kPrimitiveId));
+    EXPECT_FALSE(declaresBuiltIn(shaderBlob(ShaderId::gouraud_frag), kPrimitiveId));
+    EXPECT_TRUE(declaresBuiltIn(shaderBlob(ShaderId::flatprim_aov_frag), kPrimitiveId))
+        << "the primitive id not seen";
+}

@@ -42,6 +42,7 @@ FlatJob planJob(const DrawCommand& d, const PrimitiveBuffers& gp, const DeformSt
     j.deformed = moved ? 1u : 0u;
     j.positions = std::uint32_t((moved ? moved->position : gp.position) / 4);
     j.colors = gp.color != kNoStream ? std::uint32_t(gp.color / 4) : LANTERN_DEFORM_NONE;
+    j.texcoords = gp.texcoord != kNoStream ? std::uint32_t(gp.texcoord / 4) : LANTERN_DEFORM_NONE;
     j.cull = (d.cullBack ? LANTERN_FLAT_CULL_BACK : 0u) |
              (d.frontClockwise ? LANTERN_FLAT_FRONT_CLOCKWISE : 0u);
     j.writeNormals = aovs ? 1u : 0u;
@@ -54,25 +55,12 @@ FlatJob planJob(const DrawCommand& d, const PrimitiveBuffers& gp, const DeformSt
 Result<std::unique_ptr<FlatLighter>> FlatLighter::create(Context& ctx, Pipelines& pipelines) {
     std::unique_ptr<FlatLighter> f(new FlatLighter(ctx, pipelines));
     const VkDevice dev = ctx.device();
-    VkDescriptorSetLayoutBinding bindings[3] = {
-        {LANTERN_BINDING_FLAT_GEOMETRY, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
-         VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-        {LANTERN_BINDING_FLAT_DEFORMED, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
-         VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-        {LANTERN_BINDING_FLAT_JOBS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
-         VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
-    VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    lci.bindingCount = 3;
-    lci.pBindings = bindings;
-    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
-    LANTERN_VK_TRY(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &setLayout));
-    f->m_setLayout = UniqueDescriptorSetLayout(dev, setLayout);
-
-    // The frame and texture sets of the graphics layout, then the pass's own set.
+    // The sets of the graphics layout: the frame, the textures and the flat set its draws'
+    // vertex stage reads too.
     VkDescriptorSetLayout sets[3] = {};
     sets[LANTERN_SET_FRAME] = pipelines.frameSetLayout();
     sets[LANTERN_SET_TEXTURE] = pipelines.textureSetLayout();
-    sets[LANTERN_SET_FLAT] = setLayout;
+    sets[LANTERN_SET_FLAT] = pipelines.flatSetLayout();
     VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(std::uint32_t)};
     VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     plci.setLayoutCount = 3;
@@ -85,8 +73,11 @@ Result<std::unique_ptr<FlatLighter>> FlatLighter::create(Context& ctx, Pipelines
     return f;
 }
 
+std::uint32_t FlatLighter::vertexCount(const PrimitiveBuffers& gp) {
+    return std::uint32_t(3u * triangles(gp));
+}
+
 bool FlatLighter::available(const Context& ctx, const SceneBuffers& scene, const DrawList& list) {
-    if (!ctx.capabilities().primitiveIdInFragment) return false;
     const VkDeviceSize range = ctx.properties().limits.maxStorageBufferRange;
     std::uint64_t records = 0;
     for (const ViewCommands& v : list.views)
@@ -126,7 +117,7 @@ Result<VkPipeline> FlatLighter::pipeline(const std::array<std::uint32_t, LANTERN
 Result<void> FlatLighter::prepare(FlatSlot& slot, const DrawList& list, const SceneBuffers& scene,
                                   const DeformSlot* deform, bool available) {
     slot.dispatches.clear();
-    slot.bases.clear();
+    slot.drawJobs.clear();
     slot.triangles = 0;
     std::vector<FlatJob> jobs;
     std::uint64_t vectors = 0, count = 0;
@@ -134,7 +125,7 @@ Result<void> FlatLighter::prepare(FlatSlot& slot, const DrawList& list, const Sc
     for (std::uint32_t vi = 0; vi < list.views.size(); ++vi)
         for (const DrawCommand& d : list.views[vi].draws) {
             if (!perTriangle(d.pipeline, available)) {
-                slot.bases.push_back(kNoFlatBase);
+                slot.drawJobs.push_back(kNoFlatJob);
                 continue;
             }
             const PrimitiveBuffers& gp = scene.primitive(d.mesh, d.primitive);
@@ -145,12 +136,12 @@ Result<void> FlatLighter::prepare(FlatSlot& slot, const DrawList& list, const Sc
             // normals from base, so it is past both the records and the normals before it.
             const std::uint64_t base =
                 std::max((vectors + vectorsPerTriangle - 1) / vectorsPerTriangle, count);
-            if (base + count >= kNoFlatBase) return tooLarge();
+            if (base + count >= kNoFlatJob) return tooLarge();
             FlatJob job = planJob(d, gp, moved, list.views[vi], std::uint32_t(base), aovs);
             job.view = vi;
             vectors = (base + job.count) * vectorsPerTriangle;
             count = std::max<std::uint64_t>(count, base + job.count);
-            slot.bases.push_back(std::uint32_t(base));
+            slot.drawJobs.push_back(std::uint32_t(jobs.size()));
             slot.triangles += job.count;
             auto p = pipeline(d.pipeline.constants);
             if (!p) return std::move(p).error();
@@ -186,7 +177,7 @@ Result<void> FlatLighter::prepare(FlatSlot& slot, const DrawList& list, const Sc
 }
 
 Result<void> FlatLighter::ensureDescriptorSet(FlatSlot& slot) {
-    return ensureStorageSet(m_ctx, m_setLayout.get(), 3, slot.pool, slot.set);
+    return ensureStorageSet(m_ctx, m_pipelines.flatSetLayout(), 3, slot.pool, slot.set);
 }
 
 void FlatLighter::record(VkCommandBuffer cmd, const FlatSlot& slot, VkDescriptorSet frameSet,
@@ -217,8 +208,11 @@ void FlatLighter::record(VkCommandBuffer cmd, const FlatSlot& slot, VkDescriptor
                            sizeof(std::uint32_t), &d.job);
         if (d.groups > 0) vkCmdDispatch(cmd, d.groups, 1, 1);
     }
+    // The draws' vertex stage reads the deformed positions (written by the deformation pass
+    // before), their fragment stage the records.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                  VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+                  VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                  VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
 }
 
 } // namespace lantern::gpu

@@ -1,13 +1,16 @@
 // FlatLight.h: flat shading lit once per triangle. Before a frame's draws, one compute dispatch
 // per flat triangle draw (shaders/flatlight.comp) lights each triangle the rasteriser may draw
 // once, at its centroid with its face normal, and writes its colour into the frame slot's
-// record buffer; the draw then renders the original indexed mesh with a position-only vertex
-// stage (shaders/flat.vert) and a fragment stage that reads the record by gl_PrimitiveID.
-// Gouraud lights every vertex, the per-corner path three corners per triangle; this pass lights
-// only the triangles that face the camera inside the view, on every core the device has.
-// Taken where the device has gl_PrimitiveID in fragments (the geometryShader feature) and the
-// scene's geometry fits one storage-buffer binding; otherwise flat draws keep the per-corner
-// streams (gpu/SceneBuffers.cpp). Points and lines always keep them.
+// record buffer; the draw then renders three vertices per triangle without vertex buffers: its
+// vertex stage (shaders/flat.vert) pulls each corner from the job's index and position words
+// as the pass did and passes the triangle's record index to the fragment stage as a flat
+// varying. (Not gl_PrimitiveID: on llvmpipe a fragment shader reading it sends the draw through
+// a primitive assembler that de-indexes the mesh on the CPU and reallocates per primitive;
+// docs/performance.md.) Gouraud lights every vertex, the per-corner path three
+// corners per triangle; this pass lights only the triangles that face the camera inside the
+// view, on every core the device has. Taken where the scene's geometry fits one storage-buffer
+// binding; otherwise flat draws keep the per-corner streams (gpu/SceneBuffers.cpp). Points and
+// lines always keep them.
 #pragma once
 
 #include "gpu/Context.h"
@@ -25,8 +28,8 @@
 
 namespace lantern::gpu {
 
-/// FlatSlot::bases of a draw that is not lit per triangle.
-inline constexpr std::uint32_t kNoFlatBase = ~0u;
+/// FlatSlot::drawJobs of a draw that is not lit per triangle.
+inline constexpr std::uint32_t kNoFlatJob = ~0u;
 
 /// One frame slot's per-triangle flat lighting.
 struct FlatSlot {
@@ -40,8 +43,8 @@ struct FlatSlot {
         VkPipeline pipeline = VK_NULL_HANDLE;
     };
     std::vector<Dispatch> dispatches;
-    /// Per draw, in list order across the views: its first record, or kNoFlatBase.
-    std::vector<std::uint32_t> bases;
+    /// Per draw, in list order across the views: its job (DrawBlock::flatJob), or kNoFlatJob.
+    std::vector<std::uint32_t> drawJobs;
     std::uint64_t triangles = 0;  ///< triangles given to the pass this frame
     bool any() const { return !dispatches.empty(); }
 };
@@ -50,10 +53,11 @@ class FlatLighter {
 public:
     static Result<std::unique_ptr<FlatLighter>> create(Context& ctx, Pipelines& pipelines);
 
-    /// Whether this frame's flat triangle draws of `scene` may be lit per triangle: the device
-    /// has gl_PrimitiveID in fragments and the geometry and the frame's records each fit one
-    /// storage-buffer binding.
+    /// Whether this frame's flat triangle draws of `scene` may be lit per triangle: the
+    /// geometry and the frame's records each fit one storage-buffer binding.
     static bool available(const Context& ctx, const SceneBuffers& scene, const DrawList& list);
+    /// The vertices of a draw lit per triangle (its draw is non-indexed, three per triangle).
+    static std::uint32_t vertexCount(const PrimitiveBuffers& gp);
     /// Whether draw `key` is lit per triangle in a frame where the pass is `available`.
     static bool perTriangle(const PipelineKey& key, bool available) {
         return available && key.program == frame::Program::Flat &&
@@ -66,7 +70,8 @@ public:
                          const DeformSlot* deform, bool available);
 
     /// Records the dispatches between the barriers that order them after the deformation
-    /// pre-pass and before the fragment reads. `frameOffsets`, `lightOffsets`: per view, the
+    /// pre-pass and before the draws' reads (the vertex stage's of the deformed positions,
+    /// the fragment stage's of the records). `frameOffsets`, `lightOffsets`: per view, the
     /// dynamic offsets of the frame set.
     void record(VkCommandBuffer cmd, const FlatSlot& slot, VkDescriptorSet frameSet,
                 const std::vector<VkDeviceSize>& frameOffsets,
@@ -78,7 +83,6 @@ private:
     Result<void> ensureDescriptorSet(FlatSlot& slot);
     Context& m_ctx;
     Pipelines& m_pipelines;
-    UniqueDescriptorSetLayout m_setLayout;
     UniquePipelineLayout m_layout;
     std::map<std::array<std::uint32_t, LANTERN_SC_COUNT>, UniquePipeline> m_variants;
 };

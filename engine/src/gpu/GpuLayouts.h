@@ -88,14 +88,14 @@ struct DrawBlock {
     std::uint32_t materialIndex = 0;
     std::uint32_t drawIndex = 0;
     std::uint32_t flags = 0;  // bit 0: the primitive has vertex colours
-    std::uint32_t flatBase = 0;  // per-triangle flat: the draw's first record (set by gpu/)
+    std::uint32_t flatJob = 0;  // per-triangle flat: the draw's FlatJob (set by gpu/)
 };
 static_assert(sizeof(DrawBlock) == 128);
 static_assert(offsetof(DrawBlock, normalMatrix) == 64);
 static_assert(offsetof(DrawBlock, materialIndex) == 112);
 static_assert(offsetof(DrawBlock, drawIndex) == 116);
 static_assert(offsetof(DrawBlock, flags) == 120);
-static_assert(offsetof(DrawBlock, flatBase) == 124);
+static_assert(offsetof(DrawBlock, flatJob) == 124);
 
 inline constexpr std::uint32_t kDrawFlagVertexColor = 1u;
 
@@ -110,9 +110,10 @@ struct DeformJob {
 static_assert(sizeof(DeformJob) == 64);
 static_assert(offsetof(DeformJob, outCentroid) == 60);
 
-// std430, set LANTERN_SET_FLAT binding LANTERN_BINDING_FLAT_JOBS of shaders/flatlight.comp:
-// one flat triangle draw lit once per triangle. The first members are its DrawBlock's; the
-// offsets are 32-bit words of the geometry (or deformed) buffer.
+// std430, set LANTERN_SET_FLAT binding LANTERN_BINDING_FLAT_JOBS (shaders/include/flatjob.glsl):
+// one flat triangle draw lit once per triangle by flatlight.comp and drawn by flat.vert, which
+// pulls its corners from the same words. The first members are its DrawBlock's; the offsets
+// are 32-bit words of the geometry (or deformed) buffer.
 struct FlatJob {
     float viewFromModel[16];
     float normalMatrix[12];
@@ -126,11 +127,14 @@ struct FlatJob {
     std::uint32_t writeNormals = 0;              // 1: the frame has AOVs
     std::uint32_t view = 0;
     Vec4 viewport;                               // x, y: half the view's size in pixels
+    std::uint32_t texcoords = LANTERN_DEFORM_NONE;  // texture coordinates (uv); NONE: zero
+    std::uint32_t padding[3] = {};               // std430 rounds the struct to 16 bytes
 };
-static_assert(sizeof(FlatJob) == 176);
+static_assert(sizeof(FlatJob) == 192);
 static_assert(offsetof(FlatJob, flatBase) == 124);
 static_assert(offsetof(FlatJob, count) == 128);
 static_assert(offsetof(FlatJob, view) == 156);
 static_assert(offsetof(FlatJob, viewport) == 160);
+static_assert(offsetof(FlatJob, texcoords) == 176);
 
 } // namespace lantern::gpu

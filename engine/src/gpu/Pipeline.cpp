@@ -90,9 +90,11 @@ std::vector<VkPipelineColorBlendAttachmentState> blendAttachments(const Graphics
 }
 
 std::vector<VkDynamicState> dynamicStates(const GraphicsPipelineDesc& d) {
-    std::vector<VkDynamicState> dynamic = {
-        VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR, VK_DYNAMIC_STATE_CULL_MODE,
-        VK_DYNAMIC_STATE_FRONT_FACE, VK_DYNAMIC_STATE_VERTEX_INPUT_BINDING_STRIDE};
+    std::vector<VkDynamicState> dynamic = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR,
+                                           VK_DYNAMIC_STATE_CULL_MODE, VK_DYNAMIC_STATE_FRONT_FACE};
+    // Dynamic strides only with vertex buffers: a pipeline without them (per-triangle flat
+    // pulls its corners) would otherwise need vkCmdBindVertexBuffers2 before its draws.
+    if (!d.bindings.empty()) dynamic.push_back(VK_DYNAMIC_STATE_VERTEX_INPUT_BINDING_STRIDE);
     if (d.depthBias) dynamic.push_back(VK_DYNAMIC_STATE_DEPTH_BIAS);
     if (d.polygonMode == VK_POLYGON_MODE_LINE || d.topology == VK_PRIMITIVE_TOPOLOGY_LINE_LIST)
         dynamic.push_back(VK_DYNAMIC_STATE_LINE_WIDTH);

@@ -110,13 +110,23 @@ Result<Pipelines> Pipelines::create(Context& ctx) {
     auto textureLayout = makeSetLayout(ctx, textureBindings);
     if (!textureLayout) return std::move(textureLayout).error();
     p.m_textureLayout = std::move(*textureLayout);
+    // Per-triangle flat shading: its pre-pass and its draws' vertex stage (flat.vert) read the
+    // same jobs and corners (shaders/include/flatjob.glsl).
+    const VkShaderStageFlags pulled = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_COMPUTE_BIT;
+    auto flatLayout = makeSetLayout(
+        ctx, {{LANTERN_BINDING_FLAT_GEOMETRY, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, pulled, nullptr},
+              {LANTERN_BINDING_FLAT_DEFORMED, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, pulled, nullptr},
+              {LANTERN_BINDING_FLAT_JOBS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, pulled, nullptr}});
+    if (!flatLayout) return std::move(flatLayout).error();
+    p.m_flatLayout = std::move(*flatLayout);
 
-    VkDescriptorSetLayout setLayouts[2] = {};
+    VkDescriptorSetLayout setLayouts[3] = {};
     setLayouts[LANTERN_SET_FRAME] = p.m_frameLayout.get();
     setLayouts[LANTERN_SET_TEXTURE] = p.m_textureLayout.get();
+    setLayouts[LANTERN_SET_FLAT] = p.m_flatLayout.get();
     VkPushConstantRange push{both, 0, sizeof(DrawBlock)};
     VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    plci.setLayoutCount = 2;
+    plci.setLayoutCount = 3;
     plci.pSetLayouts = setLayouts;
     plci.pushConstantRangeCount = 1;
     plci.pPushConstantRanges = &push;
@@ -152,13 +162,13 @@ Result<GraphicsPipelineDesc> Pipelines::describe(const PipelineKey& key) {
         d.specEntries.push_back({i, i * 4u, 4u});
         d.specData.push_back(key.constants[i]);
     }
-    // Only flat shading reads the centroid stream; lit per triangle, it reads positions and
-    // texture coordinates alone.
-    const std::uint32_t attributes =
-        key.program == Program::Flat ? LANTERN_VERTEX_BINDINGS : LANTERN_LOC_CENTROID;
+    // Only flat shading reads the centroid stream; lit per triangle, it has no vertex buffers
+    // (flat.vert pulls its corners from storage buffers).
+    const std::uint32_t attributes = key.flatPerTriangle               ? 0
+                                     : key.program == Program::Flat ? LANTERN_VERTEX_BINDINGS
+                                                                    : LANTERN_LOC_CENTROID;
     for (std::uint32_t a = 0; a < attributes; ++a) {
         const Attribute& at = kAttributes[a];
-        if (key.flatPerTriangle && a != LANTERN_LOC_POSITION && a != LANTERN_LOC_TEXCOORD) continue;
         d.bindings.push_back({at.location, at.stride, VK_VERTEX_INPUT_RATE_VERTEX});
         d.attributes.push_back({at.location, at.location, at.format, 0});
     }

@@ -1,5 +1,6 @@
 // Pipelines.h: the shader programs and their pipeline variants. One pipeline layout (the frame
-// set, the texture set, the push-constant DrawBlock) serves every program; shader modules are
+// set, the texture set, the per-triangle flat set, the push-constant DrawBlock) serves every
+// program; shader modules are
 // made from the embedded SPIR-V on first use, and a pipeline per PipelineKey on first use,
 // then cached (and compiled through the context's VkPipelineCache).
 #pragma once
@@ -23,6 +24,9 @@ public:
     VkPipelineLayout layout() const { return m_layout.get(); }
     VkDescriptorSetLayout frameSetLayout() const { return m_frameLayout.get(); }
     VkDescriptorSetLayout textureSetLayout() const { return m_textureLayout.get(); }
+    /// The geometry, deformed streams and jobs of per-triangle flat shading (gpu/FlatLight.h),
+    /// read by its pre-pass and by its draws' vertex stage.
+    VkDescriptorSetLayout flatSetLayout() const { return m_flatLayout.get(); }
 
     /// The pipeline for a variant (created on first use).
     Result<VkPipeline> pipeline(const PipelineKey& key);
@@ -38,7 +42,7 @@ private:
     Result<GraphicsPipelineDesc> describe(const PipelineKey& key);
 
     Context* m_ctx = nullptr;
-    UniqueDescriptorSetLayout m_frameLayout, m_textureLayout;
+    UniqueDescriptorSetLayout m_frameLayout, m_textureLayout, m_flatLayout;
     UniquePipelineLayout m_layout;
     std::map<std::uint32_t, UniqueShaderModule> m_shaders;
     std::unordered_map<PipelineKey, UniquePipeline, PipelineKeyHash> m_pipelines;

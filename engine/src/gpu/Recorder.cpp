@@ -67,16 +67,21 @@ void FrameRecorder::beginAttachments() const {
 
 // The primitive's streams, one binding per attribute location; absent colours and texture
 // coordinates read a stride-0 default (white, zero). `perTriangle`: a flat draw lit by the
-// per-triangle pass, drawn from the indexed mesh like gouraud.
+// per-triangle pass, which binds no streams: three vertices per triangle, each pulling its
+// corner from the draw's job (flat.vert).
 void FrameRecorder::bindStreams(const DrawCommand& d, bool perTriangle) const {
     const PrimitiveBuffers& gp = scene.primitive(d.mesh, d.primitive);
+    if (perTriangle) {
+        vkCmdDraw(cmd, FlatLighter::vertexCount(gp), 1, 0, 0);
+        return;
+    }
     const VkBuffer geometry = scene.geometry();
     // A deformed draw reads its positions and normals (and flat centroids) from this frame's
     // pre-pass output.
     const bool deformed = d.deform >= 0 && slot.deforming;
     const DeformStreams* ds = deformed ? &slot.deform.streams[std::size_t(d.deform)] : nullptr;
     const VkBuffer moved = deformed ? slot.deform.output.get() : VK_NULL_HANDLE;
-    if (d.pipeline.program == frame::Program::Flat && !perTriangle) {
+    if (d.pipeline.program == frame::Program::Flat) {
         const VkBuffer flat = scene.flatGeometry();
         const bool color = gp.flatColor != kNoStream, texcoord = gp.flatTexcoord != kNoStream;
         VkBuffer buffers[LANTERN_VERTEX_BINDINGS];
@@ -133,11 +138,16 @@ void FrameRecorder::drawViews(const std::vector<VkPipeline>& pipelines) const {
         vkCmdSetScissor(cmd, 0, 1, &scissor);
         const std::uint32_t dynamicOffsets[2] = {std::uint32_t(arena.frameOffsets[vi]),
                                                  std::uint32_t(arena.lightOffsets[vi])};
+        // The per-triangle flat draws' jobs and corners (bound per view: the overlays bind
+        // their own layouts between views).
+        if (slot.flat.any())
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, LANTERN_SET_FLAT,
+                                    1, &slot.flat.set, 0, nullptr);
         VkPipeline bound = VK_NULL_HANDLE;
         VkDescriptorSet boundTexture = VK_NULL_HANDLE;
         for (const DrawCommand& d : v.draws) {
-            const std::uint32_t flatBase =
-                counter < slot.flat.bases.size() ? slot.flat.bases[counter] : kNoFlatBase;
+            const std::uint32_t flatJob =
+                counter < slot.flat.drawJobs.size() ? slot.flat.drawJobs[counter] : kNoFlatJob;
             const VkPipeline p = pipelines[counter++];
             if (p != bound) {
                 vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
@@ -159,10 +169,10 @@ void FrameRecorder::drawViews(const std::vector<VkPipeline>& pipelines) const {
             vkCmdSetFrontFace(cmd, d.frontClockwise ? VK_FRONT_FACE_CLOCKWISE
                                                     : VK_FRONT_FACE_COUNTER_CLOCKWISE);
             DrawBlock block = d.block;
-            if (flatBase != kNoFlatBase) block.flatBase = flatBase;
+            if (flatJob != kNoFlatJob) block.flatJob = flatJob;
             vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
                                0, sizeof(DrawBlock), &block);
-            bindStreams(d, flatBase != kNoFlatBase);
+            bindStreams(d, flatJob != kNoFlatJob);
         }
         // The display overlays never meet the AOV pass (they refuse AOVs).
         if (slot.overlays.any())
