@@ -149,8 +149,9 @@ TEST_F(Cryptomatte, CoverageOfEachIdIsCountedFromSixteenSamples) {
                     EXPECT_LE(coverage, last) << x << "," << y;
                     EXPECT_GE(coverage, 0.0f);
                     EXPECT_EQ(id == 0.0f, coverage == 0.0f) << x << "," << y;
-                    if (id != 0.0f)
+                    if (id != 0.0f) {
                         EXPECT_TRUE(id == bunny || id == other || id == red || id == fallback);
+                    }
                     sum += coverage, last = coverage;
                 }
                 EXPECT_LE(sum, 1.0f) << x << "," << y;
@@ -184,6 +185,18 @@ TEST_F(Cryptomatte, LevelsAndSamplesAreOptionsAndBadOnesAreRefused) {
         ASSERT_FALSE(refused) << bad;
         EXPECT_NE(refused.error().message.find("levels must be an even number"), std::string::npos);
     }
+    // An enlarged size no device holds is refused, saying which render it was.
+    RenderOptions wide = cryptoOptions();
+    wide.width = 4096;
+    wide.height = 1;
+    wide.aovs.cryptomatteSamples = 16;
+    auto scene = loadScene(writeScene(test::testOutputDir()).string());
+    ASSERT_TRUE(scene);
+    auto refused = renderer().render(*scene, wide, 0.0);
+    ASSERT_FALSE(refused);
+    EXPECT_NE(refused.error().message.find("the Cryptomatte id render (16x the size) failed"),
+              std::string::npos)
+        << refused.error().message;
 }
 
 TEST_F(Cryptomatte, ExrHoldsFloatChannelsAndTheSpecsHeader) {

@@ -130,6 +130,7 @@ RenderOptions cryptomatteRenderOptions(const RenderOptions& options) {
     o.width *= n;
     o.height *= n;
     o.msaa = 1;
+    o.wireframe = o.normals = false;  // display overlays are not surfaces
     o.pointSize *= n;
     o.lineWidth *= n;
     o.aovs = AovSet{};
