@@ -24,7 +24,7 @@ using nlohmann::json;
 // Published MurmurHash3_x86_32 vectors (also computed with an independent Python port of
 // Appleby's reference while writing this test), and the Cryptomatte specification's manifest
 // example: "bunny" 13851a76, "default" 42c9679f.
-TEST(Cryptomatte, MurmurHashMatchesPublishedVectors) {
+TEST(CryptomatteIds, MurmurHashMatchesPublishedVectors) {
     EXPECT_EQ(murmurHash3_32(""), 0u);
     EXPECT_EQ(murmurHash3_32("", 1), 0x514e28b7u);
     EXPECT_EQ(murmurHash3_32("", 0xffffffffu), 0x81f16f39u);
@@ -38,7 +38,7 @@ TEST(Cryptomatte, MurmurHashMatchesPublishedVectors) {
     EXPECT_EQ(cryptomatteKey("CryptoObject"), "3ae39a5");  // hash 3ae39a58
 }
 
-TEST(Cryptomatte, IdsAreNeverNanInfiniteZeroOrDenormal) {
+TEST(CryptomatteIds, IdsAreNeverNanInfiniteZeroOrDenormal) {
     // The hash of "" is 0 (exponent 0): bit 23 flipped gives the smallest normal float.
     EXPECT_EQ(cryptomatteId(0u), 0x00800000u);
     EXPECT_EQ(cryptomatteId(0x7f800000u), 0x7f000000u);  // +inf's exponent: flipped
