@@ -257,6 +257,12 @@ TEST_F(Cryptomatte, TheCommandWritesTheLayersThatOiiotoolLists) {
     EXPECT_NE(bad.exitCode, 0);
     EXPECT_NE(bad.err.find("even"), std::string::npos) << bad.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "x.exr"));
+    // Sequences do not make the layers yet: refused, not written without them.
+    const auto seq = test::runLantern({"render", scene.string(), "-o", (dir / "s_#.exr").string(),
+                                       "--frames", "0-1", "--aov", "crypto_object"});
+    EXPECT_EQ(seq.exitCode, 2);
+    EXPECT_NE(seq.err.find("not yet for sequences"), std::string::npos) << seq.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "s_0.exr"));
     const auto info = test::runProcess({"oiiotool", "--info", "-v", out.string()});
     if (info.exitCode == 127) GTEST_SKIP() << "oiiotool is not installed";
     ASSERT_EQ(info.exitCode, 0) << info.err;
