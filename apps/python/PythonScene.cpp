@@ -361,6 +361,10 @@ py::object toAovArrays(Image&& image) {
     ids("primitive", held->primitive);
     ids("material", held->material);
     ids("semantic", held->semantic);
+    // Cryptomatte ranks per pixel: id0, coverage0, id1, ... (ids are hashes read as floats).
+    for (CryptomatteLayer& layer : held->cryptomatte)
+        floats(layer.name == "CryptoObject" ? "crypto_object" : "crypto_material", layer.ranks,
+               py::ssize_t(layer.levels) * 2);
     return py::make_tuple(rgba, planes);
 }
 

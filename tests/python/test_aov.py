@@ -93,3 +93,42 @@ def test_unlit_exact_gives_the_label_colours_back_bit_for_bit(lantern_module, re
     assert (lit[24, 8, :3] != np.array(COLOURS[0], dtype=np.float32)).any()
     with pytest.raises(ValueError, match="unlit_exact"):
         renderer.render(scene, unlit_exact=True, msaa=4, **SIZE)
+
+
+def murmur3_32(data, seed=0):
+    """MurmurHash3_x86_32 written again from Appleby's reference, to check the module's ids."""
+    def rotl(x, r):
+        return ((x << r) | (x >> (32 - r))) & 0xFFFFFFFF
+
+    def mix(k):
+        return (rotl((k * 0xCC9E2D51) & 0xFFFFFFFF, 15) * 0x1B873593) & 0xFFFFFFFF
+
+    h, blocks = seed, len(data) // 4
+    for i in range(blocks):
+        h = rotl(h ^ mix(struct.unpack("<I", data[4 * i:4 * i + 4])[0]), 13)
+        h = (h * 5 + 0xE6546B64) & 0xFFFFFFFF
+    tail = data[4 * blocks:]
+    if tail:
+        h ^= mix(int.from_bytes(tail, "little"))
+    h ^= len(data)
+    for shift, factor in ((16, 0x85EBCA6B), (13, 0xC2B2AE35)):
+        h = ((h ^ (h >> shift)) * factor) & 0xFFFFFFFF
+    return h ^ (h >> 16)
+
+
+def test_cryptomatte_ranks_hold_name_hashes_and_coverage(lantern_module, renderer, out_dir):
+    assert murmur3_32(b"bunny") == 0x13851A76  # the Cryptomatte specification's example
+    scene = lantern_module.load(write_quads(out_dir / "crypto.gltf", COLOURS))
+    _, planes = renderer.render(scene, aov=["crypto_object", "crypto_material"], **CAMERA, **SIZE)
+    assert planes["crypto_object"].shape == (48, 64, 8)
+    assert planes["crypto_object"].dtype == np.float32
+    for i in range(4):
+        column = int((-3.25 + 2 * i + 4) / 8 * 64)
+        for plane, name in (("crypto_object", "node %d" % i), ("crypto_material", "material %d" % i)):
+            h = murmur3_32(name.encode())
+            if (h >> 23) & 0xFF in (0, 255):
+                h ^= 1 << 23
+            expected = np.array([h], dtype=np.uint32).view(np.float32)[0]
+            ranks = planes[plane][24, column]
+            assert ranks[0] == expected and ranks[1] == 1.0 and (ranks[2:] == 0).all(), name
+    assert (planes["crypto_object"][0, 0] == 0).all()  # the background has no id

@@ -109,6 +109,8 @@ struct RenderArgs {
     int frame = 0;           // --frame N: the frame at time N / fps
     bool frameGiven = false;
     std::vector<std::string> aovs;
+    int cryptomatteLevels = 4;   // --cryptomatte-levels: ranks per pixel
+    int cryptomatteSamples = 4;  // --cryptomatte-samples: N x N per pixel
     bool unlitExact = false;
     bool half = false;
     bool explain = false;
@@ -265,6 +267,8 @@ Result<RenderOptions> renderOptions(const RenderArgs& a) {
         options.background = *background;
     }
     LANTERN_TRY(parseAovs(a.aovs, options.aovs));
+    options.aovs.cryptomatteLevels = a.cryptomatteLevels;
+    options.aovs.cryptomatteSamples = a.cryptomatteSamples;
     if (a.unlitExact) {
         if (options.msaa != 1)
             return makeError(ErrorCode::Usage, "--unlit-exact needs --msaa 1 (no anti-aliasing)",
@@ -545,6 +549,18 @@ int run(RenderArgs a) {
     return renderFrame(a, frame, *renderer, *prepared, *options, exr, outputs);
 }
 
+// --cryptomatte-levels and --cryptomatte-samples (docs/aovs.md).
+void addCryptomatteOptions(CLI::App& cmd, RenderArgs& args) {
+    cmd.add_option("--cryptomatte-levels", args.cryptomatteLevels,
+                   "Cryptomatte ranks (id, coverage) per pixel: even, 2 to 16, two per EXR layer")
+        ->capture_default_str()
+        ->check(CLI::Range(2, 16));
+    cmd.add_option("--cryptomatte-samples", args.cryptomatteSamples,
+                   "Cryptomatte coverage samples per pixel along each axis (N x N), 1 to 16")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 16));
+}
+
 } // namespace
 
 Runner addRenderCommand(CLI::App& app) {
@@ -585,6 +601,7 @@ Runner addRenderCommand(CLI::App& app) {
     cmd->add_option("--aov", args->aovs,
                     std::string("Extra EXR channels, comma-separated (docs/aovs.md): ") + aovNames())
         ->delimiter(',');
+    addCryptomatteOptions(*cmd, *args);
     cmd->add_flag("--unlit-exact", args->unlitExact,
                   "Exact label colours: every material unlit, its base colour written bit for "
                   "bit (no lighting, texture, blending or anti-aliasing)");

@@ -29,12 +29,21 @@ struct AovSet {
     bool primitive = false;  ///< id.mesh, id.primitive: mesh index, primitive index in it
     bool material = false;   ///< id.material: glTF material index (material count: the default)
     bool semantic = false;   ///< id.semantic: the node's "semantic_id" extra (0: none, background)
+    /// Cryptomatte layers (docs/aovs.md): CryptoObject (node names), CryptoMaterial (material
+    /// names), each `cryptomatteLevels` ranks of (name hash, coverage) from a second render of
+    /// the draw ids at `cryptomatteSamples` x `cryptomatteSamples` positions per pixel.
+    bool cryptoObject = false;
+    bool cryptoMaterial = false;
+    int cryptomatteLevels = 4;   ///< ranks per pixel: even, 2 .. 16 (2 per EXR layer)
+    int cryptomatteSamples = 4;  ///< samples per pixel along each axis: 1 .. 16
 
     /// Any plane read from the draw and primitive ids.
     bool anyId() const { return instance || primitive || material || semantic || worldNormal; }
     /// Any plane of the surface attachment (texture coordinates, range).
     bool anySurface() const { return range || uv; }
     bool any() const { return depth || normal || anySurface() || anyId(); }
+    /// Any Cryptomatte layer (made by a render of its own, not by the AOV attachments).
+    bool anyCryptomatte() const { return cryptoObject || cryptoMaterial; }
 };
 
 /// The camera a picture was rendered with (double precision, Lantern's conventions): written to
@@ -44,6 +53,18 @@ struct CameraMetadata {
     glm::dmat4 clipFromView{1.0};   ///< Vulkan clip space (y down, depth 0..1)
     bool reversedDepth = true;      ///< clipFromView maps near to 1 (DepthMode::ReversedZ)
     bool wholeImage = true;         ///< the camera's view covers the whole image (one view)
+};
+
+/// One Cryptomatte layer (the Cryptomatte specification 1.2.0): per pixel, `levels` ranks of
+/// (id, coverage) sorted by coverage, most first; an id is the float whose bits are
+/// cryptomatteId(murmurHash3_32(name)); unused ranks are (0, 0). The background has no id, so
+/// the coverages of an edge pixel sum to the share of its samples that hit a surface.
+struct CryptomatteLayer {
+    std::string name;  ///< the EXR type name: "CryptoObject", "CryptoMaterial"
+    int levels = 0;    ///< ranks per pixel (channels: name00.R/G/B/A, name01... two ranks each)
+    std::vector<float> ranks;  ///< width * height * levels * 2: id0, coverage0, id1, ...
+    /// Every name drawn and its id's bits (written as the manifest), sorted by name.
+    std::vector<std::pair<std::string, std::uint32_t>> manifest;
 };
 
 /// A picture: width x height pixels, top row first, each pixel RGBA as 32-bit floats in
@@ -60,6 +81,7 @@ struct Image {
     std::vector<float> uv;           ///< 2 * width * height: TEXCOORD_0 (u, v)
     /// The id planes asked for, width * height each (AovSet; kNoId where nothing was drawn).
     std::vector<std::uint32_t> instance, mesh, primitive, material, semantic;
+    std::vector<CryptomatteLayer> cryptomatte;  ///< AovSet::cryptoObject, cryptoMaterial
     /// Key/value metadata written as EXR string attributes (camera matrices, frame, time...).
     std::vector<std::pair<std::string, std::string>> metadata;
     std::optional<CameraMetadata> camera;  ///< the first view's camera, when rendered

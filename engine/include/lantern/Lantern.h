@@ -5,6 +5,7 @@
 #include <lantern/Camera.h>
 #include <lantern/CameraConventions.h>
 #include <lantern/Compare.h>
+#include <lantern/Cryptomatte.h>
 #include <lantern/Image.h>
 #include <lantern/Io.h>
 #include <lantern/Log.h>

@@ -260,6 +260,9 @@ private:
     friend class WindowTarget;
     struct Impl;
     explicit Renderer(std::unique_ptr<Impl> impl);
+    /// The Cryptomatte layers options.aovs asks for, into `into` (a second, supersampled render).
+    Result<void> addCryptomatte(const PreparedScene& scene, const RenderOptions& options,
+                                double timeSeconds, Image& into);
     std::unique_ptr<Impl> m_impl;
 };
 

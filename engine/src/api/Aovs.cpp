@@ -6,7 +6,8 @@
 namespace lantern {
 
 const char* aovNames() noexcept {
-    return "depth, range, normal, world_normal, uv, instance, primitive, material, semantic";
+    return "depth, range, normal, world_normal, uv, instance, primitive, material, semantic, "
+           "crypto_object, crypto_material";
 }
 
 bool enableAov(AovSet& aovs, std::string_view name) noexcept {
@@ -15,7 +16,8 @@ bool enableAov(AovSet& aovs, std::string_view name) noexcept {
         {"normal", &AovSet::normal},       {"world_normal", &AovSet::worldNormal},
         {"uv", &AovSet::uv},               {"instance", &AovSet::instance},
         {"primitive", &AovSet::primitive}, {"material", &AovSet::material},
-        {"semantic", &AovSet::semantic}};
+        {"semantic", &AovSet::semantic},   {"crypto_object", &AovSet::cryptoObject},
+        {"crypto_material", &AovSet::cryptoMaterial}};
     for (const auto& [known, member] : kNames)
         if (name == known) {
             aovs.*member = true;

@@ -4,6 +4,7 @@
 #include <lantern/Version.h>
 
 #include "api/RendererImpl.h"
+#include "render/Cryptomatte.h"
 #include "render/FrameRender.h"
 
 #include <cstdio>
@@ -144,6 +145,7 @@ Result<void> Renderer::render(const PreparedScene& prepared, const RenderOptions
     if (!prepared) return makeError(ErrorCode::Usage, "render() needs a prepared scene");
     gpu::Device& device = *m_impl->device;
     LANTERN_TRY(render::checkOptions(device, options));
+    LANTERN_TRY(render::checkCryptomatte(options.aovs));
     auto frame = render::renderFrame(device, prepared.m_gpu, prepared.scene(), options, time,
                                      m_impl->stats, {}, std::move(into));
     into = Image{};
@@ -153,6 +155,27 @@ Result<void> Renderer::render(const PreparedScene& prepared, const RenderOptions
                                       frame->readback);
     into = std::move(frame->readback.image);
     attachMetadata(into, frame->frame, device.info(), time);
+    if (options.aovs.anyCryptomatte()) return addCryptomatte(prepared, options, time, into);
+    return {};
+}
+
+Result<void> Renderer::addCryptomatte(const PreparedScene& prepared, const RenderOptions& options,
+                                      double time, Image& into) {
+    // A second render of the ids alone at samples x samples the size (docs/aovs.md); the
+    // frame's statistics stay those of the picture.
+    const FrameStats stats = m_impl->stats;
+    Image fine;
+    Result<void> done = render(prepared, render::cryptomatteRenderOptions(options), time, fine);
+    m_impl->stats = stats;
+    if (!done) {
+        into = Image{};
+        Error e = done.error();
+        e.message = "the Cryptomatte id render (" + std::to_string(options.aovs.cryptomatteSamples) +
+                    "x the size) failed: " + e.message;
+        return e;
+    }
+    into.cryptomatte = render::cryptomatteLayers(prepared.scene(), options.aovs, into.width,
+                                                 into.height, fine);
     return {};
 }
 

@@ -242,6 +242,11 @@ Result<SequenceReport> Renderer::renderSequence(const PreparedScene& prepared,
     LANTERN_TRY(render::checkOptions(device, options));
     const std::vector<int> frames = sequenceFrames(seq);
     LANTERN_TRY(checkSequence(seq, frames));
+    if (options.aovs.anyCryptomatte())
+        return makeError(ErrorCode::Usage,
+                         "Cryptomatte layers are made for single images, not yet for sequences: "
+                         "render each frame with --frame N",
+                         "--aov");
     if (seq.writeCamera && options.views.size() > 1)
         return makeError(ErrorCode::Usage,
                          "a camera file describes one view: it cannot be written for " +

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace lantern::io {
@@ -16,7 +17,7 @@ namespace lantern::io {
 /// One channel of a plane: its name, type, its first pixel's value and the bytes between pixels
 /// (rows are `xStride * width` bytes apart).
 struct AovChannel {
-    const char* name = nullptr;
+    std::string name;
     bool uint = false;  ///< UINT (an id plane), else FLOAT
     char* first = nullptr;
     std::size_t xStride = 0;

@@ -2,6 +2,7 @@
 #include <lantern/Io.h>
 
 #include "io/AovChannels.h"
+#include "io/CryptomatteExr.h"
 #include "io/AtomicFile.h"
 #include "io/ImageEncode.h"
 
@@ -63,7 +64,8 @@ Result<void> checkImage(const Image& image, const std::filesystem::path& path) {
     if (image.width <= 0 || image.height <= 0 || image.rgba.size() != image.pixelCount() * 4)
         return makeError(ErrorCode::InvalidInput, "image has no pixels or a wrong pixel count", {},
                          path.string());
-    return io::checkAovPlanes(image, path);
+    LANTERN_TRY(io::checkAovPlanes(image, path));
+    return io::checkCryptomatte(image, path);
 }
 
 // OpenEXR's output stream onto an AtomicFile, so that EXR bytes reach the disk through
@@ -253,12 +255,16 @@ Result<void> writeExr(const std::filesystem::path& path, const Image& image,
         Imf::FrameBuffer fb;
         if (options.half) halves = toHalves(image.rgba, clamped);
         addColorChannels(header, fb, image, options.half, halves);
-        for (const io::AovChannel& c : io::aovChannels(image)) {
+        std::vector<io::AovChannel> aovs = io::aovChannels(image);
+        io::cryptomatteChannels(image, aovs);
+        for (const io::AovChannel& c : aovs) {
             const Imf::PixelType type = c.uint ? Imf::UINT : Imf::FLOAT;
             header.channels().insert(c.name, Imf::Channel(type));
             fb.insert(c.name, Imf::Slice(type, c.first, c.xStride, c.xStride * std::size_t(image.width)));
         }
         for (const auto& [key, value] : image.metadata) header.insert(key, Imf::StringAttribute(value));
+        for (const auto& [key, value] : io::cryptomatteAttributes(image))
+            header.insert(key, Imf::StringAttribute(value));
         if (image.camera) addCameraAttributes(header, *image.camera);
         if (image.framesPerSecond > 0.0)
             Imf::addFramesPerSecond(header, Imf::guessExactFps(image.framesPerSecond));
@@ -303,8 +309,15 @@ Result<Image> readExr(const std::filesystem::path& path) {
             fb.insert(names[c], Imf::Slice(Imf::FLOAT, base(img.rgba.data() + c, 4), 16, 16 * std::size_t(w), 1, 1,
                                            c == 3 ? 1.0 : 0.0));
         const Imf::ChannelList& channels = in.header().channels();
-        for (const io::AovChannel& c :
-             io::aovChannelsToRead(img, [&](const char* name) { return channels.findChannel(name); })) {
+        for (auto it = in.header().begin(); it != in.header().end(); ++it)
+            if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+                img.metadata.emplace_back(it.name(), s->value());
+        auto has = [&](const char* name) { return channels.findChannel(name) != nullptr; };
+        std::vector<io::AovChannel> aovs = io::aovChannelsToRead(img, has);
+        auto crypto = io::cryptomatteChannelsToRead(img, img.metadata, has, path);
+        if (!crypto) return std::move(crypto).error();
+        aovs.insert(aovs.end(), crypto->begin(), crypto->end());
+        for (const io::AovChannel& c : aovs) {
             // exrSliceBase only does byte arithmetic on its pointer; UINT values are 4 bytes too.
             char* first = io::exrSliceBase(reinterpret_cast<float*>(c.first), window, c.xStride,
                                            c.xStride * std::size_t(w));
@@ -313,9 +326,6 @@ Result<Image> readExr(const std::filesystem::path& path) {
         }
         in.setFrameBuffer(fb);
         in.readPixels(dw.min.y, dw.max.y);
-        for (auto it = in.header().begin(); it != in.header().end(); ++it)
-            if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
-                img.metadata.emplace_back(it.name(), s->value());
         return img;
     } catch (const std::exception& e) {
         return makeError(ErrorCode::InvalidInput, std::string("not a readable OpenEXR file: ") + e.what(),
