@@ -1,6 +1,7 @@
 // Cameras resolved for a view in double precision: a scene camera on its node, GL's default
 // camera, automatic framing of the animation's bounds, and the options' overrides.
 #include "frame/Frame.h"
+#include "math/Robust.h"
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -27,14 +28,6 @@ glm::dmat4 rigid(const glm::dmat4& m) {
     r[2] = glm::dvec4(z, 0);
     r[3] = m[3];
     return r;
-}
-
-// The inverse of a rigid transform, exact in structure.
-glm::dmat4 inverseRigid(const glm::dmat4& m) {
-    const glm::dmat3 rt = glm::transpose(glm::dmat3(m));
-    glm::dmat4 inv(rt);
-    inv[3] = glm::dvec4(-(rt * glm::dvec3(m[3])), 1.0);
-    return inv;
 }
 
 int findCameraNode(const Scene& scene, const Pose& pose, int camera) {
@@ -65,16 +58,27 @@ Projection framingOrtho(const Bounds& b, const glm::dmat4& viewFromWorld, double
     return Projection::makeOrtho(-w, w, -h, h, d - 1.5 * r, d + 1.5 * r);
 }
 
+// The sphere automatic framing fits: the animation's bounds (a unit sphere at the origin when
+// nothing is drawn; a tiny positive radius for a single point).
+struct FramingSphere {
+    glm::dvec3 c{0.0};
+    double r = 1.0;
+    Bounds b;
+};
+FramingSphere framingSphere(const Scene& scene, int root) {
+    FramingSphere s;
+    s.b = animationBounds(scene, root);
+    if (!s.b.empty()) {
+        s.c = s.b.center();
+        s.r = s.b.radius();
+        if (!(s.r > 0.0)) s.r = std::max(1e-6, glm::length(s.c) * 1e-6);
+    }
+    return s;
+}
+
 ViewCamera framingCamera(const Scene& scene, int root, const CameraSpec& spec, double aspect) {
     ViewCamera rc;
-    const Bounds b = animationBounds(scene, root);
-    glm::dvec3 c(0.0);
-    double r = 1.0;
-    if (!b.empty()) {
-        c = b.center();
-        r = b.radius();
-        if (!(r > 0.0)) r = std::max(1e-6, glm::length(c) * 1e-6);
-    }
+    const auto [c, r, b] = framingSphere(scene, root);
     const glm::dvec3 dir = glm::length(spec.framingDirection) > 0
                                ? glm::normalize(spec.framingDirection)
                                : glm::dvec3(0, 0, -1);
@@ -125,7 +129,7 @@ Result<ViewCamera> sceneCamera(const Scene& scene, const Pose& pose, int camera,
                              cameraName(scene, camera) + " is not placed by any node of scene " +
                                  std::to_string(pose.root),
                              object);
-        rc.viewFromWorld = inverseRigid(rigid(pose.worldFromNode[std::size_t(node)]));
+        rc.viewFromWorld = math::inverseRigid(rigid(pose.worldFromNode[std::size_t(node)]));
     }
     rc.projection = cam.projection;
     rc.description = cameraName(scene, camera);
@@ -140,14 +144,7 @@ Projection intrinsicProjection(const Scene& scene, int root, Intrinsics k,
                                const glm::dmat4& viewFromWorld) {
     const bool autoNear = automaticNear(k), autoFar = k.orthographic && std::isinf(k.zfar);
     if (autoNear || autoFar) {
-        const Bounds b = animationBounds(scene, root);
-        glm::dvec3 c(0.0);
-        double r = 1.0;
-        if (!b.empty()) {
-            c = b.center();
-            r = b.radius();
-            if (!(r > 0.0)) r = std::max(1e-6, glm::length(c) * 1e-6);
-        }
+        const auto [c, r, bounds] = framingSphere(scene, root);
         const double d = -(viewFromWorld * glm::dvec4(c, 1.0)).z;
         if (k.orthographic) {
             if (autoNear) k.znear = d - 1.5 * r;

@@ -4,6 +4,8 @@
 // at u = -0.5 and u = width - 0.5, and the frustum's planes go through those edges.
 #include <lantern/CameraConventions.h>
 
+#include "math/Robust.h"
+
 #include <glm/matrix.hpp>
 
 #include <algorithm>
@@ -31,14 +33,6 @@ glm::dmat4 flipYZ(const glm::dmat4& m) {
         r[c][2] = -m[c][2];
     }
     return r;
-}
-
-// The inverse of a rigid transform, exact in structure: [R^T | -R^T t].
-glm::dmat4 inverseRigid(const glm::dmat4& m) {
-    const glm::dmat3 rt = glm::transpose(glm::dmat3(m));
-    glm::dmat4 inv(rt);
-    inv[3] = glm::dvec4(-(rt * glm::dvec3(m[3])), 1.0);
-    return inv;
 }
 
 } // namespace
@@ -106,12 +100,12 @@ Result<void> checkPose(const glm::dmat4& pose, const std::string& object) {
 }
 
 glm::dmat4 viewFromPose(const glm::dmat4& pose, PoseConvention convention) {
-    return convention == PoseConvention::OpenCV ? flipYZ(pose) : inverseRigid(pose);
+    return convention == PoseConvention::OpenCV ? flipYZ(pose) : math::inverseRigid(pose);
 }
 
 glm::dmat4 poseFromView(const glm::dmat4& viewFromWorld, PoseConvention convention) {
     return convention == PoseConvention::OpenCV ? flipYZ(viewFromWorld)
-                                                : inverseRigid(viewFromWorld);
+                                                : math::inverseRigid(viewFromWorld);
 }
 
 Projection projectionFromIntrinsics(const Intrinsics& k) {

@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/matrix.hpp>
 #include <glm/vec3.hpp>
 
 namespace lantern::math {
@@ -43,6 +45,14 @@ inline double accurateDot(const glm::dvec3& a, const glm::dvec3& b) {
 /// |det| is below about 1e-16 |m[0]| |m[1] x m[2]|.
 inline double accurateDeterminant(const glm::dmat3& m) {
     return accurateDot(m[0], accurateCross(m[1], m[2]));
+}
+
+/// The inverse of a rigid transform, exact in structure: [R^T | -R^T t].
+inline glm::dmat4 inverseRigid(const glm::dmat4& m) {
+    const glm::dmat3 rt = glm::transpose(glm::dmat3(m));
+    glm::dmat4 inv(rt);
+    inv[3] = glm::dvec4(-(rt * glm::dvec3(m[3])), 1.0);
+    return inv;
 }
 
 } // namespace lantern::math
