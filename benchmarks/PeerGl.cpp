@@ -1,8 +1,9 @@
 // lantern_peer_gl: one scene and camera drawn by Lantern (Vulkan) and by fixed-function OpenGL
 // through Mesa's OSMesa (glLight, glMaterial, glShadeModel, vertex buffers), interleaved in one
 // process on the same CPU, each frame ending with its float RGBA pixels in host memory
-// (Lantern: Renderer::render's Image; GL: glReadPixels into a float array). Prints the time per
-// frame of each and the ratio Lantern / GL, and checks that the two pictures agree, so that the
+// (Lantern: Renderer::render's Image, render() into a kept Image, and renderView's pixels read
+// where the device left them; GL: glReadPixels into a float array). Prints the time per frame
+// of each and the ratio Lantern / GL, and checks that the two pictures agree, so that the
 // peer is known to draw the same thing (exit 1 if they do not). Built only when libosmesa6-dev
 // is installed. docs/performance.md quotes it with the command.
 //
@@ -329,9 +330,117 @@ struct Config {
     std::optional<PreparedScene> prepared;
     std::unique_ptr<GlPeer> gl;
     glm::dmat4 view{1.0}, proj{1.0};
-    std::vector<double> lantern, lanternInto, glRead, glDraw; // one median per round
+    std::vector<double> lantern, lanternInto, lanternView, glRead, glDraw; // one median per round
     Agreement diff;
 };
+
+RenderOptions lanternOptions(const Args& a, const Config& c) {
+    RenderOptions o;
+    o.width = a.width;
+    o.height = a.height;
+    o.shading = c.shading;
+    return o;
+}
+
+// Prepares configuration `c` on both sides, draws it once each, and checks that the view
+// holds render()'s pixels. Returns 0 or the exit code.
+int setUp(const Args& a, Renderer& renderer, Config& c) {
+    auto prepared = renderer.prepare(c.scene);
+    if (!prepared) return std::fprintf(stderr, "lantern_peer_gl: %s\n", prepared.error().describe().c_str()), 3;
+    c.prepared.emplace(std::move(*prepared));
+    c.gl = std::make_unique<GlPeer>();
+    if (!setUpGl(*c.gl, a.width, a.height))
+        return std::fprintf(stderr, "lantern_peer_gl: OSMesa gave no float RGBA context\n"), 3;
+    const Pose pose = evaluatePose(*c.scene, -1, 0.0);
+    if (!uploadGl(*c.gl, *c.scene, pose))
+        return std::fprintf(stderr, "lantern_peer_gl: %s: skinned or morphing meshes are not drawn by the GL peer\n", a.scene.c_str()), 1;
+    setLightModel(*c.scene);
+    glShadeModel(c.shading == ShadingMode::Flat ? GL_FLAT : GL_SMOOTH);
+    const RenderOptions o = lanternOptions(a, c);
+    auto img = renderer.render(*c.prepared, o, 0.0);
+    if (!img || !img->camera) return std::fprintf(stderr, "lantern_peer_gl: the first Lantern frame failed\n"), 3;
+    c.view = img->camera->viewFromWorld;
+    c.proj = glClipFromVulkan(img->camera->clipFromView);
+    setLights(*c.scene, pose, c.view);
+    drawGl(*c.gl, *c.scene, c.view, c.proj, true);
+    c.diff = agreement(*img, c.gl->pixels);
+    // The view reads the same pixels in place.
+    auto view = renderer.renderView(*c.prepared, o, 0.0);
+    if (!view || view->toImage().rgba != img->rgba)
+        return std::fprintf(stderr, "lantern_peer_gl: renderView's pixels are not render()'s\n"), 3;
+    return 0;
+}
+
+// One round of configuration `c`: Lantern three ways, GL with the read and without, each timed
+// over `frames` frames after `warmup` untimed ones; the median frame of each is kept.
+void timeRound(const Args& a, Renderer& renderer, Config& c) {
+    const RenderOptions o = lanternOptions(a, c);
+    auto time = [&](auto&& frame) {
+        for (int i = 0; i < a.warmup; ++i) frame();
+        std::vector<double> ms;
+        for (int i = 0; i < a.frames; ++i) {
+            const auto t0 = Clock::now();
+            frame();
+            ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+        }
+        return median(ms);
+    };
+    c.lantern.push_back(time([&] {
+        if (!renderer.render(*c.prepared, o, 0.0)) std::exit(3);
+    }));
+    // As GL reads into an array allocated once: render() into one Image kept.
+    Image into;
+    c.lanternInto.push_back(time([&] {
+        if (!renderer.render(*c.prepared, o, 0.0, into)) std::exit(3);
+    }));
+    // The pixels where the device left them: a view of the mapped frame, no copy (one value is
+    // read so that the frame is used).
+    float used = 0.0f;
+    c.lanternView.push_back(time([&] {
+        auto view = renderer.renderView(*c.prepared, o, 0.0);
+        if (!view) std::exit(3);
+        used += view->row(a.height / 2)[a.width * 2];
+    }));
+    if (!std::isfinite(used)) std::exit(3);
+    OSMesaMakeCurrent(c.gl->ctx, c.gl->target.data(), GL_FLOAT, a.width, a.height);
+    c.glRead.push_back(time([&] { drawGl(*c.gl, *c.scene, c.view, c.proj, true); }));
+    c.glDraw.push_back(time([&] { drawGl(*c.gl, *c.scene, c.view, c.proj, false); }));
+}
+
+// The table (and the CSV when asked); 1 when the Gouraud pictures do not agree.
+int report(const Args& a, const std::vector<Config>& configs) {
+    std::printf("lantern_peer_gl: %s, %dx%d, float RGBA in host memory; median of %d rounds' medians of %d frames\n\n",
+                a.scene.c_str(), a.width, a.height, a.rounds, a.frames);
+    std::printf("| shading | lights | GL ms (with glReadPixels) | GL ms (draw + glFinish) | Lantern ms (render()) | Lantern / GL | Lantern ms (render(into)) | into / GL | Lantern ms (renderView) | view / GL | mean RGB GL / Lantern | mean / max abs difference |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    std::ofstream csv;
+    if (!a.csv.empty()) {
+        csv.open(a.csv);
+        csv << "scene,width,height,shading,lights,gl_read_ms,gl_draw_ms,lantern_ms,ratio,lantern_into_ms,into_ratio,lantern_view_ms,view_ratio,mean_abs_diff,max_abs_diff\n";
+    }
+    bool agree = true;
+    for (const Config& c : configs) {
+        const double l = median(c.lantern), li = median(c.lanternInto), lv = median(c.lanternView),
+                     g = median(c.glRead), gd = median(c.glDraw);
+        std::printf("| %s | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.4f / %.4f | %.4f / %.3f |\n",
+                    toString(c.shading), c.lights, g, gd, l, l / g, li, li / g, lv, lv / g, c.diff.glMean,
+                    c.diff.lanternMean, c.diff.mean, c.diff.worst);
+        if (csv)
+            csv << a.scene << ',' << a.width << ',' << a.height << ',' << toString(c.shading) << ','
+                << c.lights << ',' << g << ',' << gd << ',' << l << ',' << l / g << ',' << li << ','
+                << li / g << ',' << lv << ',' << lv / g << ',' << c.diff.mean << ',' << c.diff.worst << '\n';
+        // Gouraud is the same equation at the same vertices: the pictures must agree closely,
+        // and show something (two black pictures would agree). Flat differs by definition (GL
+        // lights the provoking vertex, Lantern the centroid).
+        if (c.shading == ShadingMode::Gouraud && (c.diff.mean > 0.01 || c.diff.lanternMean < 0.005)) agree = false;
+    }
+    if (!agree) {
+        std::fprintf(stderr, "lantern_peer_gl: the GL and Lantern gouraud pictures differ by more than 0.01 on average, "
+                             "or are black: the peer does not draw the same scene\n");
+        return 1;
+    }
+    return 0;
+}
 
 int run(const Args& a) {
     auto renderer = Renderer::create();
@@ -353,91 +462,12 @@ int run(const Args& a) {
             c.scene = std::make_shared<const Scene>(withLights(base, n));
             configs.push_back(std::move(c));
         }
-    for (Config& c : configs) {
-        auto prepared = renderer->prepare(c.scene);
-        if (!prepared) return std::fprintf(stderr, "lantern_peer_gl: %s\n", prepared.error().describe().c_str()), 3;
-        c.prepared.emplace(std::move(*prepared));
-        c.gl = std::make_unique<GlPeer>();
-        if (!setUpGl(*c.gl, a.width, a.height))
-            return std::fprintf(stderr, "lantern_peer_gl: OSMesa gave no float RGBA context\n"), 3;
-        const Pose pose = evaluatePose(*c.scene, -1, 0.0);
-        if (!uploadGl(*c.gl, *c.scene, pose))
-            return std::fprintf(stderr, "lantern_peer_gl: %s: skinned or morphing meshes are not drawn by the GL peer\n", a.scene.c_str()), 1;
-        setLightModel(*c.scene);
-        glShadeModel(c.shading == ShadingMode::Flat ? GL_FLAT : GL_SMOOTH);
-        RenderOptions o;
-        o.width = a.width;
-        o.height = a.height;
-        o.shading = c.shading;
-        auto img = renderer->render(*c.prepared, o, 0.0);
-        if (!img || !img->camera) return std::fprintf(stderr, "lantern_peer_gl: the first Lantern frame failed\n"), 3;
-        c.view = img->camera->viewFromWorld;
-        c.proj = glClipFromVulkan(img->camera->clipFromView);
-        setLights(*c.scene, pose, c.view);
-        drawGl(*c.gl, *c.scene, c.view, c.proj, true);
-        c.diff = agreement(*img, c.gl->pixels);
-    }
-    // Rounds: every configuration in turn (Lantern, GL with the read, GL without), each timed
-    // over `frames` frames after `warmup` untimed ones; the median frame of each round is kept.
+    for (Config& c : configs)
+        if (const int code = setUp(a, *renderer, c); code != 0) return code;
+    // Rounds: every configuration in turn.
     for (int round = 0; round < a.rounds; ++round)
-        for (Config& c : configs) {
-            RenderOptions o;
-            o.width = a.width;
-            o.height = a.height;
-            o.shading = c.shading;
-            auto time = [&](auto&& frame) {
-                for (int i = 0; i < a.warmup; ++i) frame();
-                std::vector<double> ms;
-                for (int i = 0; i < a.frames; ++i) {
-                    const auto t0 = Clock::now();
-                    frame();
-                    ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
-                }
-                return median(ms);
-            };
-            c.lantern.push_back(time([&] {
-                if (!renderer->render(*c.prepared, o, 0.0)) std::exit(3);
-            }));
-            // As GL reads into an array allocated once: render() into one Image kept.
-            Image into;
-            c.lanternInto.push_back(time([&] {
-                if (!renderer->render(*c.prepared, o, 0.0, into)) std::exit(3);
-            }));
-            OSMesaMakeCurrent(c.gl->ctx, c.gl->target.data(), GL_FLOAT, a.width, a.height);
-            c.glRead.push_back(time([&] { drawGl(*c.gl, *c.scene, c.view, c.proj, true); }));
-            c.glDraw.push_back(time([&] { drawGl(*c.gl, *c.scene, c.view, c.proj, false); }));
-        }
-    std::printf("lantern_peer_gl: %s, %dx%d, float RGBA in host memory; median of %d rounds' medians of %d frames\n\n",
-                a.scene.c_str(), a.width, a.height, a.rounds, a.frames);
-    std::printf("| shading | lights | GL ms (with glReadPixels) | GL ms (draw + glFinish) | Lantern ms (render()) | Lantern / GL | Lantern ms (render(into)) | into / GL | mean RGB GL / Lantern | mean / max abs difference |\n");
-    std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
-    std::ofstream csv;
-    if (!a.csv.empty()) {
-        csv.open(a.csv);
-        csv << "scene,width,height,shading,lights,gl_read_ms,gl_draw_ms,lantern_ms,ratio,lantern_into_ms,into_ratio,mean_abs_diff,max_abs_diff\n";
-    }
-    bool agree = true;
-    for (const Config& c : configs) {
-        const double l = median(c.lantern), li = median(c.lanternInto), g = median(c.glRead),
-                     gd = median(c.glDraw);
-        std::printf("| %s | %d | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.4f / %.4f | %.4f / %.3f |\n",
-                    toString(c.shading), c.lights, g, gd, l, l / g, li, li / g, c.diff.glMean,
-                    c.diff.lanternMean, c.diff.mean, c.diff.worst);
-        if (csv)
-            csv << a.scene << ',' << a.width << ',' << a.height << ',' << toString(c.shading) << ','
-                << c.lights << ',' << g << ',' << gd << ',' << l << ',' << l / g << ',' << li << ','
-                << li / g << ',' << c.diff.mean << ',' << c.diff.worst << '\n';
-        // Gouraud is the same equation at the same vertices: the pictures must agree closely,
-        // and show something (two black pictures would agree). Flat differs by definition (GL
-        // lights the provoking vertex, Lantern the centroid).
-        if (c.shading == ShadingMode::Gouraud && (c.diff.mean > 0.01 || c.diff.lanternMean < 0.005)) agree = false;
-    }
-    if (!agree) {
-        std::fprintf(stderr, "lantern_peer_gl: the GL and Lantern gouraud pictures differ by more than 0.01 on average, "
-                             "or are black: the peer does not draw the same scene\n");
-        return 1;
-    }
-    return 0;
+        for (Config& c : configs) timeRound(a, *renderer, c);
+    return report(a, configs);
 }
 
 } // namespace

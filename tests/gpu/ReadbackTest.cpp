@@ -14,7 +14,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <mutex>
+#include <optional>
 
 namespace {
 
@@ -100,6 +104,14 @@ protected:
         ASSERT_TRUE(inPlace->renderer->render(*builtinScene("spheres"), o, 0.0));
         const std::string how = inPlace->choice("colour", w, h);
         if (how.rfind("in place", 0) != 0) GTEST_SKIP() << "this device reads back " << how;
+    }
+    // builtin:spheres prepared on `r`.
+    static std::optional<PreparedScene> spheres(LoggedRenderer& r) {
+        auto scene = builtinScene("spheres");
+        if (!scene) return std::nullopt;
+        auto prepared = r.renderer->prepare(std::make_shared<const Scene>(std::move(*scene)));
+        if (!prepared) return std::nullopt;
+        return std::move(*prepared);
     }
     std::unique_ptr<LoggedRenderer> inPlace, staged;
 };
@@ -280,4 +292,187 @@ TEST_F(Readback, RenderIntoAnImageGivesWhatRenderReturns) {
             EXPECT_EQ(into.rgba.data(), before);
         }
     }
+}
+
+// Renderer::renderView leaves the colour where the device put it: each row read through the
+// view is the row render() returns, bit for bit, on both paths (in place: the linear render
+// target, padded rows included; staged: the buffer the image was copied into), with and
+// without multisampling, and toImage() is render()'s Image (metadata and camera too).
+TEST_F(Readback, AViewOfTheFrameHoldsWhatRenderReturns) {
+    auto scene = builtinScene("spheres");
+    ASSERT_TRUE(scene);
+    const auto shared = std::make_shared<const Scene>(std::move(*scene));
+    for (LoggedRenderer* r : {inPlace.get(), staged.get()}) {
+        auto prepared = r->renderer->prepare(shared);
+        ASSERT_TRUE(prepared) << prepared.error().describe();
+        for (int msaa : {1, 4})
+            for (auto [w, h] : {std::pair{67, 45}, std::pair{33, 21}, std::pair{64, 64}}) {
+                SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h) + " msaa " +
+                             std::to_string(msaa) + (r == staged.get() ? " staged" : " in place"));
+                RenderOptions o;
+                o.width = w;
+                o.height = h;
+                o.msaa = msaa;
+                auto fresh = r->renderer->render(*prepared, o, 0.5);
+                ASSERT_TRUE(fresh) << fresh.error().describe();
+                auto view = r->renderer->renderView(*prepared, o, 0.5);
+                ASSERT_TRUE(view) << view.error().describe();
+                ASSERT_TRUE(view->valid());
+                EXPECT_EQ(view->width(), w);
+                EXPECT_EQ(view->height(), h);
+                EXPECT_GE(view->rowPitch(), std::size_t(w) * 16);
+                for (int y = 0; y < h; ++y) {
+                    ASSERT_NE(view->row(y), nullptr);
+                    EXPECT_EQ(std::memcmp(view->row(y), fresh->pixel(0, y), std::size_t(w) * 16), 0)
+                        << "row " << y;
+                }
+                EXPECT_EQ(view->pixel(w - 1, h - 1), view->row(h - 1) + (w - 1) * 4);
+                EXPECT_EQ(view->row(h), nullptr);
+                EXPECT_EQ(view->row(-1), nullptr);
+                EXPECT_EQ(view->pixel(w, 0), nullptr);
+                const Image copy = view->toImage();
+                EXPECT_TRUE(sameBits(copy.rgba, fresh->rgba));
+                EXPECT_EQ(copy.metadata, fresh->metadata);
+                ASSERT_TRUE(copy.camera && fresh->camera);
+                EXPECT_EQ(copy.camera->clipFromView, fresh->camera->clipFromView);
+                EXPECT_TRUE(copy.depth.empty());
+            }
+    }
+    // On a device that reads in place, that was the render target itself (not only staged).
+    const std::string how = inPlace->choice("colour", 67, 45);
+    if (how.rfind("in place", 0) != 0) GTEST_SKIP() << "this device reads back " << how;
+}
+
+// A view lives until the renderer submits its next frame (of any size: the slot's target may
+// be reallocated) or is destroyed; then it says so and gives no pointer.
+TEST_F(Readback, AViewEndsWithTheNextFrameOrTheRenderer) {
+    auto scene = builtinScene("spheres");
+    ASSERT_TRUE(scene);
+    const auto shared = std::make_shared<const Scene>(std::move(*scene));
+    auto prepared = inPlace->renderer->prepare(shared);
+    ASSERT_TRUE(prepared);
+    RenderOptions o;
+    o.width = 40;
+    o.height = 30;
+    auto first = inPlace->renderer->renderView(*prepared, o, 0.0);
+    ASSERT_TRUE(first);
+    EXPECT_TRUE(first->valid());
+    const FrameView kept = *first;  // copies share the view's life
+    RenderOptions other = o;
+    other.width = 300;
+    ASSERT_TRUE(inPlace->renderer->render(*prepared, other, 0.0));
+    EXPECT_FALSE(first->valid());
+    EXPECT_FALSE(kept.valid());
+    EXPECT_EQ(first->row(0), nullptr);
+    EXPECT_EQ(first->pixel(0, 0), nullptr);
+    EXPECT_TRUE(first->toImage().rgba.empty());
+    EXPECT_FALSE(FrameView{}.valid());
+
+    auto second = inPlace->renderer->renderView(*prepared, o, 0.0);
+    ASSERT_TRUE(second);
+    auto third = inPlace->renderer->renderView(*prepared, o, 0.0);
+    ASSERT_TRUE(third);
+    EXPECT_FALSE(second->valid());
+    EXPECT_TRUE(third->valid());
+
+    auto own = Renderer::create();
+    ASSERT_TRUE(own);
+    auto p = own->prepare(shared);
+    ASSERT_TRUE(p);
+    auto view = own->renderView(*p, o, 0.0);
+    ASSERT_TRUE(view);
+    const FrameView outlives = *view;
+    EXPECT_TRUE(outlives.valid());
+    *p = PreparedScene{};
+    {
+        auto replacement = Renderer::create();
+        ASSERT_TRUE(replacement);
+        *own = std::move(*replacement);  // the first renderer, its device and memory are gone
+    }
+    EXPECT_FALSE(outlives.valid());
+    EXPECT_EQ(outlives.row(0), nullptr);
+}
+
+// A view is the colour only; AOVs are refused with a message that points to render().
+TEST_F(Readback, AViewRefusesAovPlanes) {
+    const std::optional<PreparedScene> prepared = spheres(*inPlace);
+    ASSERT_TRUE(prepared);
+    RenderOptions o;
+    o.width = 16;
+    o.height = 16;
+    o.aovs.depth = true;
+    auto view = inPlace->renderer->renderView(*prepared, o, 0.0);
+    ASSERT_FALSE(view);
+    EXPECT_EQ(view.error().code, ErrorCode::Usage);
+    EXPECT_NE(view.error().message.find("render()"), std::string::npos) << view.error().message;
+    o.aovs = {};
+    o.aovs.cryptoObject = true;
+    EXPECT_FALSE(inPlace->renderer->renderView(*prepared, o, 0.0));
+    o.aovs = {};
+    o.width = 0;
+    auto bad = inPlace->renderer->renderView(*prepared, o, 0.0);
+    ASSERT_FALSE(bad);
+    EXPECT_EQ(bad.error().code, ErrorCode::InvalidInput);
+}
+
+// No NaN or Inf reaches the host through a view either: a frame that holds one (injected where
+// a shader bug would leave it) is refused, naming the pixel, as render() refuses it. A large
+// picture is checked in two halves on two threads: a value in either half is found.
+TEST_F(Readback, AViewOfAFrameWithNaNIsRefused) {
+    const std::optional<PreparedScene> prepared = spheres(*inPlace);
+    ASSERT_TRUE(prepared);
+    struct Case {
+        int w, h;
+        const char* pixel;
+    };
+    for (const Case& c : {Case{48, 32, "24,16"}, Case{1024, 300, "700,250"}, Case{1024, 300, "513,3"}}) {
+        SCOPED_TRACE(std::to_string(c.w) + "x" + std::to_string(c.h) + " at " + c.pixel);
+        RenderOptions o;
+        o.width = c.w;
+        o.height = c.h;
+        ::setenv("LANTERN_TEST_NONFINITE_PIXEL", c.pixel, 1);
+        auto view = inPlace->renderer->renderView(*prepared, o, 0.0);
+        auto image = inPlace->renderer->render(*prepared, o, 0.0);
+        ::unsetenv("LANTERN_TEST_NONFINITE_PIXEL");
+        ASSERT_FALSE(view);
+        ASSERT_FALSE(image);
+        EXPECT_EQ(view.error().code, image.error().code);
+        std::string at = c.pixel;
+        at = "1 non-finite values (NaN or Inf), the first at pixel (" + at.replace(at.find(','), 1, ", ") + ")";
+        EXPECT_NE(view.error().message.find(at), std::string::npos) << view.error().message;
+        EXPECT_EQ(view.error().message, image.error().message);
+        auto clean = inPlace->renderer->renderView(*prepared, o, 0.0);
+        ASSERT_TRUE(clean) << clean.error().describe();
+    }
+}
+
+// A PNG made from a view (no float copy of the picture: `lantern render -o x.png`) has the
+// bytes of the PNG made from render()'s Image, transparent edges (un-premultiplied) included;
+// a stale view writes nothing.
+TEST_F(Readback, APngFromAViewIsThePngOfTheImage) {
+    const std::optional<PreparedScene> prepared = spheres(*inPlace);
+    ASSERT_TRUE(prepared);
+    RenderOptions o;
+    o.width = 67;
+    o.height = 45;
+    o.msaa = 4;
+    o.background = glm::vec4(0.0f);
+    auto image = inPlace->renderer->render(*prepared, o, 0.0);
+    ASSERT_TRUE(image);
+    auto view = inPlace->renderer->renderView(*prepared, o, 0.0);
+    ASSERT_TRUE(view);
+    const auto dir = testOutputDir();
+    ASSERT_TRUE(writePng(dir / "image.png", *image));
+    ASSERT_TRUE(writePng(dir / "view.png", *view));
+    auto bytes = [](const std::filesystem::path& p) {
+        std::ifstream in(p, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    EXPECT_GT(bytes(dir / "view.png").size(), 100u);
+    EXPECT_EQ(bytes(dir / "view.png"), bytes(dir / "image.png"));
+    ASSERT_TRUE(inPlace->renderer->render(*prepared, o, 0.0));
+    auto stale = writePng(dir / "stale.png", *view);
+    ASSERT_FALSE(stale);
+    EXPECT_EQ(stale.error().code, ErrorCode::Usage);
+    EXPECT_FALSE(std::filesystem::exists(dir / "stale.png"));
 }

@@ -257,12 +257,22 @@ TEST_F(Cryptomatte, TheCommandWritesTheLayersThatOiiotoolLists) {
     EXPECT_NE(bad.exitCode, 0);
     EXPECT_NE(bad.err.find("even"), std::string::npos) << bad.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "x.exr"));
-    // Sequences do not make the layers yet: refused, not written without them.
+    // A sequence makes the layers for every frame, the same as a single image of that frame.
     const auto seq = test::runLantern({"render", scene.string(), "-o", (dir / "s_#.exr").string(),
-                                       "--frames", "0-1", "--aov", "crypto_object"});
-    EXPECT_EQ(seq.exitCode, 2);
-    EXPECT_NE(seq.err.find("not yet for sequences"), std::string::npos) << seq.err;
-    EXPECT_FALSE(std::filesystem::exists(dir / "s_0.exr"));
+                                       "--frames", "0-2", "--width", "32", "--height", "32", "--aov",
+                                       "crypto_object,crypto_material", "--cryptomatte-levels", "6",
+                                       "--cryptomatte-samples", "3", "--encoder-threads", "2"});
+    ASSERT_EQ(seq.exitCode, 0) << seq.err;
+    for (const char* name : {"s_0.exr", "s_1.exr", "s_2.exr"}) {
+        auto frame = readExr(dir / name);
+        ASSERT_TRUE(frame) << name << ": " << frame.error().describe();
+        ASSERT_EQ(frame->cryptomatte.size(), 2u) << name;
+        for (std::size_t l = 0; l < 2; ++l) {
+            EXPECT_EQ(frame->cryptomatte[l].name, image->cryptomatte[l].name) << name;
+            EXPECT_EQ(frame->cryptomatte[l].ranks, image->cryptomatte[l].ranks) << name;
+            EXPECT_EQ(frame->cryptomatte[l].manifest, image->cryptomatte[l].manifest) << name;
+        }
+    }
     const auto info = test::runProcess({"oiiotool", "--info", "-v", out.string()});
     if (info.exitCode == 127) GTEST_SKIP() << "oiiotool is not installed";
     ASSERT_EQ(info.exitCode, 0) << info.err;
@@ -274,3 +284,41 @@ TEST_F(Cryptomatte, TheCommandWritesTheLayersThatOiiotoolLists) {
 }
 
 } // namespace
+
+// In a sequence every frame's layers are made at that frame's time: an animated scene's frames
+// have the layers a single render at the same time has, and they change as the spheres move.
+TEST_F(Cryptomatte, EachFrameOfASequenceHasItsOwnLayers) {
+    auto scene = builtinScene("spheres-animated");
+    ASSERT_TRUE(scene);
+    auto prepared = renderer().prepare(std::make_shared<const Scene>(std::move(*scene)));
+    ASSERT_TRUE(prepared) << prepared.error().describe();
+    RenderOptions o;
+    o.width = 36;
+    o.height = 24;
+    ASSERT_TRUE(enableAov(o.aovs, "crypto_object"));
+    o.aovs.cryptomatteSamples = 2;
+    const auto dir = test::testOutputDir();
+    SequenceOptions s;
+    s.frames = {0, 6};
+    s.fps = 4;
+    s.encoderThreads = 2;
+    s.outputs = {(dir / "f_#.exr").string()};
+    auto report = renderer().renderSequence(*prepared, o, s);
+    ASSERT_TRUE(report) << report.error().describe();
+    ASSERT_EQ(report->framesWritten.size(), 7u);
+    std::vector<float> previous;
+    int changed = 0;
+    for (int frame = 0; frame <= 6; ++frame) {
+        auto written = readExr(dir / ("f_" + std::to_string(frame) + ".exr"));
+        ASSERT_TRUE(written) << written.error().describe();
+        ASSERT_EQ(written->cryptomatte.size(), 1u);
+        auto single = renderer().render(*prepared, o, frame / s.fps);
+        ASSERT_TRUE(single) << single.error().describe();
+        ASSERT_EQ(single->cryptomatte.size(), 1u);
+        EXPECT_EQ(written->cryptomatte[0].ranks, single->cryptomatte[0].ranks) << "frame " << frame;
+        EXPECT_EQ(written->cryptomatte[0].manifest, single->cryptomatte[0].manifest);
+        if (!previous.empty() && previous != written->cryptomatte[0].ranks) ++changed;
+        previous = written->cryptomatte[0].ranks;
+    }
+    EXPECT_GE(changed, 3) << "the animation should move the mattes";
+}

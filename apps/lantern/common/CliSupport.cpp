@@ -3,6 +3,8 @@
 #include "common/CvCameraCli.h"
 
 #include <algorithm>
+#include <atomic>
+#include <csignal>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -407,5 +409,21 @@ void addMaxSizeOption(CLI::App& app, std::uint64_t& maxSize) {
         ->capture_default_str()
         ->check(CLI::Range(std::uint64_t(1), kMaxMaxSize));
 }
+
+namespace {
+std::atomic<int> g_stopSignal{0};
+extern "C" void onStopSignal(int signal) { g_stopSignal.store(signal); }
+} // namespace
+
+void installStopHandlers() {
+    struct sigaction sa {};
+    sa.sa_handler = onStopSignal;
+    sa.sa_flags = SA_RESETHAND;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, nullptr);
+    sigaction(SIGTERM, &sa, nullptr);
+}
+
+int stopSignal() { return g_stopSignal.load(); }
 
 } // namespace lantern::cli

@@ -132,4 +132,11 @@ struct DeviceOptions {
     RendererDesc desc() const; ///< validation also on when LANTERN_VALIDATION=1
 };
 
+/// Makes the first SIGINT or SIGTERM a request to stop (stopSignal() then returns it) rather
+/// than the end of the process; the handler resets itself, so a second one ends the process
+/// at once. Sequences, batches and the viewer stop cleanly between frames or jobs.
+void installStopHandlers();
+/// The signal that asked to stop since installStopHandlers() (0: none).
+int stopSignal();
+
 } // namespace lantern::cli

@@ -6,7 +6,6 @@
 #include "common/CliSupport.h"
 #include <lantern/CameraConventions.h>
 
-#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -16,22 +15,6 @@
 namespace lantern::cli {
 namespace {
 
-// The signal that asked the batch to stop between two jobs (0: none); a second one ends the
-// process at once (SA_RESETHAND), as for sequences.
-std::atomic<int> g_batchStop{0};
-
-extern "C" void onBatchStop(int signal) {
-    g_batchStop.store(signal);
-}
-
-void installBatchStopHandlers() {
-    struct sigaction sa {};
-    sa.sa_handler = onBatchStop;
-    sa.sa_flags = SA_RESETHAND;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, nullptr);
-    sigaction(SIGTERM, &sa, nullptr);
-}
 
 // A job is finished when every output exists as a regular file: writers rename complete files
 // into place (io/AtomicFile), so an output that exists is whole.
@@ -103,7 +86,7 @@ void runScene(const BatchRequest& r, Renderer& renderer, const BatchScene& scene
     auto prepared = renderer.prepare(shared);
     if (!prepared) return fail(t, scene, prepared.error(), jobs.size());
     for (std::size_t i = 0; i < jobs.size(); ++i) {
-        if (g_batchStop.load() != 0 || t.deviceLost) return;
+        if (stopSignal() != 0 || t.deviceLost) return;
         const BatchJob& job = *jobs[i];
         auto done = renderJob(r, renderer, *prepared, views[job.view], r.frames[job.frame], job);
         if (done) {
@@ -168,13 +151,13 @@ int runBatch(const BatchRequest& r) {
                   << renderer->device().driver << ")\n";
     if (r.checkDevice)
         if (auto c = r.checkDevice(renderer->device()); !c) return report(c.error());
-    installBatchStopHandlers();
+    installStopHandlers();  // stops between two jobs
     for (std::size_t s = 0; s < scenes->size(); ++s) {
         std::vector<const BatchJob*> pending;
         for (std::size_t i = 0; i < mine.size(); ++i)
             if (mine[i]->scene == s && !skip[i]) pending.push_back(mine[i]);
         if (pending.empty()) continue;
-        if (g_batchStop.load() != 0 || t.deviceLost) break;
+        if (stopSignal() != 0 || t.deviceLost) break;
         runScene(r, *renderer, (*scenes)[s], *views, pending, t);
     }
     const double seconds =
@@ -186,7 +169,7 @@ int runBatch(const BatchRequest& r) {
                  seconds > 0 ? double(t.rendered) / seconds : 0.0);
     for (const std::string& f : t.failedScenes)
         std::fprintf(stderr, "lantern: batch: failed: %s\n", f.c_str());
-    if (const int sig = g_batchStop.load(); sig != 0) {
+    if (const int sig = stopSignal(); sig != 0) {
         std::fprintf(stderr, "lantern: stopped by %s; the outputs written are complete\n",
                      sig == SIGTERM ? "SIGTERM" : "SIGINT");
         return 128 + sig;

@@ -5,7 +5,6 @@
 #include "common/CliSupport.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -15,20 +14,6 @@ namespace lantern::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::atomic<int> g_stopSignal{0};
-extern "C" void onViewStopSignal(int signal) {
-    g_stopSignal.store(signal);
-}
-
-void installStopHandlers() {
-    struct sigaction sa {};
-    sa.sa_handler = onViewStopSignal;
-    sa.sa_flags = SA_RESETHAND;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, nullptr);
-    sigaction(SIGTERM, &sa, nullptr);
-}
 
 std::string number(double v) {
     char b[40];
@@ -215,7 +200,7 @@ int Viewer::run(std::shared_ptr<Scene> scene) {
     installStopHandlers();
     m_last = Clock::now();
     int code = kOk;
-    while (!m_window.shouldClose() && g_stopSignal.load() == 0)
+    while (!m_window.shouldClose() && stopSignal() == 0)
         if (const std::optional<int> end = runFrame()) {
             code = *end;
             break;
@@ -318,7 +303,7 @@ int Viewer::finish(int code) {
     m_input.setUi(nullptr);
     m_ui.reset();
     if (m_args.stats) m_stats.print(m_window.target());
-    if (const int sig = g_stopSignal.load(); sig != 0 && code == kOk) code = 128 + sig;
+    if (const int sig = stopSignal(); sig != 0 && code == kOk) code = 128 + sig;
     if (m_renderer.device().validationEnabled && m_renderer.validationMessageCount() > 0) {
         std::cerr << "lantern: error: the Vulkan validation layer reported "
                   << m_renderer.validationMessageCount() << " messages\n";

@@ -18,6 +18,8 @@
 
 namespace lantern {
 
+class FrameView;  // lantern/Renderer.h
+
 // --- Scenes ---------------------------------------------------------------------------------
 
 /// The default of LoadOptions::maxBytes (--max-size): 2 GiB. A load's parsed JSON counts against
@@ -84,6 +86,11 @@ LANTERN_API Result<Image> readExr(const std::filesystem::path& path);
 
 /// Writes an 8-bit sRGB PNG (colour un-premultiplied, clamped to [0,1], sRGB-encoded).
 LANTERN_API Result<void> writePng(const std::filesystem::path& path, const Image& image);
+
+/// The same from a frame left where the renderer put it (Renderer::renderView): the 8-bit rows
+/// are made straight from the device's memory, with no float copy of the picture. Usage when
+/// the view is no longer valid.
+LANTERN_API Result<void> writePng(const std::filesystem::path& path, const FrameView& view);
 
 /// Writes .exr or .png by extension (anything else is an InvalidInput error).
 LANTERN_API Result<void> writeImage(const std::filesystem::path& path, const Image& image,

@@ -14,6 +14,8 @@
 
 #include <glm/vec4.hpp>
 
+#include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -167,6 +169,40 @@ LANTERN_API Result<CameraPlacement> resolveCameraPlacement(const Scene& scene,
 LANTERN_API Result<FeatureReport> explainScene(const Scene& scene, const RenderOptions& options,
                                                double timeSeconds = 0.0);
 
+/// The colour of a frame where the renderer left it (Renderer::renderView): the pixels are read
+/// in the device's own memory, mapped for the host, with no copy. On a device whose memory is
+/// the host's (lavapipe, integrated GPUs) that is the render target itself; elsewhere the
+/// buffer the frame was copied into. Same layout and values as Image::rgba (top row first,
+/// linear RGBA floats, premultiplied, checked finite), but rows are rowPitch() bytes apart.
+///
+/// A view is valid until its renderer submits another frame (render, renderView, a sequence,
+/// a probe or a window frame) or is destroyed; after that valid() is false and row() returns
+/// null. Copy what must outlive it (toImage()).
+class LANTERN_API FrameView {
+public:
+    FrameView() = default;
+    int width() const { return m_header.width; }
+    int height() const { return m_header.height; }
+    /// Bytes from one row to the next (at least 16 * width()).
+    std::size_t rowPitch() const { return m_rowPitch; }
+    /// False once the renderer has submitted another frame or is gone (or for an empty view).
+    bool valid() const { return m_live && m_live->load(std::memory_order_acquire); }
+    /// Row y (0: top): width() RGBA pixels, 4 floats each; null when !valid() or y is outside.
+    const float* row(int y) const;
+    /// Pixel (x, y): 4 floats; null when !valid() or outside the picture.
+    const float* pixel(int x, int y) const;
+    /// A copy as an Image: the same pixels, metadata and camera render() would have returned
+    /// (no AOV planes); an empty Image when !valid().
+    Image toImage() const;
+
+private:
+    friend class Renderer;
+    Image m_header;  ///< width, height, metadata and camera; no pixels
+    const char* m_data = nullptr;
+    std::size_t m_rowPitch = 0;
+    std::shared_ptr<const std::atomic<bool>> m_live;
+};
+
 /// The headless renderer. Move-only; one per thread (see docs/library.md for thread rules).
 class LANTERN_API Renderer {
 public:
@@ -221,6 +257,14 @@ public:
     /// frame. On failure `into` is left empty.
     Result<void> render(const PreparedScene& scene, const RenderOptions& options,
                         double timeSeconds, Image& into);
+
+    /// Renders and leaves the picture where the device put it: a FrameView of the colour in the
+    /// device's host-mapped memory, with no copy into an Image (docs/library.md, "Reading a
+    /// frame in place"). It is the fastest way to get float pixels to the host; the view is
+    /// valid until the next frame this renderer submits. Colour only: Usage when options ask
+    /// for AOVs (render() returns those). Other failures as render().
+    Result<FrameView> renderView(const PreparedScene& scene, const RenderOptions& options,
+                                 double timeSeconds);
 
     /// Convenience: validates, uploads and renders `scene` in one call (the upload is not
     /// kept; prepare() once to render many frames).

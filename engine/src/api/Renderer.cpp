@@ -8,6 +8,7 @@
 #include "render/FrameRender.h"
 
 #include <cstdio>
+#include <cstring>
 #include <sstream>
 
 namespace lantern {
@@ -159,23 +160,61 @@ Result<void> Renderer::render(const PreparedScene& prepared, const RenderOptions
     return {};
 }
 
+Result<FrameView> Renderer::renderView(const PreparedScene& prepared, const RenderOptions& options,
+                                      double time) {
+    if (!prepared) return makeError(ErrorCode::Usage, "renderView() needs a prepared scene");
+    if (options.aovs.any() || options.aovs.anyCryptomatte())
+        return makeError(ErrorCode::Usage,
+                         "renderView() reads the colour only: render() returns AOV planes",
+                         "options.aovs");
+    gpu::Device& device = *m_impl->device;
+    LANTERN_TRY(render::checkOptions(device, options));
+    auto frame = render::renderFrame(device, prepared.m_gpu, prepared.scene(), options, time,
+                                     m_impl->stats, {}, {}, /*inPlace=*/true);
+    if (!frame) return std::move(frame).error();
+    if (frame->readback.nonFinite > 0)
+        return render::nonFiniteFrame(device, prepared.m_gpu, prepared.scene(), options, time,
+                                      frame->readback);
+    FrameView view;
+    view.m_header = std::move(frame->readback.image);
+    attachMetadata(view.m_header, frame->frame, device.info(), time);
+    view.m_data = frame->readback.view.data;
+    view.m_rowPitch = frame->readback.view.rowPitch;
+    view.m_live = std::move(frame->readback.view.live);
+    return view;
+}
+
+const float* FrameView::row(int y) const {
+    if (!valid() || y < 0 || y >= height()) return nullptr;
+    return reinterpret_cast<const float*>(m_data + std::size_t(y) * m_rowPitch);
+}
+
+const float* FrameView::pixel(int x, int y) const {
+    const float* r = row(y);
+    return r && x >= 0 && x < width() ? r + std::size_t(x) * 4 : nullptr;
+}
+
+Image FrameView::toImage() const {
+    if (!valid()) return Image{};
+    Image image = m_header;
+    const std::size_t rowFloats = std::size_t(width()) * 4;
+    image.rgba.resize(rowFloats * std::size_t(height()));
+    for (int y = 0; y < height(); ++y)
+        std::memcpy(image.rgba.data() + std::size_t(y) * rowFloats, row(y), rowFloats * 4);
+    return image;
+}
+
 Result<void> Renderer::addCryptomatte(const PreparedScene& prepared, const RenderOptions& options,
                                       double time, Image& into) {
     // A second render of the ids alone at samples x samples the size (docs/aovs.md); the
     // frame's statistics stay those of the picture.
-    const FrameStats stats = m_impl->stats;
-    Image fine;
-    Result<void> done = render(prepared, render::cryptomatteRenderOptions(options), time, fine);
-    m_impl->stats = stats;
-    if (!done) {
+    auto layers = render::renderCryptomatte(*m_impl->device, prepared.m_gpu, prepared.scene(),
+                                            options, time);
+    if (!layers) {
         into = Image{};
-        Error e = done.error();
-        e.message = "the Cryptomatte id render (" + std::to_string(options.aovs.cryptomatteSamples) +
-                    "x the size) failed: " + e.message;
-        return e;
+        return std::move(layers).error();
     }
-    into.cryptomatte = render::cryptomatteLayers(prepared.scene(), options.aovs, into.width,
-                                                 into.height, fine);
+    into.cryptomatte = std::move(*layers);
     return {};
 }
 

@@ -2,6 +2,7 @@
 // through the device's frame slots and encoded in parallel by an EncodePool (io/).
 #include "api/RendererImpl.h"
 #include "render/AovPlanes.h"
+#include "render/Cryptomatte.h"
 #include "render/FrameRender.h"
 
 #include "io/AtomicFile.h"
@@ -116,6 +117,16 @@ public:
                 m_failure = r.error();
                 break;
             }
+            // Cryptomatte's id render is a second, synchronous frame on the same slots: the
+            // frame is collected (and its layers made) before the next is submitted. Encoding
+            // still runs beside the rendering.
+            if (options.aovs.anyCryptomatte()) {
+                if (auto r = collectOldest(true); !r) {
+                    m_failure = r.error();
+                    break;
+                }
+                reportProgress();
+            }
         }
     }
 
@@ -190,6 +201,15 @@ private:
         attachMetadata(image, f.model, m_device.info(), f.time);
         image.metadata.emplace_back("lantern:frame", std::to_string(f.frame));
         image.framesPerSecond = m_seq.fps;
+        if (m_options->aovs.anyCryptomatte()) {
+            auto layers = render::renderCryptomatte(m_device, *m_buffers, *m_scene, *m_options, f.time);
+            if (!layers) {
+                Error e = std::move(layers).error();
+                e.message = "frame " + std::to_string(f.frame) + ": " + e.message;
+                return e;
+            }
+            image.cryptomatte = std::move(*layers);
+        }
         io::EncodePool::Job job;
         job.frame = f.frame;
         job.image = std::move(image);
@@ -242,11 +262,7 @@ Result<SequenceReport> Renderer::renderSequence(const PreparedScene& prepared,
     LANTERN_TRY(render::checkOptions(device, options));
     const std::vector<int> frames = sequenceFrames(seq);
     LANTERN_TRY(checkSequence(seq, frames));
-    if (options.aovs.anyCryptomatte())
-        return makeError(ErrorCode::Usage,
-                         "Cryptomatte layers are made for single images, not yet for sequences: "
-                         "render each frame with --frame N",
-                         "--aov");
+    LANTERN_TRY(render::checkCryptomatte(options.aovs));
     if (seq.writeCamera && options.views.size() > 1)
         return makeError(ErrorCode::Usage,
                          "a camera file describes one view: it cannot be written for " +

@@ -140,8 +140,8 @@ Result<std::uint32_t> Device::submit(const DrawList& list,
     return m_impl->ring->submit(list, scene);
 }
 
-Result<FrameReadback> Device::collect(std::uint32_t slot, lantern::Image storage) {
-    return m_impl->ring->collect(slot, std::move(storage));
+Result<FrameReadback> Device::collect(std::uint32_t slot, lantern::Image storage, bool inPlace) {
+    return m_impl->ring->collect(slot, std::move(storage), inPlace);
 }
 
 Result<void> Device::drain() {

@@ -13,6 +13,7 @@
 #include <lantern/Result.h>
 #include <lantern/Scene.h>
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -49,9 +50,20 @@ struct DeviceLimits {
     std::uint64_t deviceMemory = 0;       ///< bytes of the largest device-local heap
 };
 
+/// The colour plane of a frame collected in place (collect(..., inPlace)): where the host reads
+/// it, the mapped render target or staging buffer, rows `rowPitch` bytes apart. It stays there
+/// until the ring submits its next frame or is destroyed, when `*live` turns false.
+struct HostView {
+    const char* data = nullptr;
+    std::size_t rowPitch = 0;
+    std::shared_ptr<const std::atomic<bool>> live;
+};
+
 /// A frame read back from its slot.
 struct FrameReadback {
     lantern::Image image;           ///< empty when the frame was submitted without readback
+                                    ///< (or collected in place: its size only, see `view`)
+    HostView view;                  ///< the colour where it lies, when collected in place
     double gpuMs = -1.0;            ///< render-pass time from GPU timestamps (-1: unavailable)
     std::uint64_t nonFinite = 0;    ///< NaN/Inf values found (and zeroed) at readback
     int nonFiniteX = -1, nonFiniteY = -1;  ///< the first colour pixel that held one (-1: none)
@@ -97,8 +109,11 @@ public:
     /// Records and submits `list` into the next slot (which must have been collected).
     Result<std::uint32_t> submit(const DrawList& list, const std::shared_ptr<SceneBuffers>& scene);
     /// Waits for the frame in `slot` and reads it back, into `storage`'s vectors when given (their
-    /// memory is reused: a host rendering many frames of one size allocates nothing).
-    Result<FrameReadback> collect(std::uint32_t slot, lantern::Image storage = {});
+    /// memory is reused: a host rendering many frames of one size allocates nothing). With
+    /// `inPlace` the colour is not copied: FrameReadback::view says where it lies (checked for
+    /// NaN and Inf there, not scrubbed), valid until the next submit; AOV planes are not read.
+    Result<FrameReadback> collect(std::uint32_t slot, lantern::Image storage = {},
+                                  bool inPlace = false);
     /// Collects every slot still in flight (their pictures are dropped).
     Result<void> drain();
     bool busy(std::uint32_t slot) const;

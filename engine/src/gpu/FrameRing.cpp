@@ -81,6 +81,7 @@ Result<void> FrameRing::createSlot(Slot& s, std::size_t index) {
 }
 
 FrameRing::~FrameRing() {
+    retireViews();
     m_ctx.waitIdle();
     for (Slot& s : m_slots)
         if (s.queries) vkDestroyQueryPool(m_ctx.device(), s.queries, nullptr);
@@ -247,6 +248,7 @@ Result<std::uint32_t> FrameRing::submit(const DrawList& list,
                                            "PreparedScene lives on its renderer's device)");
     const std::uint32_t index = m_next;
     Slot& slot = m_slots[index];
+    retireViews();  // this frame may rewrite (or reallocate) what a view reads
     if (slot.busy)
         return makeError(ErrorCode::Usage, "frame slot " + std::to_string(index) +
                                                " is still in flight; collect it first");
@@ -282,7 +284,14 @@ Result<std::uint32_t> FrameRing::submit(const DrawList& list,
     return index;
 }
 
-Result<FrameReadback> FrameRing::collect(std::uint32_t index, lantern::Image storage) {
+void FrameRing::retireViews() {
+    if (m_viewsLive.use_count() == 1) return;  // no view holds it: nothing to tell
+    *m_viewsLive = false;
+    m_viewsLive = std::make_shared<std::atomic<bool>>(true);
+}
+
+Result<FrameReadback> FrameRing::collect(std::uint32_t index, lantern::Image storage,
+                                         bool inPlace) {
     Slot& slot = m_slots[index];
     if (!slot.busy)
         return makeError(ErrorCode::Usage, "frame slot " + std::to_string(index) + " holds no frame");
@@ -293,7 +302,10 @@ Result<FrameReadback> FrameRing::collect(std::uint32_t index, lantern::Image sto
     slot.scene.reset();
     if (wait != VK_SUCCESS) return vkError(wait, "vkWaitForFences");
     if (injected != VK_SUCCESS) return vkError(injected, "vkWaitForFences");
-    return readBack(m_ctx, slot, std::move(storage));
+    if (!inPlace) return readBack(m_ctx, slot, std::move(storage));
+    HostView view;
+    view.live = m_viewsLive;
+    return readBack(m_ctx, slot, std::move(storage), &view);
 }
 
 } // namespace lantern::gpu

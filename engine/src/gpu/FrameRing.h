@@ -45,7 +45,8 @@ public:
 
     Result<std::uint32_t> submit(const DrawList& list, const std::shared_ptr<SceneBuffers>& scene,
                                  const SubmitHooks& hooks = {});
-    Result<FrameReadback> collect(std::uint32_t slot, lantern::Image storage = {});
+    Result<FrameReadback> collect(std::uint32_t slot, lantern::Image storage = {},
+                                  bool inPlace = false);
     bool busy(std::uint32_t slot) const { return m_slots[slot].busy; }
     std::uint32_t nextSlot() const { return m_next; }
     std::uint32_t slotCount() const { return std::uint32_t(m_slots.size()); }
@@ -96,6 +97,10 @@ private:
     std::uint32_t m_next = 0;
     bool m_timestamps = false;
     bool m_inPlace = true;  ///< false: every plane staged (LANTERN_TEST_READBACK=staged)
+    /// Shared with the views collected in place since the last submit (HostView::live); set
+    /// false and replaced by the next submit and by the destructor.
+    std::shared_ptr<std::atomic<bool>> m_viewsLive = std::make_shared<std::atomic<bool>>(true);
+    void retireViews();
 };
 
 /// Records a frame into `slot.cmd` (begun): the deformation pre-pass (when the slot deforms),
@@ -108,7 +113,10 @@ void recordFrame(VkPipelineLayout layout, const OverlayPipelines* overlays,
                  const std::vector<VkPipeline>& aovPipelines, const SubmitHooks& hooks);
 
 /// Converts a finished slot's readback buffers into a FrameReadback (every NaN or Inf counted
-/// and replaced, so none leaves the renderer), reusing `storage`'s memory for the planes.
-Result<FrameReadback> readBack(Context& ctx, const FrameRing::Slot& slot, lantern::Image storage);
+/// and replaced, so none leaves the renderer), reusing `storage`'s memory for the planes. With
+/// `view` set (collect in place) the colour is only checked where it lies and `view` tells
+/// where (its `live` is the caller's); no plane is copied.
+Result<FrameReadback> readBack(Context& ctx, const FrameRing::Slot& slot, lantern::Image storage,
+                               const HostView* view = nullptr);
 
 } // namespace lantern::gpu

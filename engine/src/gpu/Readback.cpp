@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <optional>
+#include <thread>
 
 namespace lantern::gpu {
 namespace {
@@ -84,15 +85,21 @@ Poison injectedNonFinite(std::uint32_t width, std::uint32_t height) {
 }
 #endif
 
+// The pixel a test poisons in this readback (tests only), or none.
+Poison colourPoison([[maybe_unused]] std::uint32_t width, [[maybe_unused]] std::uint32_t height) {
+#ifdef LANTERN_TESTING_HOOKS
+    return injectedNonFinite(width, height);
+#else
+    return {};
+#endif
+}
+
 // The colour plane into r.image.rgba in one pass over memory: each row is appended (the vector
 // is never zero-filled first) and checked while it is still in the cache; only a row that
 // holds a NaN or Inf is scrubbed.
 void readColour(const HostPlane& src, std::uint32_t width, std::uint32_t height,
                 FrameReadback& r) {
-    Poison poison;
-#ifdef LANTERN_TESTING_HOOKS
-    poison = injectedNonFinite(width, height);
-#endif
+    const Poison poison = colourPoison(width, height);
     std::vector<float>& rgba = r.image.rgba;
     const std::size_t rowFloats = std::size_t(width) * 4;
     rgba.reserve(rowFloats * height);
@@ -102,6 +109,58 @@ void readColour(const HostPlane& src, std::uint32_t width, std::uint32_t height,
         float* dst = rgba.data() + std::size_t(y) * rowFloats;
         if (long(y) == poison.y) dst[poison.x * 4] = NAN;
         if (anyNonFinite(dst, rowFloats)) scrubRow(dst, width, y, r);
+    }
+}
+
+// What a check of rows [y0, y1) of the colour plane found: NaN/Inf values and the first pixel.
+struct Findings {
+    std::uint64_t count = 0;
+    int x = -1, y = -1;
+};
+
+Findings checkColourRows(const HostPlane& src, std::uint32_t width, std::uint32_t y0,
+                         std::uint32_t y1, Poison poison) {
+    Findings f;
+    const std::size_t rowFloats = std::size_t(width) * 4;
+    for (std::uint32_t y = y0; y < y1; ++y) {
+        const float* row = src.row<float>(y);
+        const bool poisoned = long(y) == poison.y;
+        if (!poisoned && !anyNonFinite(row, rowFloats)) continue;
+        for (std::uint32_t x = 0; x < width; ++x) {
+            std::uint64_t found = poisoned && long(x) == poison.x ? 1 : 0;
+            for (std::size_t c = 0; c < 4; ++c) found += std::isfinite(row[x * 4 + c]) ? 0 : 1;
+            if (found == 0) continue;
+            if (f.x < 0) f.x = int(x), f.y = int(y);
+            f.count += found;
+        }
+    }
+    return f;
+}
+
+// The colour plane where it lies (collect in place): each row checked, nothing copied or
+// scrubbed (the renderer refuses such a frame, render/FrameRender.h); the first pixel that
+// holds a NaN or Inf is remembered for the refusal's message. The check reads the whole
+// picture once and is bound by memory bandwidth (about 5 ms for a 1080p float frame on one
+// core of the 2-core test machine), so a large picture is checked in two halves on two
+// threads where the host has the cores: the device has finished with it, and the cores wait.
+void checkColourInPlace(const HostPlane& src, std::uint32_t width, std::uint32_t height,
+                        FrameReadback& r) {
+    const Poison poison = colourPoison(width, height);
+    constexpr std::size_t kSplitBytes = std::size_t(4) << 20;
+    Findings top, bottom;
+    if (std::size_t(width) * height * 16 >= kSplitBytes && std::thread::hardware_concurrency() > 1) {
+        const std::uint32_t half = height / 2;
+        std::thread other([&] { bottom = checkColourRows(src, width, half, height, poison); });
+        top = checkColourRows(src, width, 0, half, poison);
+        other.join();
+    } else {
+        top = checkColourRows(src, width, 0, height, poison);
+    }
+    r.nonFinite += top.count + bottom.count;
+    const Findings& first = top.count > 0 ? top : bottom;
+    if (first.count > 0 && r.nonFiniteX < 0) {
+        r.nonFiniteX = first.x;
+        r.nonFiniteY = first.y;
     }
 }
 
@@ -157,9 +216,10 @@ void readSurface(const HostPlane& s, const TargetDesc& desc, FrameReadback& r) {
 
 } // namespace
 
-Result<FrameReadback> readBack(Context& ctx, const FrameRing::Slot& slot, lantern::Image storage) {
+Result<FrameReadback> readBack(Context& ctx, const FrameRing::Slot& slot, lantern::Image storage,
+                               const HostView* view) {
     FrameReadback r;
-    if (slot.readback) {
+    if (slot.readback && !view) {
         // The caller's vectors keep their capacity (Renderer::render into an Image): no
         // allocation, and for large pictures no fresh pages to fault in.
         r.image = std::move(storage);
@@ -184,6 +244,13 @@ Result<FrameReadback> readBack(Context& ctx, const FrameRing::Slot& slot, lanter
     if (!colour) return std::move(colour).error();
     r.image.width = int(t.width);
     r.image.height = int(t.height);
+    if (view) {
+        r.view = *view;
+        r.view.data = colour->data;
+        r.view.rowPitch = colour->rowPitch;
+        checkColourInPlace(*colour, t.width, t.height, r);
+        return r;
+    }
     readColour(*colour, t.width, t.height, r);
     if (t.aov) {
         auto nd = hostPlane(ctx, t.normalDepth, t.readNormalDepth, std::size_t(t.width) * 16);

@@ -13,6 +13,10 @@
 
 namespace lantern::io {
 
+/// Refuses (InvalidInput, naming `path`) an image without pixels, with a wrong pixel count,
+/// or whose AOV planes or Cryptomatte layers do not match its size.
+Result<void> checkImage(const Image& image, const std::filesystem::path& path);
+
 /// 8-bit RGBA, un-premultiplied, clamped to [0,1], sRGB-encoded (non-finite values read as 0).
 std::vector<unsigned char> pngPixels(const Image& image);
 

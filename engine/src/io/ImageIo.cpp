@@ -1,4 +1,4 @@
-// OpenEXR and PNG writers (atomic) and the EXR reader.
+// The OpenEXR writer (atomic) and reader, and writing by extension (the PNG writer: PngIo.cpp).
 #include <lantern/Io.h>
 
 #include "io/AovChannels.h"
@@ -19,8 +19,6 @@
 #include <ImfThreading.h>
 #include <IexBaseExc.h>
 #include <half.h>
-
-#include <png.h>
 
 #include <algorithm>
 #include <cmath>
@@ -60,13 +58,17 @@ int exrThreads(int asked) {
     return n > 1 ? n : 0;
 }
 
-Result<void> checkImage(const Image& image, const std::filesystem::path& path) {
+} // namespace
+
+Result<void> io::checkImage(const Image& image, const std::filesystem::path& path) {
     if (image.width <= 0 || image.height <= 0 || image.rgba.size() != image.pixelCount() * 4)
         return makeError(ErrorCode::InvalidInput, "image has no pixels or a wrong pixel count", {},
                          path.string());
     LANTERN_TRY(io::checkAovPlanes(image, path));
     return io::checkCryptomatte(image, path);
 }
+
+namespace {
 
 // OpenEXR's output stream onto an AtomicFile, so that EXR bytes reach the disk through
 // AtomicFile::write like every other output (one place where a full disk shows, and where
@@ -134,11 +136,6 @@ private:
     std::uint64_t m_position = 0;
     std::optional<Error> m_error;
 };
-
-float srgbEncode(float linear) {
-    const float c = std::clamp(linear, 0.0f, 1.0f);
-    return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-}
 
 } // namespace
 
@@ -240,7 +237,7 @@ void addCameraAttributes(Imf::Header& header, const CameraMetadata& camera) {
 
 Result<void> writeExr(const std::filesystem::path& path, const Image& image,
                       const ExrOptions& options) {
-    LANTERN_TRY(checkImage(image, path));
+    LANTERN_TRY(io::checkImage(image, path));
     if (options.zipLevel < 1 || options.zipLevel > 9 || options.threads < 0)
         return makeError(ErrorCode::InvalidInput, "zip level outside 1..9 or negative threads", {}, path.string());
     io::AtomicFile file(path);
@@ -331,147 +328,6 @@ Result<Image> readExr(const std::filesystem::path& path) {
         return makeError(ErrorCode::InvalidInput, std::string("not a readable OpenEXR file: ") + e.what(),
                          {}, path.string());
     }
-}
-
-namespace {
-
-// libpng's write state, destroyed however encoding ends.
-struct PngWriteState {
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-    png_infop info = png ? png_create_info_struct(png) : nullptr;
-    ~PngWriteState() { png_destroy_write_struct(&png, &info); }
-};
-
-// libpng reports errors by longjmp back here: this frame holds no object with a destructor and
-// changes no local after setjmp; the caller owns the state, the rows and the output.
-bool encodePng(PngWriteState* state, int width, int height, unsigned char* const* rows,
-               const io::PngEncoding& encoding, std::vector<unsigned char>* out) {
-    if (!state->png || !state->info) return false;
-    if (setjmp(png_jmpbuf(state->png))) return false;
-    png_set_write_fn(
-        state->png, out,
-        [](png_structp p, png_bytep data, png_size_t size) {
-            auto* bytes = static_cast<std::vector<unsigned char>*>(png_get_io_ptr(p));
-            bytes->insert(bytes->end(), data, data + size);
-        },
-        nullptr);
-    png_set_IHDR(state->png, state->info, png_uint_32(width), png_uint_32(height), 8,
-                 PNG_COLOR_TYPE_RGB_ALPHA, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
-                 PNG_FILTER_TYPE_DEFAULT);
-    // The pixels are sRGB-encoded: say so (sRGB chunk), with the gAMA and cHRM that decoders
-    // without sRGB support read instead, so no viewer has to guess the colour space.
-    png_set_sRGB_gAMA_and_cHRM(state->png, state->info, PNG_sRGB_INTENT_PERCEPTUAL);
-    png_set_compression_level(state->png, encoding.zlibLevel);
-    png_set_filter(state->png, PNG_FILTER_TYPE_BASE,
-                   encoding.everyFilter ? PNG_ALL_FILTERS : PNG_FILTER_UP);
-    png_set_rows(state->png, state->info, const_cast<png_bytepp>(rows));
-    png_write_png(state->png, state->info, PNG_TRANSFORM_IDENTITY, nullptr);
-    return true;
-}
-
-} // namespace
-
-unsigned char io::srgb8Reference(float linear) {
-    return static_cast<unsigned char>(std::lround(srgbEncode(linear) * 255.0f));
-}
-
-namespace {
-
-// steps[k]: the smallest float whose code is k + 1 (k = 0..254), found by bisection over the
-// floats' bit patterns (non-negative floats order as their bits). The code of v is the number
-// of steps at or below it: start[] holds that count at the first float of each run of 2^15
-// floats below 1.0, and at most a step or two lies inside a run. srgbEncode is non-decreasing
-// over the floats (Png.Srgb8MatchesTheFormulaForEveryFloatNearEachStep).
-struct SrgbSteps {
-    static constexpr int kShift = 15;
-    static constexpr std::uint32_t kOne = 0x3F800000u;  // 1.0f
-    float steps[255];
-    unsigned char start[(kOne >> kShift) + 1];
-    SrgbSteps() {
-        for (int k = 0; k < 255; ++k) {
-            std::uint32_t lo = 0, hi = kOne;  // 0.0f and 1.0f: codes 0 and 255
-            while (hi - lo > 1) {
-                const std::uint32_t mid = lo + (hi - lo) / 2;
-                (io::srgb8Reference(floatOf(mid)) > k ? hi : lo) = mid;
-            }
-            steps[k] = floatOf(hi);
-        }
-        for (std::uint32_t i = 0; i <= (kOne >> kShift); ++i) {
-            const float first = floatOf(i << kShift);
-            int code = 0;
-            while (code < 255 && steps[code] <= first) ++code;
-            start[i] = static_cast<unsigned char>(code);
-        }
-    }
-    static float floatOf(std::uint32_t bits) {
-        float v;
-        std::memcpy(&v, &bits, sizeof v);
-        return v;
-    }
-};
-
-const SrgbSteps& srgbSteps() {
-    static const SrgbSteps table;
-    return table;
-}
-
-unsigned char srgb8With(const SrgbSteps& t, float linear) {
-    if (!(linear > 0.0f)) return 0;  // also NaN
-    if (linear >= 1.0f) return 255;
-    std::uint32_t bits;
-    std::memcpy(&bits, &linear, sizeof bits);
-    int code = t.start[bits >> SrgbSteps::kShift];
-    while (code < 255 && t.steps[code] <= linear) ++code;
-    return static_cast<unsigned char>(code);
-}
-
-} // namespace
-
-unsigned char io::srgb8(float linear) { return srgb8With(srgbSteps(), linear); }
-
-std::vector<unsigned char> io::pngPixels(const Image& image) {
-    const std::size_t n = image.pixelCount();
-    std::vector<unsigned char> pixels(n * 4);
-    const SrgbSteps& steps = srgbSteps();
-    for (std::size_t i = 0; i < n; ++i) {
-        const float* p = image.rgba.data() + i * 4;
-        const float a = std::clamp(std::isfinite(p[3]) ? p[3] : 0.0f, 0.0f, 1.0f);
-        for (int c = 0; c < 3; ++c) {
-            // PNG stores straight alpha: undo the premultiplication first.
-            float v = std::isfinite(p[c]) ? p[c] : 0.0f;
-            if (a > 0.0f && a < 1.0f) v /= a;
-            pixels[i * 4 + c] = srgb8With(steps, v);
-        }
-        pixels[i * 4 + 3] = static_cast<unsigned char>(std::lround(a * 255.0f));
-    }
-    return pixels;
-}
-
-Result<std::vector<unsigned char>> io::encodePng(const Image& image, const PngEncoding& encoding) {
-    std::vector<unsigned char> pixels = io::pngPixels(image);
-    std::vector<unsigned char*> rows(std::size_t(image.height));
-    for (int y = 0; y < image.height; ++y)
-        rows[std::size_t(y)] = pixels.data() + std::size_t(y) * std::size_t(image.width) * 4;
-    std::vector<unsigned char> encoded;
-    encoded.reserve(image.pixelCount() * 2);
-    PngWriteState state;
-    if (!encodePng(&state, image.width, image.height, rows.data(), encoding, &encoded))
-        return makeError(ErrorCode::IoError, "PNG encoding failed (libpng)");
-    return encoded;
-}
-
-Result<void> writePng(const std::filesystem::path& path, const Image& image) {
-    LANTERN_TRY(checkImage(image, path));
-    io::AtomicFile file(path);
-    LANTERN_TRY(file.checkWritable());
-    auto encoded = io::encodePng(image, io::PngEncoding{});
-    if (!encoded) {
-        Error e = std::move(encoded).error();
-        e.file = path.string();
-        return e;
-    }
-    LANTERN_TRY(file.writeAll(encoded->data(), encoded->size()));
-    return file.commit();
 }
 
 Result<void> writeImage(const std::filesystem::path& path, const Image& image,

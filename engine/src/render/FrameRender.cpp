@@ -4,6 +4,7 @@
 
 #include "reference/PixelReference.h"
 #include "render/AovPlanes.h"
+#include "render/Cryptomatte.h"
 #include "render/DrawLists.h"
 #include "render/Variants.h"
 
@@ -65,7 +66,8 @@ Result<PlannedFrame> planFrame(const Scene& scene, const RenderOptions& options,
 
 Result<RenderedFrame> renderFrame(gpu::Device& device, const std::shared_ptr<gpu::SceneBuffers>& scene,
                                   const Scene& sceneData, const RenderOptions& options, double time,
-                                  FrameStats& stats, const FrameEdits& edits, Image storage) {
+                                  FrameStats& stats, const FrameEdits& edits, Image storage,
+                                  bool inPlace) {
     const auto t0 = Clock::now();
     auto f = frame::buildFrame(sceneData, options, time);
     if (!f) return std::move(f).error();
@@ -83,7 +85,7 @@ Result<RenderedFrame> renderFrame(gpu::Device& device, const std::shared_ptr<gpu
     stats = FrameStats{};
     stats.cpuMs = msSince(t0);
     const auto t1 = Clock::now();
-    auto readback = device.collect(*slot, std::move(storage));
+    auto readback = device.collect(*slot, std::move(storage), inPlace);
     if (!readback) return std::move(readback).error();
     resolveAovPlanes(sceneData, *f, options.aovs, *readback);
     stats.waitMs = msSince(t1);
@@ -92,6 +94,26 @@ Result<RenderedFrame> renderFrame(gpu::Device& device, const std::shared_ptr<gpu
     stats.nonFinite = readback->nonFinite;
     stats.pipelinesCreated = device.pipelineCount() - pipelinesBefore;
     return RenderedFrame{std::move(*f), std::move(*readback)};
+}
+
+Result<std::vector<CryptomatteLayer>> renderCryptomatte(
+    gpu::Device& device, const std::shared_ptr<gpu::SceneBuffers>& scene, const Scene& sceneData,
+    const RenderOptions& options, double time) {
+    const RenderOptions fineOptions = cryptomatteRenderOptions(options);
+    auto failed = [&](Error e) {
+        e.message = "the Cryptomatte id render (" +
+                    std::to_string(options.aovs.cryptomatteSamples) + "x the size) failed: " +
+                    e.message;
+        return e;
+    };
+    if (auto ok = checkOptions(device, fineOptions); !ok) return failed(ok.error());
+    FrameStats stats;
+    auto fine = renderFrame(device, scene, sceneData, fineOptions, time, stats);
+    if (!fine) return failed(fine.error());
+    if (fine->readback.nonFinite > 0)
+        return failed(nonFiniteFrame(device, scene, sceneData, fineOptions, time, fine->readback));
+    return cryptomatteLayers(sceneData, options.aovs, options.width, options.height,
+                             fine->readback.image);
 }
 
 Result<FeatureReport> explain(const Scene& scene, const RenderOptions& options, double time) {

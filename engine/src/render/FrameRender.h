@@ -41,11 +41,20 @@ struct FrameEdits {
 };
 
 /// Renders synchronously: waits for any slot still in flight, submits, collects (into
-/// `storage`'s memory when given). `stats` receives the frame's measurements.
+/// `storage`'s memory when given; with `inPlace`, the colour is left where it lies and the
+/// readback's view says where, gpu::Device::collect). `stats` receives the frame's measurements.
 Result<RenderedFrame> renderFrame(gpu::Device& device, const std::shared_ptr<gpu::SceneBuffers>& scene,
                                   const Scene& sceneData, const RenderOptions& options, double time,
                                   FrameStats& stats, const FrameEdits& edits = {},
-                                  Image storage = {});
+                                  Image storage = {}, bool inPlace = false);
+
+/// The Cryptomatte layers `options.aovs` asks for, for the options.width x options.height
+/// picture at `time`: a second, synchronous render of the ids at cryptomatteSamples times the
+/// size (render/Cryptomatte.h), counted. Fails as a render would, the message prefixed with
+/// what the id render was (an enlarged size the device refuses, typically).
+Result<std::vector<CryptomatteLayer>> renderCryptomatte(
+    gpu::Device& device, const std::shared_ptr<gpu::SceneBuffers>& scene, const Scene& sceneData,
+    const RenderOptions& options, double time);
 
 /// The refusal of a frame whose readback held NaN or Inf (never written to a file): exit 3,
 /// with the count, the first such pixel and the object drawn there (found by probing it);

@@ -1,0 +1,58 @@
+// RenderArgs.h: the options of `lantern render` as parsed (RenderCommand.cpp).
+#pragma once
+
+#include "common/CliSupport.h"
+#include "common/CompareCli.h"
+#include "common/CvCameraCli.h"
+#include "render/Batch.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace lantern::cli {
+
+// The instant one frame is rendered at and its frame number (for the '#' runs of its outputs).
+struct SingleFrame {
+    double time = 0.0;
+    int number = 0;
+};
+
+struct RenderArgs {
+    std::vector<std::string> scenes;  // one, or a batch's paths, globs and @lists
+    BatchCliArgs batch;               // --list, --views, --overwrite (render/Batch.h)
+    std::vector<std::string> outputs;
+    int width = 1280, height = 720;
+    bool widthGiven = false, heightGiven = false;  // a camera file's size applies otherwise
+    bool writeCamera = false;  // --write-camera: each image's camera JSON beside it
+    int sceneIndex = -1;
+    double time = 0.0;
+    bool timeGiven = false;
+    int frame = 0;           // --frame N: the frame at time N / fps
+    bool frameGiven = false;
+    std::vector<std::string> aovs;
+    int cryptomatteLevels = 4;   // --cryptomatte-levels: ranks per pixel
+    int cryptomatteSamples = 4;  // --cryptomatte-samples: N x N per pixel
+    bool unlitExact = false;
+    bool half = false;
+    bool explain = false;
+    bool dryRun = false;  // --dry-run: check everything, render and write nothing
+    std::string probe;
+    std::string compression = "zip";
+    int zipLevel = ExrOptions{}.zipLevel;
+    std::uint64_t maxSize = kDefaultMaxBytes;
+    std::vector<std::string> allowFolders;
+    std::string background;
+    std::string frames;
+    std::string frameList; // --frame-list: explicit frames, e.g. those a farm job is missing
+    double fps = 24.0;
+    std::string shard;
+    int encoderThreads = 0;
+    CameraOptions camera;
+    ShadingOptions shading;
+    DeviceOptions device;
+    std::string compareRef;     // --compare REF: compare the picture with REF
+    CompareCliOptions compare;  // its thresholds (common/CompareCli.h)
+};
+
+} // namespace lantern::cli
