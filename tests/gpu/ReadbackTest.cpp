@@ -274,7 +274,17 @@ TEST_F(Readback, RenderIntoAnImageGivesWhatRenderReturns) {
     small.width = 33;
     small.height = 21;
     small.shading = ShadingMode::Flat;
-    for (const RenderOptions* o : {&big, &small, &big, &small}) {
+    // The same sizes again with other pixels (an overwrite that missed a row would show), and a
+    // picture of 16 MiB, overwritten in two bands when the Image has its size.
+    RenderOptions bigPhong = big, smallGouraud = small;
+    bigPhong.shading = ShadingMode::Phong;
+    smallGouraud.shading = ShadingMode::Gouraud;
+    RenderOptions large, largeFlat;
+    large.width = largeFlat.width = 1024;
+    large.height = largeFlat.height = 1024;
+    largeFlat.shading = ShadingMode::Flat;
+    for (const RenderOptions* o :
+         {&big, &small, &big, &bigPhong, &small, &smallGouraud, &large, &largeFlat}) {
         auto fresh = inPlace->renderer->render(*prepared, *o, 0.25);
         ASSERT_TRUE(fresh) << fresh.error().describe();
         const float* before = into.rgba.empty() ? nullptr : into.rgba.data();
@@ -416,8 +426,9 @@ TEST_F(Readback, AViewRefusesAovPlanes) {
 }
 
 // No NaN or Inf reaches the host through a view either: a frame that holds one (injected where
-// a shader bug would leave it) is refused, naming the pixel, as render() refuses it. A large
-// picture is checked in two halves on two threads: a value in either half is found.
+// a shader bug would leave it) is refused, naming the pixel, as render() refuses it, also into
+// a kept Image. A large picture is checked in two halves on two threads: a value in either
+// half is found.
 TEST_F(Readback, AViewOfAFrameWithNaNIsRefused) {
     const std::optional<PreparedScene> prepared = spheres(*inPlace);
     ASSERT_TRUE(prepared);
@@ -433,9 +444,14 @@ TEST_F(Readback, AViewOfAFrameWithNaNIsRefused) {
         ::setenv("LANTERN_TEST_NONFINITE_PIXEL", c.pixel, 1);
         auto view = inPlace->renderer->renderView(*prepared, o, 0.0);
         auto image = inPlace->renderer->render(*prepared, o, 0.0);
+        Image kept(c.w, c.h);  // render() into an Image of the frame's size: overwritten
+        auto into = inPlace->renderer->render(*prepared, o, 0.0, kept);
         ::unsetenv("LANTERN_TEST_NONFINITE_PIXEL");
         ASSERT_FALSE(view);
         ASSERT_FALSE(image);
+        ASSERT_FALSE(into);
+        EXPECT_EQ(into.error().message, image.error().message);
+        EXPECT_TRUE(kept.rgba.empty());
         EXPECT_EQ(view.error().code, image.error().code);
         std::string at = c.pixel;
         at = "1 non-finite values (NaN or Inf), the first at pixel (" + at.replace(at.find(','), 1, ", ") + ")";

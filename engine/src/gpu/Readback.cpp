@@ -51,19 +51,6 @@ Result<HostPlane> hostPlane(Context& ctx, const Image& image, const Buffer& stag
     return HostPlane{static_cast<const char*>(staging.mapped), rowBytes};
 }
 
-// Counts and zeroes NaN/Inf in row `y` of the colour image, remembering the first pixel that
-// held one.
-void scrubRow(float* row, std::uint32_t width, std::uint32_t y, FrameReadback& r) {
-    for (std::uint32_t x = 0; x < width; ++x) {
-        const std::uint64_t before = r.nonFinite;
-        for (std::size_t c = 0; c < 4; ++c) row[x * 4 + c] = finiteOr(row[x * 4 + c], 0.0f, r.nonFinite);
-        if (r.nonFinite != before && r.nonFiniteX < 0) {
-            r.nonFiniteX = int(x);
-            r.nonFiniteY = int(y);
-        }
-    }
-}
-
 // The pixel a test poisons, or (-1, -1).
 struct Poison {
     long x = -1, y = -1;
@@ -94,74 +81,108 @@ Poison colourPoison([[maybe_unused]] std::uint32_t width, [[maybe_unused]] std::
 #endif
 }
 
-// The colour plane into r.image.rgba in one pass over memory: each row is appended (the vector
-// is never zero-filled first) and checked while it is still in the cache; only a row that
-// holds a NaN or Inf is scrubbed.
-void readColour(const HostPlane& src, std::uint32_t width, std::uint32_t height,
-                FrameReadback& r) {
-    const Poison poison = colourPoison(width, height);
-    std::vector<float>& rgba = r.image.rgba;
-    const std::size_t rowFloats = std::size_t(width) * 4;
-    rgba.reserve(rowFloats * height);
-    for (std::uint32_t y = 0; y < height; ++y) {
-        const float* row = src.row<float>(y);
-        rgba.insert(rgba.end(), row, row + rowFloats);
-        float* dst = rgba.data() + std::size_t(y) * rowFloats;
-        if (long(y) == poison.y) dst[poison.x * 4] = NAN;
-        if (anyNonFinite(dst, rowFloats)) scrubRow(dst, width, y, r);
-    }
-}
-
-// What a check of rows [y0, y1) of the colour plane found: NaN/Inf values and the first pixel.
+// What a pass over rows of the colour plane found: NaN/Inf values and the first pixel.
 struct Findings {
     std::uint64_t count = 0;
     int x = -1, y = -1;
 };
 
-Findings checkColourRows(const HostPlane& src, std::uint32_t width, std::uint32_t y0,
-                         std::uint32_t y1, Poison poison) {
-    Findings f;
-    const std::size_t rowFloats = std::size_t(width) * 4;
-    for (std::uint32_t y = y0; y < y1; ++y) {
-        const float* row = src.row<float>(y);
-        const bool poisoned = long(y) == poison.y;
-        if (!poisoned && !anyNonFinite(row, rowFloats)) continue;
-        for (std::uint32_t x = 0; x < width; ++x) {
-            std::uint64_t found = poisoned && long(x) == poison.x ? 1 : 0;
-            for (std::size_t c = 0; c < 4; ++c) found += std::isfinite(row[x * 4 + c]) ? 0 : 1;
-            if (found == 0) continue;
-            if (f.x < 0) f.x = int(x), f.y = int(y);
-            f.count += found;
+// Counts row `y`'s NaN/Inf values (the poisoned pixel as one), remembering the first pixel
+// that held one; with `scrub`, replaces them by 0.
+void scanRow(float* row, const float* src, std::uint32_t width, std::uint32_t y, Poison poison,
+             Findings& f) {
+    for (std::uint32_t x = 0; x < width; ++x) {
+        std::uint64_t found = long(y) == poison.y && long(x) == poison.x ? 1 : 0;
+        for (std::size_t c = 0; c < 4; ++c) {
+            if (std::isfinite(src[x * 4 + c])) continue;
+            ++found;
+            if (row) row[x * 4 + c] = 0.0f;
         }
+        if (found == 0) continue;
+        if (f.x < 0) f.x = int(x), f.y = int(y);
+        f.count += found;
     }
-    return f;
+}
+
+// Runs band(y0, y1) over the rows of a picture of `bytes`: in two halves on two threads when
+// it is large and the host has the cores (the pass is bound by memory bandwidth: about 5 ms
+// for a 1080p float picture on one core of the 2-core test machine, and the device has
+// finished with the frame, so the cores wait), else at once. The halves' findings are merged,
+// the top half's first pixel first.
+template <typename Band>
+Findings inBands(std::uint32_t height, std::size_t bytes, Band&& band) {
+    constexpr std::size_t kSplitBytes = std::size_t(4) << 20;
+    if (bytes < kSplitBytes || std::thread::hardware_concurrency() < 2) return band(0u, height);
+    Findings bottom;
+    const std::uint32_t half = height / 2;
+    std::thread other([&] { bottom = band(half, height); });
+    Findings top = band(0u, half);
+    other.join();
+    top.count += bottom.count;
+    if (top.x < 0) top.x = bottom.x, top.y = bottom.y;
+    return top;
+}
+
+void addFindings(const Findings& f, FrameReadback& r) {
+    r.nonFinite += f.count;
+    if (f.count > 0 && r.nonFiniteX < 0) r.nonFiniteX = f.x, r.nonFiniteY = f.y;
+}
+
+// The colour plane into r.image.rgba, each row checked while it is still in the cache and
+// scrubbed only when it holds a NaN or Inf. An Image kept from a frame of the same size
+// (Renderer::render into an Image) is overwritten in place, in two bands for a large picture;
+// otherwise each row is appended (the vector is never zero-filled first).
+void readColour(const HostPlane& src, std::uint32_t width, std::uint32_t height,
+                FrameReadback& r) {
+    const Poison poison = colourPoison(width, height);
+    std::vector<float>& rgba = r.image.rgba;
+    const std::size_t rowFloats = std::size_t(width) * 4;
+    auto copyRow = [&](float* dst, std::uint32_t y, Findings& f) {
+        const float* row = src.row<float>(y);
+        std::memcpy(dst, row, rowFloats * sizeof(float));
+        if (long(y) == poison.y || anyNonFinite(dst, rowFloats)) scanRow(dst, dst, width, y, poison, f);
+    };
+    if (rgba.size() == rowFloats * height) {
+        addFindings(inBands(height, rgba.size() * sizeof(float),
+                            [&](std::uint32_t y0, std::uint32_t y1) {
+                                Findings f;
+                                for (std::uint32_t y = y0; y < y1; ++y)
+                                    copyRow(rgba.data() + std::size_t(y) * rowFloats, y, f);
+                                return f;
+                            }),
+                    r);
+        return;
+    }
+    rgba.clear();
+    rgba.reserve(rowFloats * height);
+    Findings f;
+    for (std::uint32_t y = 0; y < height; ++y) {
+        const float* row = src.row<float>(y);
+        rgba.insert(rgba.end(), row, row + rowFloats);
+        float* dst = rgba.data() + std::size_t(y) * rowFloats;
+        if (long(y) == poison.y || anyNonFinite(dst, rowFloats)) scanRow(dst, dst, width, y, poison, f);
+    }
+    addFindings(f, r);
 }
 
 // The colour plane where it lies (collect in place): each row checked, nothing copied or
 // scrubbed (the renderer refuses such a frame, render/FrameRender.h); the first pixel that
-// holds a NaN or Inf is remembered for the refusal's message. The check reads the whole
-// picture once and is bound by memory bandwidth (about 5 ms for a 1080p float frame on one
-// core of the 2-core test machine), so a large picture is checked in two halves on two
-// threads where the host has the cores: the device has finished with it, and the cores wait.
+// holds a NaN or Inf is remembered for the refusal's message.
 void checkColourInPlace(const HostPlane& src, std::uint32_t width, std::uint32_t height,
                         FrameReadback& r) {
     const Poison poison = colourPoison(width, height);
-    constexpr std::size_t kSplitBytes = std::size_t(4) << 20;
-    Findings top, bottom;
-    if (std::size_t(width) * height * 16 >= kSplitBytes && std::thread::hardware_concurrency() > 1) {
-        const std::uint32_t half = height / 2;
-        std::thread other([&] { bottom = checkColourRows(src, width, half, height, poison); });
-        top = checkColourRows(src, width, 0, half, poison);
-        other.join();
-    } else {
-        top = checkColourRows(src, width, 0, height, poison);
-    }
-    r.nonFinite += top.count + bottom.count;
-    const Findings& first = top.count > 0 ? top : bottom;
-    if (first.count > 0 && r.nonFiniteX < 0) {
-        r.nonFiniteX = first.x;
-        r.nonFiniteY = first.y;
-    }
+    const std::size_t rowFloats = std::size_t(width) * 4;
+    addFindings(inBands(height, rowFloats * height * sizeof(float),
+                        [&](std::uint32_t y0, std::uint32_t y1) {
+                            Findings f;
+                            for (std::uint32_t y = y0; y < y1; ++y) {
+                                const float* row = src.row<float>(y);
+                                if (long(y) == poison.y || anyNonFinite(row, rowFloats))
+                                    scanRow(nullptr, row, width, y, poison, f);
+                            }
+                            return f;
+                        }),
+                r);
 }
 
 // The depth and normal planes asked for, and the ids when the frame wants them (the probe).
@@ -222,8 +243,7 @@ Result<FrameReadback> readBack(Context& ctx, const FrameRing::Slot& slot, lanter
     if (slot.readback && !view) {
         // The caller's vectors keep their capacity (Renderer::render into an Image): no
         // allocation, and for large pictures no fresh pages to fault in.
-        r.image = std::move(storage);
-        r.image.rgba.clear();
+        r.image = std::move(storage);  // rgba: overwritten or cleared by readColour
         r.image.depth.clear();
         r.image.normal.clear();
         r.image.metadata.clear();
