@@ -87,8 +87,9 @@ struct Findings {
     int x = -1, y = -1;
 };
 
-// Counts row `y`'s NaN/Inf values (the poisoned pixel as one), remembering the first pixel
-// that held one; with `scrub`, replaces them by 0.
+// Counts the NaN/Inf values of row `y` of `src` (the poisoned pixel as one), remembering the
+// first pixel that held one; when `row` (a copy of `src`, or `src` itself) is given, replaces
+// them there by 0.
 void scanRow(float* row, const float* src, std::uint32_t width, std::uint32_t y, Poison poison,
              Findings& f) {
     for (std::uint32_t x = 0; x < width; ++x) {
@@ -112,7 +113,8 @@ void scanRow(float* row, const float* src, std::uint32_t width, std::uint32_t y,
 template <typename Band>
 Findings inBands(std::uint32_t height, std::size_t bytes, Band&& band) {
     constexpr std::size_t kSplitBytes = std::size_t(4) << 20;
-    if (bytes < kSplitBytes || std::thread::hardware_concurrency() < 2) return band(0u, height);
+    static const bool twoCores = std::thread::hardware_concurrency() > 1;  // read once
+    if (bytes < kSplitBytes || !twoCores) return band(0u, height);
     Findings bottom;
     const std::uint32_t half = height / 2;
     std::thread other([&] { bottom = band(half, height); });
