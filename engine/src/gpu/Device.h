@@ -67,6 +67,9 @@ struct FrameReadback {
     double gpuMs = -1.0;            ///< render-pass time from GPU timestamps (-1: unavailable)
     std::uint64_t nonFinite = 0;    ///< NaN/Inf values found (and zeroed) at readback
     int nonFiniteX = -1, nonFiniteY = -1;  ///< the first colour pixel that held one (-1: none)
+    /// The host read the whole colour plane for NaN/Inf. False when the frame's guarded
+    /// fragment variants vouched for it (shaders/include/output.glsl): nothing tripped them.
+    bool hostChecked = true;
     std::size_t draws = 0;
     /// Flat triangles given to the per-triangle lighting pass (gpu/FlatLight.h); those it
     /// finds outside the view or back-facing are skipped, the others lit once.

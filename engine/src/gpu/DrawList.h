@@ -31,6 +31,9 @@ struct PipelineKey {
     /// Set by gpu/ (never by render/): flat triangles lit once per triangle by the pre-pass
     /// (shaders/flatlight.comp) and drawn indexed, instead of the per-corner flat streams.
     bool flatPerTriangle = false;
+    /// Set by gpu/: the fragment stage checks its own output (shaders/include/output.glsl),
+    /// so that the host need not check the picture (gpu/Readback.cpp).
+    bool guard = false;
 
     bool operator==(const PipelineKey&) const = default;
 };

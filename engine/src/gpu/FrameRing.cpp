@@ -3,6 +3,7 @@
 #include "gpu/FrameRing.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 
@@ -10,6 +11,13 @@ namespace lantern::gpu {
 namespace {
 
 VkDeviceSize alignUp(VkDeviceSize v, VkDeviceSize a) { return (v + a - 1) / a * a; }
+
+// A clear colour the guard's argument covers: finite, within the bound, alpha in [0, 1].
+bool clearWithinGuard(const glm::vec4& c) {
+    for (int i = 0; i < 3; ++i)
+        if (!(std::fabs(c[i]) <= float(LANTERN_GUARD_BOUND))) return false;
+    return c.a >= 0.0f && c.a <= 1.0f;
+}
 
 } // namespace
 
@@ -56,7 +64,7 @@ Result<void> FrameRing::createSlot(Slot& s, std::size_t index) {
 
     VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1},
                                      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, 1},
-                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3}};
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4}};
     VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     dpci.maxSets = 1;
     dpci.poolSizeCount = 3;
@@ -89,9 +97,14 @@ FrameRing::~FrameRing() {
 
 // Pipelines (created on first use) and the flat-shading streams the per-corner path needs
 // before recording. `flatPerTriangle`: flat triangles are lit by the pre-pass this frame.
+// `guarded`: every draw of the colour pass uses a guarded fragment variant, which a draw can
+// where the device has fragmentStoresAndAtomics and it neither discards (alpha mask) nor writes
+// the AOVs in the same pass.
 Result<void> FrameRing::preparePipelines(const DrawList& list, SceneBuffers& scene,
                                          bool flatPerTriangle, std::vector<VkPipeline>& main,
-                                         std::vector<VkPipeline>& aov) {
+                                         std::vector<VkPipeline>& aov, bool& guarded) {
+    const bool stores = m_ctx.capabilities().fragmentStores;
+    guarded = stores;
     const bool aovPass = list.target.aovs.any() && list.target.samples > 1;
     // The variants the draws use (and only those), the missing ones compiled together.
     std::vector<PipelineKey> mainKeys, aovKeys;
@@ -102,6 +115,8 @@ Result<void> FrameRing::preparePipelines(const DrawList& list, SceneBuffers& sce
             key.flatPerTriangle = FlatLighter::perTriangle(d.pipeline, flatPerTriangle);
             PipelineKey single = key;
             if (aovPass) key.aov = key.aovSurface = false;
+            key.guard = stores && !key.aov && key.constants[LANTERN_SC_ALPHA_MASK] == 0;
+            guarded &= key.guard;
             mainKeys.push_back(key);
             if (aovPass) {
                 single.samples = 1;
@@ -176,7 +191,8 @@ Result<FrameRing::ArenaLayout> FrameRing::fillArena(Slot& slot, const DrawList& 
         maxLights = std::max(maxLights, v.lights.size());
     }
     a.lightRange = maxLights * sizeof(LightData);
-    a.size = std::max(size, a.lightOffsets.back() + a.lightRange);
+    a.guardOffset = alignUp(std::max(size, a.lightOffsets.back() + a.lightRange), ssboAlign);
+    a.size = a.guardOffset + 16;
     if (slot.arena.size < a.size) {
         auto arena = createBuffer(m_ctx, a.size * 2,
                                   VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT |
@@ -192,6 +208,8 @@ Result<FrameRing::ArenaLayout> FrameRing::fillArena(Slot& slot, const DrawList& 
         std::memcpy(base + a.lightOffsets[i], list.views[i].lights.data(),
                     list.views[i].lights.size() * sizeof(LightData));
     }
+    std::memset(base + a.guardOffset, 0, 16);  // the output guard, cleared (output.glsl)
+    slot.guardOffset = a.guardOffset;
     LANTERN_TRY(flush(m_ctx, slot.arena));
 
     writeBufferDescriptors(
@@ -201,7 +219,9 @@ Result<FrameRing::ArenaLayout> FrameRing::fillArena(Slot& slot, const DrawList& 
          {LANTERN_BINDING_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC,
           {slot.arena.get(), 0, a.lightRange}},
          {LANTERN_BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-          {slot.arena.get(), 0, std::max<VkDeviceSize>(a.materialBytes, sizeof(MaterialData))}}});
+          {slot.arena.get(), 0, std::max<VkDeviceSize>(a.materialBytes, sizeof(MaterialData))}},
+         {LANTERN_BINDING_GUARD, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+          {slot.arena.get(), a.guardOffset, 16}}});
     // The per-triangle flat records; a frame without them points the bindings at the arena
     // (never read).
     const FlatSlot& f = slot.flat;
@@ -256,7 +276,9 @@ Result<std::uint32_t> FrameRing::submit(const DrawList& list,
     slot.desc = list.target;
     std::vector<VkPipeline> pipelines, aovPipelines;
     const bool flatPerTriangle = FlatLighter::available(m_ctx, *scene, list);
-    LANTERN_TRY(preparePipelines(list, *scene, flatPerTriangle, pipelines, aovPipelines));
+    bool guardedDraws = false;
+    LANTERN_TRY(preparePipelines(list, *scene, flatPerTriangle, pipelines, aovPipelines,
+                                 guardedDraws));
     slot.overlays = {};
     if (list.overlays.any()) {
         if (!m_overlays) m_overlays = std::make_unique<OverlayPipelines>(m_ctx, m_pipelines);
@@ -280,6 +302,8 @@ Result<std::uint32_t> FrameRing::submit(const DrawList& list,
     slot.busy = true;
     slot.readback = hooks.readback;
     slot.draws = pipelines.size();
+    // The overlays' constant colours are not guarded: a frame with them is checked on the host.
+    slot.guarded = guardedDraws && !list.overlays.any() && clearWithinGuard(list.target.clear);
     m_next = (m_next + 1) % std::uint32_t(m_slots.size());
     return index;
 }

@@ -70,19 +70,25 @@ public:
         DeformSlot deform;      ///< skinned and morphing streams (frames with deforms only)
         bool deforming = false; ///< this frame records the deformation pre-pass
         FlatSlot flat;          ///< flat triangles lit once per triangle (gpu/FlatLight.h)
+        /// Every colour this frame writes comes from a guarded fragment variant or the clear
+        /// colour (within LANTERN_GUARD_BOUND): unless the guard word at `guardOffset` of the
+        /// arena is set, the host skips its NaN/Inf check of the picture (gpu/Readback.cpp).
+        bool guarded = false;
+        VkDeviceSize guardOffset = 0;
     };
 
     /// Where each view's FrameBlock and lights sit in a slot's arena.
     struct ArenaLayout {
         std::vector<VkDeviceSize> frameOffsets, lightOffsets;
-        VkDeviceSize materialBytes = 0, lightRange = 0, size = 0;
+        VkDeviceSize materialBytes = 0, lightRange = 0, guardOffset = 0, size = 0;
     };
 
 private:
     FrameRing(Context& ctx, Pipelines& pipelines) : m_ctx(ctx), m_pipelines(pipelines) {}
     Result<void> createSlot(Slot& slot, std::size_t index);
     Result<void> preparePipelines(const DrawList& list, SceneBuffers& scene, bool flatPerTriangle,
-                                  std::vector<VkPipeline>& main, std::vector<VkPipeline>& aov);
+                                  std::vector<VkPipeline>& main, std::vector<VkPipeline>& aov,
+                                  bool& guarded);
     Result<void> preparePrePasses(Slot& slot, const DrawList& list, const SceneBuffers& scene,
                                   bool flatPerTriangle);
     Result<ArenaLayout> fillArena(Slot& slot, const DrawList& list);

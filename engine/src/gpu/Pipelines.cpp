@@ -20,22 +20,29 @@ namespace {
 using shaders::ShaderId;
 using frame::Program;
 
+// A program's vertex stage and its three fragment variants: plain, with the AOV outputs, and
+// guarded (its output checked where it is made: shaders/include/output.glsl).
 struct ProgramShaders {
-    ShaderId vertex, fragment, fragmentAov;
+    ShaderId vertex, fragment, fragmentAov, fragmentGuard;
+
+    ShaderId fragmentFor(const PipelineKey& key) const {
+        return key.aov ? fragmentAov : key.guard ? fragmentGuard : fragment;
+    }
 };
 
 ProgramShaders programShaders(const PipelineKey& key) {
+    using S = ShaderId;
     if (key.flatPerTriangle)
-        return {ShaderId::flatprim_vert, ShaderId::flatprim_frag, ShaderId::flatprim_aov_frag};
+        return {S::flatprim_vert, S::flatprim_frag, S::flatprim_aov_frag, S::flatprim_guard_frag};
     switch (key.program) {
-    case Program::Phong: return {ShaderId::mesh_vert, ShaderId::phong_frag, ShaderId::phong_aov_frag};
+    case Program::Phong: break;
     case Program::Gouraud:
-        return {ShaderId::gouraud_vert, ShaderId::gouraud_frag, ShaderId::gouraud_aov_frag};
-    case Program::Flat: return {ShaderId::flat_vert, ShaderId::flat_frag, ShaderId::flat_aov_frag};
-    case Program::GlFlat: return {ShaderId::glflat_vert, ShaderId::flat_frag, ShaderId::flat_aov_frag};
-    case Program::Floor: return {ShaderId::mesh_vert, ShaderId::floor_frag, ShaderId::floor_aov_frag};
+        return {S::gouraud_vert, S::gouraud_frag, S::gouraud_aov_frag, S::gouraud_guard_frag};
+    case Program::Flat: return {S::flat_vert, S::flat_frag, S::flat_aov_frag, S::flat_guard_frag};
+    case Program::GlFlat: return {S::glflat_vert, S::flat_frag, S::flat_aov_frag, S::flat_guard_frag};
+    case Program::Floor: return {S::mesh_vert, S::floor_frag, S::floor_aov_frag, S::floor_guard_frag};
     }
-    return {ShaderId::mesh_vert, ShaderId::phong_frag, ShaderId::phong_aov_frag};
+    return {S::mesh_vert, S::phong_frag, S::phong_aov_frag, S::phong_guard_frag};
 }
 
 // One vertex-buffer binding per attribute, numbered as its location (non-interleaved streams).
@@ -84,6 +91,7 @@ std::size_t PipelineKeyHash::operator()(const PipelineKey& k) const noexcept {
     h = h * 31u + k.samples;
     h = h * 31u + (k.reversedZ ? 1u : 0u);
     h = h * 31u + (k.flatPerTriangle ? 1u : 0u);
+    h = h * 31u + (k.guard ? 1u : 0u);
     return h;
 }
 
@@ -100,7 +108,9 @@ Result<Pipelines> Pipelines::create(Context& ctx) {
               {LANTERN_BINDING_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, 1, all, nullptr},
               {LANTERN_BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
               {LANTERN_BINDING_FLAT_COLORS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, records, nullptr},
-              {LANTERN_BINDING_FLAT_NORMALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, records, nullptr}});
+              {LANTERN_BINDING_FLAT_NORMALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, records, nullptr},
+              {LANTERN_BINDING_GUARD, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+               VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}});
     if (!frameLayout) return std::move(frameLayout).error();
     p.m_frameLayout = std::move(*frameLayout);
     std::vector<VkDescriptorSetLayoutBinding> textureBindings;
@@ -151,7 +161,7 @@ Result<GraphicsPipelineDesc> Pipelines::describe(const PipelineKey& key) {
     const ProgramShaders ps = programShaders(key);
     auto vs = shader(std::uint32_t(ps.vertex));
     if (!vs) return std::move(vs).error();
-    auto fs = shader(std::uint32_t(key.aov ? ps.fragmentAov : ps.fragment));
+    auto fs = shader(std::uint32_t(ps.fragmentFor(key)));
     if (!fs) return std::move(fs).error();
 
     GraphicsPipelineDesc d;
@@ -194,7 +204,8 @@ Result<GraphicsPipelineDesc> Pipelines::describe(const PipelineKey& key) {
                  : key.topology == Topology::Points ? VK_PRIMITIVE_TOPOLOGY_POINT_LIST
                                                     : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
     d.name = std::string(frame::toString(key.program)) +
-             (key.flatPerTriangle ? " per-triangle variant" : " variant");
+             (key.flatPerTriangle ? " per-triangle" : "") + (key.guard ? " guarded" : "") +
+             " variant";
     return d;
 }
 

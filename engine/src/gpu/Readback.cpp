@@ -130,19 +130,31 @@ void addFindings(const Findings& f, FrameReadback& r) {
     if (f.count > 0 && r.nonFiniteX < 0) r.nonFiniteX = f.x, r.nonFiniteY = f.y;
 }
 
-// The colour plane into r.image.rgba, each row checked while it is still in the cache and
-// scrubbed only when it holds a NaN or Inf. An Image kept from a frame of the same size
-// (Renderer::render into an Image) is overwritten in place, in two bands for a large picture;
-// otherwise each row is appended (the vector is never zero-filled first).
-void readColour(const HostPlane& src, std::uint32_t width, std::uint32_t height,
-                FrameReadback& r) {
-    const Poison poison = colourPoison(width, height);
+// Whether the host must look for NaN/Inf in the colour plane: yes unless every colour of the
+// frame came from a guarded variant or the clear colour and no fragment tripped the guard
+// (shaders/include/output.glsl), or when a test poisons a pixel (as a shader bug that trips
+// the guard would leave it).
+Result<bool> hostCheckNeeded(Context& ctx, const FrameRing::Slot& slot, Poison poison) {
+    if (!slot.guarded || poison.x >= 0) return true;
+    LANTERN_TRY(invalidate(ctx, slot.arena));
+    std::uint32_t tripped = 0;
+    std::memcpy(&tripped, static_cast<const char*>(slot.arena.mapped) + slot.guardOffset, 4);
+    return tripped != 0;
+}
+
+// The colour plane into r.image.rgba, each row checked while it is still in the cache (when
+// `check`) and scrubbed only when it holds a NaN or Inf. An Image kept from a frame of the same
+// size (Renderer::render into an Image) is overwritten in place, in two bands for a large
+// picture; otherwise each row is appended (the vector is never zero-filled first).
+void readColour(const HostPlane& src, std::uint32_t width, std::uint32_t height, Poison poison,
+                bool check, FrameReadback& r) {
     std::vector<float>& rgba = r.image.rgba;
     const std::size_t rowFloats = std::size_t(width) * 4;
     auto copyRow = [&](float* dst, std::uint32_t y, Findings& f) {
         const float* row = src.row<float>(y);
         std::memcpy(dst, row, rowFloats * sizeof(float));
-        if (long(y) == poison.y || anyNonFinite(dst, rowFloats)) scanRow(dst, dst, width, y, poison, f);
+        if (check && (long(y) == poison.y || anyNonFinite(dst, rowFloats)))
+            scanRow(dst, dst, width, y, poison, f);
     };
     if (rgba.size() == rowFloats * height) {
         addFindings(inBands(height, rgba.size() * sizeof(float),
@@ -162,7 +174,8 @@ void readColour(const HostPlane& src, std::uint32_t width, std::uint32_t height,
         const float* row = src.row<float>(y);
         rgba.insert(rgba.end(), row, row + rowFloats);
         float* dst = rgba.data() + std::size_t(y) * rowFloats;
-        if (long(y) == poison.y || anyNonFinite(dst, rowFloats)) scanRow(dst, dst, width, y, poison, f);
+        if (check && (long(y) == poison.y || anyNonFinite(dst, rowFloats)))
+            scanRow(dst, dst, width, y, poison, f);
     }
     addFindings(f, r);
 }
@@ -171,8 +184,7 @@ void readColour(const HostPlane& src, std::uint32_t width, std::uint32_t height,
 // scrubbed (the renderer refuses such a frame, render/FrameRender.h); the first pixel that
 // holds a NaN or Inf is remembered for the refusal's message.
 void checkColourInPlace(const HostPlane& src, std::uint32_t width, std::uint32_t height,
-                        FrameReadback& r) {
-    const Poison poison = colourPoison(width, height);
+                        Poison poison, FrameReadback& r) {
     const std::size_t rowFloats = std::size_t(width) * 4;
     addFindings(inBands(height, rowFloats * height * sizeof(float),
                         [&](std::uint32_t y0, std::uint32_t y1) {
@@ -266,14 +278,18 @@ Result<FrameReadback> readBack(Context& ctx, const FrameRing::Slot& slot, lanter
     if (!colour) return std::move(colour).error();
     r.image.width = int(t.width);
     r.image.height = int(t.height);
+    const Poison poison = colourPoison(t.width, t.height);
+    auto check = hostCheckNeeded(ctx, slot, poison);
+    if (!check) return std::move(check).error();
+    r.hostChecked = *check;
     if (view) {
         r.view = *view;
         r.view.data = colour->data;
         r.view.rowPitch = colour->rowPitch;
-        checkColourInPlace(*colour, t.width, t.height, r);
+        if (*check) checkColourInPlace(*colour, t.width, t.height, poison, r);
         return r;
     }
-    readColour(*colour, t.width, t.height, r);
+    readColour(*colour, t.width, t.height, poison, *check, r);
     if (t.aov) {
         auto nd = hostPlane(ctx, t.normalDepth, t.readNormalDepth, std::size_t(t.width) * 16);
         if (!nd) return std::move(nd).error();
