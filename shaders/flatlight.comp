@@ -12,6 +12,7 @@
 #define LANTERN_FLAT_ACCESS writeonly
 #include "flat.glsl"
 #include "flatjob.glsl"
+#include "guard.glsl"
 
 layout(local_size_x = LANTERN_FLAT_GROUP) in;
 
@@ -59,6 +60,7 @@ void writeSide(uint at, LightSums sums, MaterialSideData side, vec4 colour) {
     float alpha;
     materialColours(side, colour, ambientM, diffuseM, alpha);
     splitColour(sums, ambientM, diffuseM, base, textured);
+    guardLit(base, textured, alpha);
     if (SC_TEXTURE) {
         flatColors[at] = vec4(base, alpha);
         flatColors[at + 1u] = vec4(textured, 0.0);

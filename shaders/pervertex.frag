@@ -47,7 +47,8 @@ void main() {
     float alpha = lit.a;
 #else
     vec3 base = back ? vBackBase : vFrontBase;
-    vec3 textured = back ? vBackTextured : vFrontTextured;
+    // Without a texture the vertex stage summed the parts into `base` (pervertex.vert).
+    vec3 textured = SC_TEXTURE ? (back ? vBackTextured : vFrontTextured) : vec3(0.0);
     float alpha = back ? vAlpha.y : vAlpha.x;
 #endif
     vec4 texel = SC_TEXTURE ? baseColorTexel(u, draw.materialIndex) : vec4(1.0);

@@ -6,9 +6,13 @@
 //   LANTERN_FLAT_PROVOKING GL_FLAT (--gl-compat): at each vertex, the provoking (last)
 //                         vertex's colour fills the triangle
 // Both faces are lit when two-sided lighting is on; the fragment stage picks by facing.
+// LANTERN_GUARD: the variant that checks what it lit (guard.glsl).
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "lighting.glsl"
+#ifdef LANTERN_GUARD
+#include "guard.glsl"
+#endif
 
 #if defined(LANTERN_FLAT_CENTROID) || defined(LANTERN_FLAT_PROVOKING)
 #define LIT flat
@@ -34,6 +38,16 @@ layout(location = 6) centroid out vec3 vEyePosition;
 layout(location = 7) LIT out vec3 vNormal;
 layout(location = 8) out vec2 vTexcoordCentre;  // at the pixel centre, for derivatives
 
+// splitColour for the interpolated outputs: without a base-colour texture the two parts are
+// summed here, and the fragment stage reads only `base` (one vec3 fewer to interpolate).
+void splitLit(LightSums sums, vec3 ambientM, vec3 diffuseM, out vec3 base, out vec3 textured) {
+    splitColour(sums, ambientM, diffuseM, base, textured);
+    if (!SC_TEXTURE) {
+        base += textured;
+        textured = vec3(0.0);
+    }
+}
+
 void main() {
     vec4 eye = draw.viewFromModel * vec4(inPosition, 1.0);
 #ifdef LANTERN_FLAT_CENTROID
@@ -48,18 +62,22 @@ void main() {
     float alpha;
     materialColours(material.front, inColor, ambientM, diffuseM, alpha);
     LightSums sums = evaluateLighting(shadePoint, n, material.front);
-    splitColour(sums, ambientM, diffuseM, vFrontBase, vFrontTextured);
+    splitLit(sums, ambientM, diffuseM, vFrontBase, vFrontTextured);
     vAlpha.x = alpha;
     if (SC_TWO_SIDED) {
         materialColours(material.back, inColor, ambientM, diffuseM, alpha);
         sums = evaluateLighting(shadePoint, -n, material.back);
-        splitColour(sums, ambientM, diffuseM, vBackBase, vBackTextured);
+        splitLit(sums, ambientM, diffuseM, vBackBase, vBackTextured);
         vAlpha.y = alpha;
     } else {
         vBackBase = vFrontBase;
         vBackTextured = vFrontTextured;
         vAlpha.y = vAlpha.x;
     }
+#ifdef LANTERN_GUARD
+    guardLit(vFrontBase, vFrontTextured, vAlpha.x);
+    if (SC_TWO_SIDED) guardLit(vBackBase, vBackTextured, vAlpha.y);
+#endif
     vTexcoord = inTexcoord;
     vTexcoordCentre = inTexcoord;
     vEyePosition = eye.xyz;

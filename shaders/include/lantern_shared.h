@@ -11,7 +11,7 @@
 #define LANTERN_BINDING_MATERIALS 2  // buffer MaterialBlock
 #define LANTERN_BINDING_FLAT_COLORS 3   // buffer: per-triangle flat colours (flatlight.comp)
 #define LANTERN_BINDING_FLAT_NORMALS 4  // buffer: per-triangle eye normals (frames with AOVs)
-#define LANTERN_BINDING_GUARD 5         // buffer: the frame's output guard word (output.glsl)
+#define LANTERN_BINDING_GUARD 5         // buffer: the frame's output guard word (guard.glsl)
 #define LANTERN_SET_TEXTURE 1
 #define LANTERN_BINDING_BASE_COLOR 0 // sampler2D, the material's base-colour texture
 #define LANTERN_BINDING_METALLIC_ROUGHNESS 1  // sampler2D: B metallic, G roughness (linear)
@@ -105,11 +105,13 @@
 // glTF falloff 1/max(d^2, this) (scene-format.md section 1).
 #define LANTERN_MIN_GLTF_DISTANCE_SQUARED 1e-4
 
-// The output guard (shaders/include/output.glsl): a fragment whose colour has a NaN, a channel
-// of magnitude above this or an alpha outside [0, 1] trips it, and the host then checks the
-// whole picture. Below it no blend (a convex mix) or resolve (a mean of at most 8 samples)
-// can overflow a float, so a frame that did not trip it needs no host check.
-#define LANTERN_GUARD_BOUND 1e36
+// The output guard (shaders/include/guard.glsl): a lit colour with a NaN, a part of magnitude
+// above this or an alpha outside [0, 1], where the vertex stage or the flat pre-pass makes it,
+// trips it, and the host then checks the whole picture. The fragment stage interpolates
+// (a convex mix) and adds the two parts, the textured one times a texel in [0, 1]; blends mix
+// (alpha in [0, 1]) and resolves average. So an output stays within twice this, far from a
+// float's overflow, and a frame that did not trip the guard needs no host check.
+#define LANTERN_GUARD_BOUND 1e35
 
 // The metallic-roughness mapping's shininess range (scene-format-support.md, Materials).
 #define LANTERN_PBR_MIN_SHININESS 1.0

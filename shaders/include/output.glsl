@@ -15,36 +15,11 @@ layout(location = LANTERN_OUT_ID) out uvec2 outId;           // draw index + 1, 
 layout(location = LANTERN_OUT_SURFACE) out uvec4 outSurface;  // float bits: u, v, |eye|, 0
 #endif
 
-#ifdef LANTERN_GUARD
-// The guarded variants (opaque or blended draws without discard, on devices with
-// fragmentStoresAndAtomics) check their own output where it is made, so that the host need
-// not read the whole picture again to find a NaN or Inf (gpu/Readback.cpp): the host clears the
-// word before the frame and reads it after; any fragment that trips the guard sets it. The
-// store would move the depth test after the shader; these variants have no discard and write
-// no depth, so testing early changes no pixel.
-layout(early_fragment_tests) in;
-layout(set = LANTERN_SET_FRAME, binding = LANTERN_BINDING_GUARD, std430) writeonly buffer GuardBlock {
-    uint guardTripped;
-};
-
-// On the bits, in one unsigned comparison per channel: a NaN, an Inf or a magnitude above the
-// bound has a larger magnitude pattern than the bound's; a negative alpha (the sign bit) or
-// one above 1 (or NaN) a larger pattern than 1.0's.
-bool guardTrips(vec4 c) {
-    const uint bound = floatBitsToUint(float(LANTERN_GUARD_BOUND));
-    const uvec4 bits = floatBitsToUint(c) & uvec4(0x7fffffffu, 0x7fffffffu, 0x7fffffffu, 0xffffffffu);
-    return any(greaterThan(bits, uvec4(bound, bound, bound, floatBitsToUint(1.0))));
-}
-#endif
-
 // c: linear colour; alpha: opacity; n: the surface normal before any two-sided flip;
 // eyePosition: the eye-space point; uv: TEXCOORD_0 as the mesh holds it (0 without one).
 void writeOutputs(vec3 c, float alpha, vec3 n, vec3 eyePosition, vec2 uv) {
     if (SC_CLAMP != LANTERN_CLAMP_NONE) c = clampVisible(c);
     outColor = vec4(c, SC_OPAQUE ? 1.0 : alpha);
-#ifdef LANTERN_GUARD
-    if (guardTrips(outColor)) guardTripped = 1u;
-#endif
 #ifdef LANTERN_AOV
     vec3 visible = safeNormalize(n);
     if (!gl_FrontFacing) visible = -visible;

@@ -44,8 +44,8 @@ struct Capabilities {
     bool wideLines = false;            ///< lines wider than one pixel
     bool largePoints = false;          ///< points larger than one pixel
     bool debugUtils = false;           ///< object names and the messenger
-    /// fragmentStoresAndAtomics: the guarded fragment variants (shaders/include/output.glsl)
-    bool fragmentStores = false;
+    /// vertexPipelineStoresAndAtomics: the guarded vertex variants (shaders/include/guard.glsl)
+    bool vertexStores = false;
     std::uint32_t colorDepthSampleCounts = VK_SAMPLE_COUNT_1_BIT;  ///< float colour & depth
 };
 

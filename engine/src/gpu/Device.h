@@ -67,8 +67,8 @@ struct FrameReadback {
     double gpuMs = -1.0;            ///< render-pass time from GPU timestamps (-1: unavailable)
     std::uint64_t nonFinite = 0;    ///< NaN/Inf values found (and zeroed) at readback
     int nonFiniteX = -1, nonFiniteY = -1;  ///< the first colour pixel that held one (-1: none)
-    /// The host read the whole colour plane for NaN/Inf. False when the frame's guarded
-    /// fragment variants vouched for it (shaders/include/output.glsl): nothing tripped them.
+    /// The host read the whole colour plane for NaN/Inf. False when the stages that made the
+    /// frame's colours vouched for it (shaders/include/guard.glsl): nothing tripped the guard.
     bool hostChecked = true;
     std::size_t draws = 0;
     /// Flat triangles given to the per-triangle lighting pass (gpu/FlatLight.h); those it

@@ -31,8 +31,9 @@ struct PipelineKey {
     /// Set by gpu/ (never by render/): flat triangles lit once per triangle by the pre-pass
     /// (shaders/flatlight.comp) and drawn indexed, instead of the per-corner flat streams.
     bool flatPerTriangle = false;
-    /// Set by gpu/: the fragment stage checks its own output (shaders/include/output.glsl),
-    /// so that the host need not check the picture (gpu/Readback.cpp).
+    /// Set by gpu/: the draw's colours are checked where they are made (the guarded vertex
+    /// variant, the flat pre-pass, or a constant: shaders/include/guard.glsl), so that the
+    /// host need not check the picture (gpu/Readback.cpp).
     bool guard = false;
 
     bool operator==(const PipelineKey&) const = default;
@@ -92,12 +93,18 @@ struct Overlays {
     bool any() const { return wireframe || normals; }
 };
 
+enum class OutputGuard { Auto, Always, Never };
+
 struct DrawList {
     TargetDesc target;
     std::vector<MaterialData> materials;  ///< at least one
     std::vector<ViewCommands> views;
     std::vector<DeformCommand> deforms;  ///< skinned and morphing primitives (usually none)
     Overlays overlays;
+    /// Which draws check their colours where they are made (shaders/include/guard.glsl):
+    /// Auto weighs the vertex stage's check against the host's (gpu/FrameRing.cpp); tests
+    /// force either way.
+    OutputGuard outputGuard = OutputGuard::Auto;
 
     std::size_t drawCount() const {
         std::size_t n = 0;

@@ -12,6 +12,41 @@ namespace {
 
 VkDeviceSize alignUp(VkDeviceSize v, VkDeviceSize a) { return (v + a - 1) / a * a; }
 
+// Whether draw `k`'s colours are checked where they are made (shaders/include/guard.glsl):
+// lit by the flat pre-pass (which always checks), the floor's constant, or lit in the vertex
+// stage by a guarded variant when `vertexGuard` (the device lets that stage store and the
+// frame has few enough vertices: vertexGuardPays). Phong lights per fragment and is
+// never guarded, nor is a draw with an emissive map, which the fragment stage adds.
+bool guardable(const PipelineKey& k, bool vertexGuard) {
+    if (k.program == frame::Program::Floor) return true;
+    if ((k.constants[LANTERN_SC_MAPS] & LANTERN_MAP_EMISSIVE) != 0u) return false;
+    if (k.flatPerTriangle) return true;
+    return vertexGuard && k.program != frame::Program::Phong;
+}
+
+// Whether checking in the vertex stage costs less than the host's pass over the picture. On
+// llvmpipe the guarded vertex variant made the teapot grid's Gouraud frame 2-7 ms slower at
+// 1 and 8 lights alike (71,160 vertices: about 40 ns per vertex, whatever the lights; the
+// store, not the comparisons, seems to cost), while the host's pass costs about 1.3 ns per
+// pixel (2.5-3 ms at 1920x1080 on two threads). So the vertex stage checks when the frame's
+// vertices are fewer than a 32nd of its pixels: the peer sphere (2,145 vertices at 1080p) is
+// guarded, the teapot grid at 720p is not. docs/performance.md has the measurements.
+bool vertexGuardPays(const DrawList& list, const SceneBuffers& scene, bool flatPerTriangle) {
+    std::uint64_t vertices = 0;
+    for (const ViewCommands& v : list.views)
+        for (const DrawCommand& d : v.draws) {
+            const frame::Program p = d.pipeline.program;
+            if (p == frame::Program::Phong || p == frame::Program::Floor ||
+                FlatLighter::perTriangle(d.pipeline, flatPerTriangle))
+                continue;
+            const PrimitiveBuffers& gp = scene.primitive(d.mesh, d.primitive);
+            // The per-corner flat streams are de-indexed: a vertex per corner.
+            vertices += p == frame::Program::Flat && gp.indexCount > 0 ? gp.indexCount
+                                                                       : gp.vertexCount;
+        }
+    return vertices * 32 <= std::uint64_t(list.target.width) * list.target.height;
+}
+
 // A clear colour the guard's argument covers: finite, within the bound, alpha in [0, 1].
 bool clearWithinGuard(const glm::vec4& c) {
     for (int i = 0; i < 3; ++i)
@@ -97,14 +132,15 @@ FrameRing::~FrameRing() {
 
 // Pipelines (created on first use) and the flat-shading streams the per-corner path needs
 // before recording. `flatPerTriangle`: flat triangles are lit by the pre-pass this frame.
-// `guarded`: every draw of the colour pass uses a guarded fragment variant, which a draw can
-// where the device has fragmentStoresAndAtomics and it neither discards (alpha mask) nor writes
-// the AOVs in the same pass.
+// `guarded`: every draw of the colour pass is guarded (guardable()).
 Result<void> FrameRing::preparePipelines(const DrawList& list, SceneBuffers& scene,
                                          bool flatPerTriangle, std::vector<VkPipeline>& main,
                                          std::vector<VkPipeline>& aov, bool& guarded) {
-    const bool stores = m_ctx.capabilities().fragmentStores;
-    guarded = stores;
+    const bool vertexGuard =
+        m_ctx.capabilities().vertexStores &&
+        (list.outputGuard == OutputGuard::Always ||
+         (list.outputGuard == OutputGuard::Auto && vertexGuardPays(list, scene, flatPerTriangle)));
+    guarded = list.outputGuard != OutputGuard::Never;
     const bool aovPass = list.target.aovs.any() && list.target.samples > 1;
     // The variants the draws use (and only those), the missing ones compiled together.
     std::vector<PipelineKey> mainKeys, aovKeys;
@@ -115,7 +151,7 @@ Result<void> FrameRing::preparePipelines(const DrawList& list, SceneBuffers& sce
             key.flatPerTriangle = FlatLighter::perTriangle(d.pipeline, flatPerTriangle);
             PipelineKey single = key;
             if (aovPass) key.aov = key.aovSurface = false;
-            key.guard = stores && !key.aov && key.constants[LANTERN_SC_ALPHA_MASK] == 0;
+            key.guard = list.outputGuard != OutputGuard::Never && guardable(key, vertexGuard);
             guarded &= key.guard;
             mainKeys.push_back(key);
             if (aovPass) {
@@ -208,7 +244,7 @@ Result<FrameRing::ArenaLayout> FrameRing::fillArena(Slot& slot, const DrawList& 
         std::memcpy(base + a.lightOffsets[i], list.views[i].lights.data(),
                     list.views[i].lights.size() * sizeof(LightData));
     }
-    std::memset(base + a.guardOffset, 0, 16);  // the output guard, cleared (output.glsl)
+    std::memset(base + a.guardOffset, 0, 16);  // the output guard, cleared (guard.glsl)
     slot.guardOffset = a.guardOffset;
     LANTERN_TRY(flush(m_ctx, slot.arena));
 

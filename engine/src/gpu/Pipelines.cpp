@@ -20,29 +20,26 @@ namespace {
 using shaders::ShaderId;
 using frame::Program;
 
-// A program's vertex stage and its three fragment variants: plain, with the AOV outputs, and
-// guarded (its output checked where it is made: shaders/include/output.glsl).
+// A program's vertex stage (plain, and guarded where the vertex stage lights: it checks what
+// it lit, shaders/include/guard.glsl) and its fragment stage (plain, and with the AOV outputs).
 struct ProgramShaders {
-    ShaderId vertex, fragment, fragmentAov, fragmentGuard;
-
-    ShaderId fragmentFor(const PipelineKey& key) const {
-        return key.aov ? fragmentAov : key.guard ? fragmentGuard : fragment;
-    }
+    ShaderId vertex, vertexGuard, fragment, fragmentAov;
 };
 
 ProgramShaders programShaders(const PipelineKey& key) {
     using S = ShaderId;
-    if (key.flatPerTriangle)
-        return {S::flatprim_vert, S::flatprim_frag, S::flatprim_aov_frag, S::flatprim_guard_frag};
+    if (key.flatPerTriangle)  // lit (and checked) by the pre-pass
+        return {S::flatprim_vert, S::flatprim_vert, S::flatprim_frag, S::flatprim_aov_frag};
     switch (key.program) {
     case Program::Phong: break;
     case Program::Gouraud:
-        return {S::gouraud_vert, S::gouraud_frag, S::gouraud_aov_frag, S::gouraud_guard_frag};
-    case Program::Flat: return {S::flat_vert, S::flat_frag, S::flat_aov_frag, S::flat_guard_frag};
-    case Program::GlFlat: return {S::glflat_vert, S::flat_frag, S::flat_aov_frag, S::flat_guard_frag};
-    case Program::Floor: return {S::mesh_vert, S::floor_frag, S::floor_aov_frag, S::floor_guard_frag};
+        return {S::gouraud_vert, S::gouraud_guard_vert, S::gouraud_frag, S::gouraud_aov_frag};
+    case Program::Flat: return {S::flat_vert, S::flat_guard_vert, S::flat_frag, S::flat_aov_frag};
+    case Program::GlFlat:
+        return {S::glflat_vert, S::glflat_guard_vert, S::flat_frag, S::flat_aov_frag};
+    case Program::Floor: return {S::mesh_vert, S::mesh_vert, S::floor_frag, S::floor_aov_frag};
     }
-    return {S::mesh_vert, S::phong_frag, S::phong_aov_frag, S::phong_guard_frag};
+    return {S::mesh_vert, S::mesh_vert, S::phong_frag, S::phong_aov_frag};
 }
 
 // One vertex-buffer binding per attribute, numbered as its location (non-interleaved streams).
@@ -110,7 +107,7 @@ Result<Pipelines> Pipelines::create(Context& ctx) {
               {LANTERN_BINDING_FLAT_COLORS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, records, nullptr},
               {LANTERN_BINDING_FLAT_NORMALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, records, nullptr},
               {LANTERN_BINDING_GUARD, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
-               VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}});
+               VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_COMPUTE_BIT, nullptr}});
     if (!frameLayout) return std::move(frameLayout).error();
     p.m_frameLayout = std::move(*frameLayout);
     std::vector<VkDescriptorSetLayoutBinding> textureBindings;
@@ -159,9 +156,9 @@ Result<VkShaderModule> Pipelines::shader(std::uint32_t id) {
 // What a variant is made of; its shader modules are made here, on the calling thread.
 Result<GraphicsPipelineDesc> Pipelines::describe(const PipelineKey& key) {
     const ProgramShaders ps = programShaders(key);
-    auto vs = shader(std::uint32_t(ps.vertex));
+    auto vs = shader(std::uint32_t(key.guard ? ps.vertexGuard : ps.vertex));
     if (!vs) return std::move(vs).error();
-    auto fs = shader(std::uint32_t(ps.fragmentFor(key)));
+    auto fs = shader(std::uint32_t(key.aov ? ps.fragmentAov : ps.fragment));
     if (!fs) return std::move(fs).error();
 
     GraphicsPipelineDesc d;

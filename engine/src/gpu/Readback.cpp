@@ -131,8 +131,8 @@ void addFindings(const Findings& f, FrameReadback& r) {
 }
 
 // Whether the host must look for NaN/Inf in the colour plane: yes unless every colour of the
-// frame came from a guarded variant or the clear colour and no fragment tripped the guard
-// (shaders/include/output.glsl), or when a test poisons a pixel (as a shader bug that trips
+// frame came from a guarded draw or the clear colour and nothing tripped the guard
+// (shaders/include/guard.glsl), or when a test poisons a pixel (as a shader bug that trips
 // the guard would leave it).
 Result<bool> hostCheckNeeded(Context& ctx, const FrameRing::Slot& slot, Poison poison) {
     if (!slot.guarded || poison.x >= 0) return true;

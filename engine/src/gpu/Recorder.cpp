@@ -300,8 +300,10 @@ void recordFrame(VkPipelineLayout layout, const OverlayPipelines* overlays,
         r.copyOut(t.ids, t.readIds, hooks.readback && list.target.readIds());
     }
     if (t.surface) r.copyOut(t.surfaceUvRange, t.readSurface, hooks.readback);
-    // The copies, and the guard word the fragment stage may have set, to the host.
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+    // The copies, and the guard word the vertex stage or the flat pre-pass may have set, to
+    // the host.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+                           VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                   VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                   VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     if (hooks.afterRender)
