@@ -59,14 +59,10 @@ void writeSide(uint at, LightSums sums, MaterialSideData side, vec4 colour) {
     vec3 ambientM, diffuseM, base, textured;
     float alpha;
     materialColours(side, colour, ambientM, diffuseM, alpha);
-    splitColour(sums, ambientM, diffuseM, base, textured);
+    splitLit(sums, ambientM, diffuseM, base, textured);
     guardLit(base, textured, alpha);
-    if (SC_TEXTURE) {
-        flatColors[at] = vec4(base, alpha);
-        flatColors[at + 1u] = vec4(textured, 0.0);
-    } else {
-        flatColors[at] = vec4(base + textured, alpha);
-    }
+    flatColors[at] = vec4(base, alpha);
+    if (SC_TEXTURE) flatColors[at + 1u] = vec4(textured, 0.0);
 }
 
 void main() {

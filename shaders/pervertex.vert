@@ -38,16 +38,6 @@ layout(location = 6) centroid out vec3 vEyePosition;
 layout(location = 7) LIT out vec3 vNormal;
 layout(location = 8) out vec2 vTexcoordCentre;  // at the pixel centre, for derivatives
 
-// splitColour for the interpolated outputs: without a base-colour texture the two parts are
-// summed here, and the fragment stage reads only `base` (one vec3 fewer to interpolate).
-void splitLit(LightSums sums, vec3 ambientM, vec3 diffuseM, out vec3 base, out vec3 textured) {
-    splitColour(sums, ambientM, diffuseM, base, textured);
-    if (!SC_TEXTURE) {
-        base += textured;
-        textured = vec3(0.0);
-    }
-}
-
 void main() {
     vec4 eye = draw.viewFromModel * vec4(inPosition, 1.0);
 #ifdef LANTERN_FLAT_CENTROID

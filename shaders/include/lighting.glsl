@@ -209,6 +209,16 @@ void splitColour(LightSums s, vec3 ambientM, vec3 diffuseM, out vec3 base, out v
     }
 }
 
+// splitColour as the fragment stage receives it: without a base-colour texture the two parts
+// are summed here (pervertex.vert, flatlight.comp), and the fragment stage reads only `base`.
+void splitLit(LightSums s, vec3 ambientM, vec3 diffuseM, out vec3 base, out vec3 textured) {
+    splitColour(s, ambientM, diffuseM, base, textured);
+    if (!SC_TEXTURE) {
+        base += textured;
+        textured = vec3(0.0);
+    }
+}
+
 // The normal matrix of this draw.
 mat3 drawNormalMatrix() {
     return mat3(draw.normalMatrix[0].xyz, draw.normalMatrix[1].xyz, draw.normalMatrix[2].xyz);
