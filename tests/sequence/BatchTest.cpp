@@ -296,6 +296,13 @@ TEST(Batch, GlobsAndListsAreExpandedInOrderAndConfinedToTheirFolder) {
                           dir.string(), "-o", (dir / "l" / "{scene}.png").string()}));
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(lines(r.out), std::vector<std::string>{(dir / "l" / "secret.png").string()});
+    // A list that is missing, or a folder, is refused input (exit 1) naming it; nothing runs.
+    for (const fs::path& bad : {scenes / "missing.txt", scenes}) {
+        r = runLantern(small({"render", "@" + bad.string(), "-o", (dir / "m" / "{scene}.png").string()}));
+        EXPECT_EQ(r.exitCode, 1) << r.err;
+        EXPECT_NE(r.err.find(bad.string() + ": --list: "), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(dir / "m"));
+    }
 }
 
 TEST(Batch, ADryRunListsTheJobsAndWritesNothing) {

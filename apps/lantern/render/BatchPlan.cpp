@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <glob.h>
 #include <map>
@@ -105,11 +107,14 @@ Result<std::vector<BatchScene>> expandGlob(const std::string& pattern,
     return scenes;
 }
 
-// The text of a list file: a regular file of at most maxBytes.
+// The text of a list file: a regular file of at most maxBytes. A list that is missing or
+// cannot be read is refused input (exit 1), as a scene file is, not a renderer failure.
 Result<std::string> readListFile(const std::string& list, std::uint64_t maxBytes) {
     struct stat st {};
     if (::stat(list.c_str(), &st) != 0)
-        return makeError(ErrorCode::IoError, "cannot read the list: no such file", "--list", list);
+        return makeError(ErrorCode::InvalidInput,
+                         std::string("cannot read the list: ") + std::strerror(errno), "--list",
+                         list);
     if (!S_ISREG(st.st_mode))
         return makeError(ErrorCode::InvalidInput, "the list is not a regular file", "--list", list);
     if (std::uint64_t(st.st_size) > maxBytes)
@@ -120,7 +125,7 @@ Result<std::string> readListFile(const std::string& list, std::uint64_t maxBytes
     std::ifstream in(list, std::ios::binary);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (!in && !in.eof())
-        return makeError(ErrorCode::IoError, "cannot read the list", "--list", list);
+        return makeError(ErrorCode::InvalidInput, "cannot read the list", "--list", list);
     return text;
 }
 
