@@ -305,6 +305,32 @@ TEST(Batch, GlobsAndListsAreExpandedInOrderAndConfinedToTheirFolder) {
     }
 }
 
+TEST(Batch, AMillionJobsAreRefusedBeforeThePlan) {
+    // 2 scenes x 3600 views x 16 000 001 frames: refused at once, not planned (it used to run
+    // out of memory); 4 x 65 536 jobs is the most a batch plans.
+    const auto dir = testOutputDir();
+    auto r = runLantern({"render", "builtin:spheres", "builtin:teapot", "--views", "orbit:3600",
+                         "--frames", "0-16000000", "--dry-run", "-o",
+                         (dir / "{scene}_{view}_{frame}.png").string()});
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("the batch has 2 scenes x 3600 views x 16000001 frames, more than 262144 "
+                         "jobs"),
+              std::string::npos) << r.err;
+    const std::vector<std::string> four{"render",   "builtin:spheres", "builtin:teapot",
+                                        "builtin:teapots", "builtin:default", "--dry-run",
+                                        "-o", (dir / "{scene}_{frame}.png").string(),
+                                        "--frames"};
+    auto args = four;
+    args.push_back("0-65536");
+    r = runLantern(args);
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    args.back() = "1-65536";
+    r = runLantern(args);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("dry run: batch of 262144 jobs"), std::string::npos);
+    EXPECT_TRUE(fs::is_empty(dir));
+}
+
 TEST(Batch, ADryRunListsTheJobsAndWritesNothing) {
     const auto dir = testOutputDir();
     const auto r = runLantern(small({"render", "builtin:spheres", "builtin:teapot", "--views",

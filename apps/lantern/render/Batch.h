@@ -119,8 +119,14 @@ struct TemplateValues {
 /// brace that starts no known placeholder is a usage error.
 Result<std::string> expandOutputTemplate(const std::string& pattern, const TemplateValues& v);
 
-/// Every job of the batch in its order (scene, then view, then frame), or a usage error when
-/// two of them would write the same file.
+/// The most jobs (scenes x views x frames) one batch plans: 262 144. The plan is held whole
+/// (about 300 bytes and 1.7 microseconds a job), so that two jobs writing one file are refused
+/// before anything renders. A longer sequence of one scene is a plain sequence (an output
+/// with '#' and no '{', up to 16 777 216 frames, planned one frame at a time).
+inline constexpr std::uint64_t kMaxBatchJobs = std::uint64_t(1) << 18;
+
+/// Every job of the batch in its order (scene, then view, then frame); a usage error when two
+/// of them would write the same file, refused input when there are more than kMaxBatchJobs.
 Result<std::vector<BatchJob>> planJobs(const std::vector<BatchScene>& scenes,
                                        const std::vector<BatchView>& views,
                                        const std::vector<BatchFrame>& frames,

@@ -10,6 +10,8 @@
 #include <fstream>
 #include <glob.h>
 #include <map>
+#include <string_view>
+#include <unordered_map>
 #include <sys/stat.h>
 
 namespace lantern::cli {
@@ -268,10 +270,6 @@ Result<std::vector<BatchScene>> expandScenes(const std::vector<std::string>& arg
 }
 
 Result<std::string> expandOutputTemplate(const std::string& pattern, const TemplateValues& v) {
-    const std::map<std::string, std::string> names = {{"{scene}", v.scene},
-                                                      {"{index}", v.index},
-                                                      {"{view}", v.view},
-                                                      {"{frame}", std::to_string(v.frame)}};
     // '#' runs are expanded in the template's own text only: a '#' in a file or view name
     // stays as it is.
     std::string out, literal;
@@ -281,40 +279,76 @@ Result<std::string> expandOutputTemplate(const std::string& pattern, const Templ
             continue;
         }
         const std::size_t close = pattern.find('}', i);
-        const std::string name =
-            close == std::string::npos ? pattern.substr(i) : pattern.substr(i, close - i + 1);
-        const auto known = names.find(name);
-        if (known == names.end())
+        const std::string_view name = std::string_view(pattern).substr(
+            i, close == std::string::npos ? std::string::npos : close - i + 1);
+        const std::string frame = name == "{frame}" ? std::to_string(v.frame) : std::string();
+        const std::string* value = name == "{scene}"   ? &v.scene
+                                   : name == "{index}" ? &v.index
+                                   : name == "{view}"  ? &v.view
+                                   : name == "{frame}" ? &frame
+                                                       : nullptr;
+        if (!value)
             return makeError(ErrorCode::Usage,
-                             "unknown placeholder " + name + " in \"" + pattern +
+                             "unknown placeholder " + std::string(name) + " in \"" + pattern +
                                  "\" (known: {scene}, {index}, {view}, {frame})",
                              "--output");
-        out += expandFramePattern(literal, v.frame) + known->second;
+        out += expandFramePattern(literal, v.frame);
+        out += *value;
         literal.clear();
         i = close + 1;
     }
     return out + expandFramePattern(literal, v.frame);
 }
 
+namespace {
+
+// The file an output names, for telling two outputs apart: the path made lexically normal
+// ("a//b" and "a/./b" are "a/b"). Most names are normal already, and building a path costs
+// a batch of a million jobs a second, so only a name with "//", a "." component or a
+// trailing '/' is rebuilt.
+std::string outputKey(const std::string& out) {
+    const bool plain = !out.empty() && out.front() != '.' && out.back() != '/' &&
+                       out.find("//") == std::string::npos && out.find("/.") == std::string::npos;
+    return plain ? out : fs::path(out).lexically_normal().string();
+}
+
+} // namespace
+
 Result<std::vector<BatchJob>> planJobs(const std::vector<BatchScene>& scenes,
                                        const std::vector<BatchView>& views,
                                        const std::vector<BatchFrame>& frames,
                                        const std::vector<std::string>& outputs) {
+    // Counted before anything is planned: a plan is held whole (to refuse two jobs writing
+    // one file before anything renders), so its size is bounded.
+    std::uint64_t total = 0;
+    if (__builtin_mul_overflow(std::uint64_t(scenes.size()), std::uint64_t(views.size()), &total) ||
+        __builtin_mul_overflow(total, std::uint64_t(frames.size()), &total) ||
+        total > kMaxBatchJobs)
+        return makeError(ErrorCode::InvalidInput,
+                         "the batch has " + std::to_string(scenes.size()) + " scenes x " +
+                             std::to_string(views.size()) + " views x " +
+                             std::to_string(frames.size()) + " frames, more than " +
+                             std::to_string(kMaxBatchJobs) +
+                             " jobs; split it into several batches (a list per batch, or fewer "
+                             "frames)",
+                         "");
     std::vector<BatchJob> jobs;
+    jobs.reserve(std::size_t(total));
     // Each output file and the job that writes it: two jobs (or two outputs of one) writing
     // the same file would overwrite each other, so the plan is refused before anything renders.
-    std::map<std::string, std::size_t> writer;
-    for (std::size_t s = 0; s < scenes.size(); ++s)
+    std::unordered_map<std::string, std::size_t> writer;
+    writer.reserve(std::size_t(total * outputs.size()));
+    for (std::size_t s = 0; s < scenes.size(); ++s) {
+        const std::string index = padded(s, scenes.size());
         for (std::size_t v = 0; v < views.size(); ++v)
             for (std::size_t f = 0; f < frames.size(); ++f) {
                 BatchJob job{s, v, f, {}};
+                job.outputs.reserve(outputs.size());
                 for (const std::string& pattern : outputs) {
                     auto out = expandOutputTemplate(
-                        pattern, {scenes[s].stem, padded(s, scenes.size()), views[v].name,
-                                  frames[f].number});
+                        pattern, {scenes[s].stem, index, views[v].name, frames[f].number});
                     if (!out) return std::move(out).error();
-                    const std::string key = fs::path(*out).lexically_normal().string();
-                    if (auto [it, fresh] = writer.emplace(key, jobs.size()); !fresh) {
+                    if (auto [it, fresh] = writer.emplace(outputKey(*out), jobs.size()); !fresh) {
                         const BatchJob& other = jobs.size() > it->second ? jobs[it->second] : job;
                         return makeError(
                             ErrorCode::Usage,
@@ -324,10 +358,11 @@ Result<std::vector<BatchJob>> planJobs(const std::vector<BatchScene>& scenes,
                                 "); put {scene} (or {index}), {view} and {frame} in the output name",
                             "--output");
                     }
-                    job.outputs.push_back(*out);
+                    job.outputs.push_back(std::move(*out));
                 }
                 jobs.push_back(std::move(job));
             }
+    }
     return jobs;
 }
 
