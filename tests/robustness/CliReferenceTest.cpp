@@ -164,6 +164,12 @@ TEST(CliSuggest, MistypedNamesGetTheNearestValidName) {
         {{"bench", "accuracy", "--resolutions", "64x48"}, "it is now --width"},
         {{"render", "builtin:spheres", "--frobnicate"}, "lantern render --help"},
         {{"zzzzzz"}, "render, view, info, bench, farm, compare, help"},
+        // An option's value that is one of the command's options: the option meant was
+        // swallowed (CLI11 takes any next word), so `--device --dry-run` would render.
+        {{"render", "builtin:spheres", "--device", "--dry-run"},
+         "--device: its value is the option --dry-run"},
+        {{"render", "builtin:spheres", "-o", "--width", "64"}, "--output: its value is the option --width"},
+        {{"bench", "speed", "--device", "-q"}, "--device: its value is the option -q"},
     };
     for (const Case& c : cases) {
         const auto r = runLantern(c.args);

@@ -46,6 +46,9 @@ Nothing is ever written half: an output file appears complete or not at all.
   `--specular`, `--msaa` and `-o, --output` are spelled and described the same wherever they
   appear; where a benchmark sweeps them they take comma-separated lists.
 - **Lists** are comma-separated: `--aov depth,normal`, `--msaa 1,4`.
+- **Values**: an option takes the next word as its value, so a value that is one of the
+  command's option names is refused (exit 2): `--device --dry-run` is a forgotten value, not a
+  device named "--dry-run" and a render.
 - **Colours** are linear RGB, comma-separated: `--background 0.2,0.2,0.2` (opaque) or `R,G,B,A`.
 - **Background**: one rule for `render`, `view`, the library (`RenderOptions::background`) and
   the Python module: opaque black, unless `--background` says otherwise. For compositing,

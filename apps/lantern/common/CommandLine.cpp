@@ -67,6 +67,10 @@ int runCommandLine(int argc, char** argv) {
         app.exit(e);
         return kUsage;
     }
+    if (auto swallowed = diagnoseSwallowedOption(app)) {
+        std::cerr << "lantern: error: " << *swallowed << "\n";
+        return kUsage;
+    }
     for (const Runner& run : runners)
         if (int code = run(); code >= 0) return code;
     return kUsage;

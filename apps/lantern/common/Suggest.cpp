@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cctype>
 #include <map>
+#include <set>
 
 namespace lantern::cli {
 namespace {
@@ -138,6 +139,26 @@ std::optional<std::string> diagnoseUnknownName(const CLI::App& root,
                                          return o->get_positional();
                                      }).empty();
         if (!subs.empty() && !positionals) return unknownSubcommand(*app, arg);
+    }
+    return std::nullopt;
+}
+
+std::optional<std::string> diagnoseSwallowedOption(const CLI::App& root) {
+    for (const CLI::App* app = &root; app;) {
+        std::set<std::string> names;
+        for (const CLI::Option* o : app->get_options()) {
+            for (const std::string& l : o->get_lnames()) names.insert("--" + l);
+            for (const std::string& s : o->get_snames()) names.insert("-" + s);
+        }
+        for (const CLI::Option* o : app->get_options()) {
+            if (o->get_positional() || o->get_items_expected_max() == 0) continue;
+            for (const std::string& value : o->results())
+                if (names.count(value))
+                    return o->get_name() + ": its value is the option " + value +
+                           "; give " + o->get_name() + " a value, or leave it out";
+        }
+        const auto parsed = app->get_subcommands();
+        app = parsed.empty() ? nullptr : parsed.front();
     }
     return std::nullopt;
 }

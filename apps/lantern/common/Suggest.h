@@ -30,4 +30,10 @@ std::optional<std::string> nearestName(std::string_view typed,
 std::optional<std::string> diagnoseUnknownName(const CLI::App& root,
                                                const std::vector<std::string>& args);
 
+/// After a parse that succeeded: an option of a parsed (sub)command whose value is exactly the
+/// name of one of that command's options ("--device --dry-run"). CLI11 takes whatever word
+/// follows an option as its value, so the option meant there was swallowed (and a dry run
+/// would render). Nullopt when there is none.
+std::optional<std::string> diagnoseSwallowedOption(const CLI::App& root);
+
 } // namespace lantern::cli
