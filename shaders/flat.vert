@@ -1,11 +1,13 @@
-// flat.vert: per-triangle flat shading's vertex stage. The draw is non-indexed, three vertices
-// per triangle, with no vertex buffers: vertex 3t + c pulls corner c of triangle t from the
-// draw's FlatJob (flatjob.glsl) exactly as the pre-pass that lit the triangle did
-// (flatlight.comp), and hands the fragment stage the triangle's record (flat.glsl) as a flat
-// varying. The record is not read by gl_PrimitiveID: on llvmpipe a fragment shader that reads
-// it makes every draw go through a primitive assembler that de-indexes the mesh on the CPU
-// (docs/performance.md). gl_Position is computed exactly as the pre-pass computes it for its
-// culling.
+// flat.vert: per-triangle flat shading's vertex stage. The draw has no vertex buffers; its
+// index list, written by the pre-pass (flatlight.comp), names vertex t for triangle t's first
+// corner and vertex count + v for the mesh's vertex v as a second or third corner
+// (meshVertex in flatjob.glsl), so a shared corner is shaded once and the triangles the pass
+// skipped shade nothing. Each vertex pulls its position from the draw's FlatJob exactly as
+// the pre-pass did, and vertex t hands the fragment stage triangle t's record (flat.glsl) as
+// a flat varying. The record is not read by gl_PrimitiveID: on llvmpipe a fragment shader
+// that reads it makes every draw go through a primitive assembler that de-indexes the mesh on
+// the CPU (docs/performance.md). gl_Position is computed exactly as the pre-pass computes it
+// for its culling.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "uniforms.glsl"
@@ -18,8 +20,8 @@ layout(location = 9) flat out uint vTriangle;   // the triangle's record
 
 void main() {
     const FlatJob j = jobs[draw.flatJob];
-    const uint t = uint(gl_VertexIndex) / 3u;
-    const uint v = cornerVertex(j, t, uint(gl_VertexIndex) - 3u * t);
+    const uint vertex = uint(gl_VertexIndex);
+    const uint v = meshVertex(j, vertex);
     // Texture coordinates only where the fragment stage samples (on constants).
     vec2 uv = vec2(0.0);
     const bool sampled = SC_TEXTURE || (SC_MAPS & LANTERN_MAP_EMISSIVE) != 0u;
@@ -31,6 +33,6 @@ void main() {
     vTexcoord = uv;
     vTexcoordCentre = uv;
     vEyePosition = eye.xyz;
-    vTriangle = j.flatBase + t;
+    vTriangle = j.flatBase + vertex;  // read only where the vertex provokes (vertex < count)
     gl_Position = frame.clipFromView * eye;
 }

@@ -11,6 +11,7 @@
 #include "lighting.glsl"
 #define LANTERN_FLAT_ACCESS writeonly
 #include "flat.glsl"
+#define LANTERN_FLAT_INDEX_WRITER
 #include "flatjob.glsl"
 #include "guard.glsl"
 
@@ -79,7 +80,16 @@ void main() {
         p[c] = position(j, v[c]);
         clip[c] = frame.clipFromView * (draw.viewFromModel * vec4(p[c], 1.0));
     }
-    if (outsideView(clip[0], clip[1], clip[2]) || certainlyBack(j, clip[0], clip[1], clip[2])) return;
+    // The draw's index list (flatjob.glsl): a skipped triangle draws nothing and makes no
+    // vertex of it shaded.
+    const uint list = 3u * (j.flatBase + t);
+    if (outsideView(clip[0], clip[1], clip[2]) || certainlyBack(j, clip[0], clip[1], clip[2])) {
+        flatIndices[list] = flatIndices[list + 1u] = flatIndices[list + 2u] = j.count;
+        return;
+    }
+    flatIndices[list] = t;
+    flatIndices[list + 1u] = j.count + v[1];
+    flatIndices[list + 2u] = j.count + v[2];
 
     const vec3 middle = (p[0] + p[1] + p[2]) / 3.0;
     const vec3 shadePoint = (draw.viewFromModel * vec4(middle, 1.0)).xyz;

@@ -35,11 +35,28 @@ struct FlatJob {
     vec4 viewport;     // xy: half the view's size in pixels
     uint texcoords;    // words into geometry (uv per vertex); LANTERN_DEFORM_NONE: zero
 };
+#ifdef LANTERN_FLAT_INDEX_WRITER
+layout(std430, set = LANTERN_SET_FLAT, binding = LANTERN_BINDING_FLAT_INDICES) writeonly buffer FlatIndices {
+    uint flatIndices[];
+};
+#endif
 layout(std430, set = LANTERN_SET_FLAT, binding = LANTERN_BINDING_FLAT_JOBS) readonly buffer FlatJobs {
     FlatJob jobs[];
 };
 
 // The vertex at corner c (0..2) of triangle t.
+// The draw's vertices (flat.vert): vertex t < count is triangle t's first corner, whose
+// outputs the triangle takes (Vulkan's first vertex provokes); vertex count + v is the mesh's
+// vertex v, shared by every triangle that has it as a second or third corner. The pass writes
+// triangle t's indices (t, count + v1, count + v2), the same corners in the same order as the
+// mesh's, so the rasteriser sees the same triangles; one it skips becomes (count, count,
+// count), which draws nothing and leaves its corners unshaded.
+uint meshVertex(FlatJob j, uint vertex) {
+    return vertex < j.count ? (j.indices == LANTERN_DEFORM_NONE ? 3u * vertex
+                                                                : geometry.words[j.indices + 3u * vertex])
+                            : vertex - j.count;
+}
+
 uint cornerVertex(FlatJob j, uint t, uint c) {
     return j.indices == LANTERN_DEFORM_NONE ? 3u * t + c : geometry.words[j.indices + 3u * t + c];
 }

@@ -33,6 +33,7 @@
 #define LANTERN_BINDING_FLAT_GEOMETRY 0  // buffer: the scene's geometry (positions, colours, indices)
 #define LANTERN_BINDING_FLAT_DEFORMED 1  // buffer: this frame's deformed streams
 #define LANTERN_BINDING_FLAT_JOBS 2      // buffer: one FlatJob per flat triangle draw
+#define LANTERN_BINDING_FLAT_INDICES 3   // buffer: the draws' index lists, written by the pass
 #define LANTERN_FLAT_GROUP 64            // invocations (triangles) per workgroup
 #define LANTERN_FLAT_CULL_BACK 1u        // FlatJob.cull: the draw culls back faces
 #define LANTERN_FLAT_FRONT_CLOCKWISE 2u  // FlatJob.cull: clockwise triangles are front

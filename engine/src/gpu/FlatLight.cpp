@@ -73,8 +73,8 @@ Result<std::unique_ptr<FlatLighter>> FlatLighter::create(Context& ctx, Pipelines
     return f;
 }
 
-std::uint32_t FlatLighter::vertexCount(const PrimitiveBuffers& gp) {
-    return std::uint32_t(3u * triangles(gp));
+std::uint32_t FlatLighter::triangleCount(const PrimitiveBuffers& gp) {
+    return std::uint32_t(triangles(gp));
 }
 
 bool FlatLighter::available(const Context& ctx, const SceneBuffers& scene, const DrawList& list) {
@@ -118,6 +118,7 @@ Result<void> FlatLighter::prepare(FlatSlot& slot, const DrawList& list, const Sc
                                   const DeformSlot* deform, bool available) {
     slot.dispatches.clear();
     slot.drawJobs.clear();
+    slot.firstRecords.clear();
     slot.triangles = 0;
     std::vector<FlatJob> jobs;
     std::uint64_t vectors = 0, count = 0;
@@ -147,6 +148,7 @@ Result<void> FlatLighter::prepare(FlatSlot& slot, const DrawList& list, const Sc
             if (!p) return std::move(p).error();
             slot.dispatches.push_back({std::uint32_t(jobs.size()), vi,
                                        (job.count + LANTERN_FLAT_GROUP - 1) / LANTERN_FLAT_GROUP, *p});
+            slot.firstRecords.push_back(job.flatBase);
             jobs.push_back(job);
         }
     if (jobs.empty()) return {};
@@ -159,6 +161,10 @@ Result<void> FlatLighter::prepare(FlatSlot& slot, const DrawList& list, const Sc
     LANTERN_TRY(ensureSize(m_ctx, slot.records, slot.normalOffset + slot.normalBytes,
                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::DeviceLocal,
                            "flat per-triangle records"));
+    // Three indices per triangle at three times its record (the gaps between draws unused).
+    LANTERN_TRY(ensureSize(m_ctx, slot.indices, std::max<VkDeviceSize>(count * 12, 12),
+                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
+                           MemoryUsage::DeviceLocal, "flat per-triangle index lists"));
     const VkDeviceSize jobBytes = jobs.size() * sizeof(FlatJob);
     LANTERN_TRY(ensureSize(m_ctx, slot.jobs, jobBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                            MemoryUsage::Upload, "flat per-triangle jobs"));
@@ -172,12 +178,13 @@ Result<void> FlatLighter::prepare(FlatSlot& slot, const DrawList& list, const Sc
     writeBufferDescriptors(m_ctx, slot.set,
                            {{LANTERN_BINDING_FLAT_GEOMETRY, kStorage, {scene.geometry(), 0, VK_WHOLE_SIZE}},
                             {LANTERN_BINDING_FLAT_DEFORMED, kStorage, {moved, 0, VK_WHOLE_SIZE}},
-                            {LANTERN_BINDING_FLAT_JOBS, kStorage, {slot.jobs.get(), 0, VK_WHOLE_SIZE}}});
+                            {LANTERN_BINDING_FLAT_JOBS, kStorage, {slot.jobs.get(), 0, VK_WHOLE_SIZE}},
+                            {LANTERN_BINDING_FLAT_INDICES, kStorage, {slot.indices.get(), 0, VK_WHOLE_SIZE}}});
     return {};
 }
 
 Result<void> FlatLighter::ensureDescriptorSet(FlatSlot& slot) {
-    return ensureStorageSet(m_ctx, m_pipelines.flatSetLayout(), 3, slot.pool, slot.set);
+    return ensureStorageSet(m_ctx, m_pipelines.flatSetLayout(), 4, slot.pool, slot.set);
 }
 
 void FlatLighter::record(VkCommandBuffer cmd, const FlatSlot& slot, VkDescriptorSet frameSet,
@@ -185,7 +192,8 @@ void FlatLighter::record(VkCommandBuffer cmd, const FlatSlot& slot, VkDescriptor
                          const std::vector<VkDeviceSize>& lightOffsets) const {
     // The deformed positions written before, and the previous frame's fragment reads of this
     // slot's records, come first.
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT |
+                           VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                   VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                   VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m_layout.get(), LANTERN_SET_FLAT,
@@ -208,11 +216,12 @@ void FlatLighter::record(VkCommandBuffer cmd, const FlatSlot& slot, VkDescriptor
                            sizeof(std::uint32_t), &d.job);
         if (d.groups > 0) vkCmdDispatch(cmd, d.groups, 1, 1);
     }
-    // The draws' vertex stage reads the deformed positions (written by the deformation pass
-    // before), their fragment stage the records.
+    // The draws read the index lists, their vertex stage the deformed positions (written by
+    // the deformation pass before), their fragment stage the records.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                  VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                  VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+                  VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                  VK_ACCESS_2_INDEX_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
 }
 
 } // namespace lantern::gpu

@@ -35,6 +35,7 @@ inline constexpr std::uint32_t kNoFlatJob = ~0u;
 struct FlatSlot {
     Buffer jobs;     ///< one FlatJob per flat triangle draw (host-written)
     Buffer records;  ///< the triangles' records (flat.glsl), then their normals
+    Buffer indices;  ///< the draws' index lists, three per triangle at 3 x its record (flat.vert)
     VkDeviceSize recordBytes = 0, normalOffset = 0, normalBytes = 0;
     UniqueDescriptorPool pool;
     VkDescriptorSet set = VK_NULL_HANDLE;
@@ -45,6 +46,7 @@ struct FlatSlot {
     std::vector<Dispatch> dispatches;
     /// Per draw, in list order across the views: its job (DrawBlock::flatJob), or kNoFlatJob.
     std::vector<std::uint32_t> drawJobs;
+    std::vector<std::uint32_t> firstRecords;  ///< per job: its first triangle record (FlatJob::flatBase)
     std::uint64_t triangles = 0;  ///< triangles given to the pass this frame
     bool any() const { return !dispatches.empty(); }
 };
@@ -56,8 +58,9 @@ public:
     /// Whether this frame's flat triangle draws of `scene` may be lit per triangle: the
     /// geometry and the frame's records each fit one storage-buffer binding.
     static bool available(const Context& ctx, const SceneBuffers& scene, const DrawList& list);
-    /// The vertices of a draw lit per triangle (its draw is non-indexed, three per triangle).
-    static std::uint32_t vertexCount(const PrimitiveBuffers& gp);
+    /// The triangles of a draw lit per triangle; its indexed draw takes three indices each
+    /// from FlatSlot::indices at three times its first record.
+    static std::uint32_t triangleCount(const PrimitiveBuffers& gp);
     /// Whether draw `key` is lit per triangle in a frame where the pass is `available`.
     static bool perTriangle(const PipelineKey& key, bool available) {
         return available && key.program == frame::Program::Flat &&

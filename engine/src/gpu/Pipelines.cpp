@@ -123,7 +123,9 @@ Result<Pipelines> Pipelines::create(Context& ctx) {
     auto flatLayout = makeSetLayout(
         ctx, {{LANTERN_BINDING_FLAT_GEOMETRY, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, pulled, nullptr},
               {LANTERN_BINDING_FLAT_DEFORMED, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, pulled, nullptr},
-              {LANTERN_BINDING_FLAT_JOBS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, pulled, nullptr}});
+              {LANTERN_BINDING_FLAT_JOBS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, pulled, nullptr},
+              {LANTERN_BINDING_FLAT_INDICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+               VK_SHADER_STAGE_COMPUTE_BIT, nullptr}});
     if (!flatLayout) return std::move(flatLayout).error();
     p.m_flatLayout = std::move(*flatLayout);
 

@@ -26,7 +26,7 @@ struct FrameRecorder {
     const FrameRing::ArenaLayout& arena;
 
     void beginAttachments() const;
-    void bindStreams(const DrawCommand& d, bool perTriangle) const;
+    void bindStreams(const DrawCommand& d, std::uint32_t flatJob) const;
     void drawViews(const std::vector<VkPipeline>& pipelines) const;
     void pass(const std::vector<VkRenderingAttachmentInfo>& colors, const Image& depthImage,
               const std::vector<VkPipeline>& pipelines) const;
@@ -66,13 +66,15 @@ void FrameRecorder::beginAttachments() const {
 }
 
 // The primitive's streams, one binding per attribute location; absent colours and texture
-// coordinates read a stride-0 default (white, zero). `perTriangle`: a flat draw lit by the
-// per-triangle pass, which binds no streams: three vertices per triangle, each pulling its
-// corner from the draw's job (flat.vert).
-void FrameRecorder::bindStreams(const DrawCommand& d, bool perTriangle) const {
+// coordinates read a stride-0 default (white, zero). `flatJob`: a flat draw lit by the
+// per-triangle pass, which binds no streams: its index list, written by the pass at three
+// times the draw's first record, names vertices whose corners flat.vert pulls from the job.
+void FrameRecorder::bindStreams(const DrawCommand& d, std::uint32_t flatJob) const {
     const PrimitiveBuffers& gp = scene.primitive(d.mesh, d.primitive);
-    if (perTriangle) {
-        vkCmdDraw(cmd, FlatLighter::vertexCount(gp), 1, 0, 0);
+    if (flatJob != kNoFlatJob) {
+        vkCmdBindIndexBuffer(cmd, slot.flat.indices.get(), 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(cmd, 3u * FlatLighter::triangleCount(gp), 1,
+                         3u * slot.flat.firstRecords[flatJob], 0, 0);
         return;
     }
     const VkBuffer geometry = scene.geometry();
@@ -172,7 +174,7 @@ void FrameRecorder::drawViews(const std::vector<VkPipeline>& pipelines) const {
             if (flatJob != kNoFlatJob) block.flatJob = flatJob;
             vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
                                0, sizeof(DrawBlock), &block);
-            bindStreams(d, flatJob != kNoFlatJob);
+            bindStreams(d, flatJob);
         }
         // The display overlays never meet the AOV pass (they refuse AOVs).
         if (slot.overlays.any())
