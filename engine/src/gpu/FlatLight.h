@@ -1,10 +1,13 @@
 // FlatLight.h: flat shading lit once per triangle. Before a frame's draws, one compute dispatch
 // per flat triangle draw (shaders/flatlight.comp) lights each triangle the rasteriser may draw
 // once, at its centroid with its face normal, and writes its colour into the frame slot's
-// record buffer; the draw then renders three vertices per triangle without vertex buffers: its
-// vertex stage (shaders/flat.vert) pulls each corner from the job's index and position words
-// as the pass did and passes the triangle's record index to the fragment stage as a flat
-// varying. (Not gl_PrimitiveID: on llvmpipe a fragment shader reading it sends the draw through
+// record buffer, and the draw's index list: triangle t as vertices (t, count + v1, count + v2),
+// a skipped one as (count, count, count). The draw is indexed, without vertex buffers: its
+// vertex stage (shaders/flat.vert) maps a vertex back to its mesh corner (vertex t is triangle
+// t's first corner, the one that provokes; count + v is mesh vertex v), pulls it from the
+// job's index and position words as the pass did, and vertex t passes triangle t's record
+// index to the fragment stage as a flat varying. A shared corner is shaded once, and the
+// triangles the pass skipped shade no vertex. (Not gl_PrimitiveID: on llvmpipe a fragment shader reading it sends the draw through
 // a primitive assembler that de-indexes the mesh on the CPU and reallocates per primitive;
 // docs/performance.md.) Gouraud lights every vertex, the per-corner path three
 // corners per triangle; this pass lights only the triangles that face the camera inside the
