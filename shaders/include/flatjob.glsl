@@ -45,6 +45,11 @@ layout(std430, set = LANTERN_SET_FLAT, binding = LANTERN_BINDING_FLAT_JOBS) read
 };
 
 // The vertex at corner c (0..2) of triangle t.
+
+uint cornerVertex(FlatJob j, uint t, uint c) {
+    return j.indices == LANTERN_DEFORM_NONE ? 3u * t + c : geometry.words[j.indices + 3u * t + c];
+}
+
 // The draw's vertices (flat.vert): vertex t < count is triangle t's first corner, whose
 // outputs the triangle takes (Vulkan's first vertex provokes); vertex count + v is the mesh's
 // vertex v, shared by every triangle that has it as a second or third corner. The pass writes
@@ -52,13 +57,7 @@ layout(std430, set = LANTERN_SET_FLAT, binding = LANTERN_BINDING_FLAT_JOBS) read
 // mesh's, so the rasteriser sees the same triangles; one it skips becomes (count, count,
 // count), which draws nothing and leaves its corners unshaded.
 uint meshVertex(FlatJob j, uint vertex) {
-    return vertex < j.count ? (j.indices == LANTERN_DEFORM_NONE ? 3u * vertex
-                                                                : geometry.words[j.indices + 3u * vertex])
-                            : vertex - j.count;
-}
-
-uint cornerVertex(FlatJob j, uint t, uint c) {
-    return j.indices == LANTERN_DEFORM_NONE ? 3u * t + c : geometry.words[j.indices + 3u * t + c];
+    return vertex < j.count ? cornerVertex(j, vertex, 0u) : vertex - j.count;
 }
 
 vec3 position(FlatJob j, uint v) {

@@ -7,9 +7,9 @@
 // t's first corner, the one that provokes; count + v is mesh vertex v), pulls it from the
 // job's index and position words as the pass did, and vertex t passes triangle t's record
 // index to the fragment stage as a flat varying. A shared corner is shaded once, and the
-// triangles the pass skipped shade no vertex. (Not gl_PrimitiveID: on llvmpipe a fragment shader reading it sends the draw through
-// a primitive assembler that de-indexes the mesh on the CPU and reallocates per primitive;
-// docs/performance.md.) Gouraud lights every vertex, the per-corner path three
+// triangles the pass skipped shade no vertex. (Not gl_PrimitiveID: on llvmpipe a fragment
+// shader reading it sends the draw through a primitive assembler that de-indexes the mesh on
+// the CPU and reallocates per primitive; docs/performance.md.) Gouraud lights every vertex, the per-corner path three
 // corners per triangle; this pass lights only the triangles that face the camera inside the
 // view, on every core the device has. Taken where the scene's geometry fits one storage-buffer
 // binding; otherwise flat draws keep the per-corner streams (gpu/SceneBuffers.cpp). Points and
