@@ -53,6 +53,9 @@
 #define LANTERN_OUT_ID 2             // AOV variants: draw index + 1, primitive id
 #define LANTERN_OUT_SURFACE 3        // AOV variants: float bits of TEXCOORD_0 (u, v), range, 0
 #define LANTERN_OUT_COUNT_AOV 4
+// The AOV background: the depth (normal-depth .w) and range (surface .z) of a pixel that no
+// surface covers, as float bits: FLT_MAX.
+#define LANTERN_FLT_MAX_BITS 0x7F7FFFFFu
 
 // Specialisation constants: the features a pipeline variant compiles in.
 #define LANTERN_SC_LIGHT_TYPES 0     // bit mask of LANTERN_LIGHT_BIT_*

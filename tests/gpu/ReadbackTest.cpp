@@ -2,7 +2,7 @@
 // properties allow (gpu/ReadbackPath.h), and a frame read in place is bit-identical to the
 // same frame staged through a buffer (LANTERN_TEST_READBACK=staged), with multisampling,
 // AOVs, the probe's ids, odd sizes (a linear image's rows may be padded) and a sequence with
-// two frames in flight.
+// two frames in flight. Clearing by drawing is compared with the attachments' clear the same way.
 #include "TestSupport.h"
 
 #include "gpu/Context.h"
@@ -32,8 +32,11 @@ struct LoggedRenderer {
     std::vector<std::string> lines;
     std::optional<Renderer> renderer;
 
-    explicit LoggedRenderer(bool staged) {
-        if (staged) ::setenv("LANTERN_TEST_READBACK", "staged", 1);
+    explicit LoggedRenderer(bool staged)
+        : LoggedRenderer("LANTERN_TEST_READBACK", staged ? "staged" : nullptr) {}
+    // Made with the test switch `variable` set to `value` (null: unset).
+    LoggedRenderer(const char* variable, const char* value) {
+        if (value) ::setenv(variable, value, 1);
         RendererDesc desc;
         desc.validation = true;
         desc.synchronizationValidation = true;
@@ -43,7 +46,7 @@ struct LoggedRenderer {
         };
         auto r = Renderer::create(desc);
         if (r) renderer.emplace(std::move(*r));
-        ::unsetenv("LANTERN_TEST_READBACK");
+        ::unsetenv(variable);
     }
     // The log line that names how `plane` of a width x height target is read back.
     std::string choice(const std::string& plane, int w, int h) {
@@ -215,6 +218,42 @@ TEST_F(Readback, InPlaceIsBitIdenticalToStagedWithMsaaAndAovs) {
     compareFrames(*inPlace, *staged, o);
     o.aovs = {};
     compareFrames(*inPlace, *staged, o);
+}
+
+// Clearing by drawing one triangle over the picture (what a CPU device prefers,
+// gpu/ClearDraw.h) and clearing with LOAD_OP_CLEAR give the same bits in every plane: a
+// coloured and a transparent background, with and without MSAA and AOVs (the MSAA AOV pass is
+// cleared on its own), and with several views in one picture.
+TEST(ClearByDrawing, IsBitIdenticalToTheAttachmentsClear) {
+    LANTERN_SKIP_IF_MISSING(lantern::test::missingVulkanDevice());
+    LoggedRenderer drawn("LANTERN_TEST_CLEAR", "draw"), loaded("LANTERN_TEST_CLEAR", "load");
+    ASSERT_TRUE(drawn.renderer && loaded.renderer);
+    RenderOptions o;
+    o.width = 67;
+    o.height = 45;
+    o.background = {0.25f, 0.5f, 0.75f, 0.625f};
+    compareFrames(drawn, loaded, o);
+    auto scene = builtinScene("spheres");
+    ASSERT_TRUE(scene);
+    auto x = drawn.renderer->render(*scene, o, 0.0);
+    ASSERT_TRUE(x);
+    EXPECT_EQ(x->rgba[0], 0.25f);  // a corner pixel is the background, exactly
+    EXPECT_EQ(x->rgba[3], 0.625f);
+    o.aovs.depth = o.aovs.normal = true;
+    compareFrames(drawn, loaded, o);
+    o.msaa = 4;
+    compareFrames(drawn, loaded, o);
+    o.aovs.range = o.aovs.uv = o.aovs.instance = true;
+    compareFrames(drawn, loaded, o);
+    o.msaa = 1;
+    compareFrames(drawn, loaded, o);
+    o.background = {0.0f, 0.0f, 0.0f, 0.0f};
+    o.aovs = {};
+    compareFrames(drawn, loaded, o);
+    o.views = {View{0, 0, 30, 45, {}}, View{30, 10, 37, 30, {}}};  // a strip between them
+    compareFrames(drawn, loaded, o);
+    EXPECT_EQ(drawn.renderer->validationMessageCount(), 0u);
+    EXPECT_EQ(loaded.renderer->validationMessageCount(), 0u);
 }
 
 // Two frames in flight: frame k+1 renders into the other slot's images while frame k is read;

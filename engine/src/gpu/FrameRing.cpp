@@ -65,7 +65,12 @@ Result<std::unique_ptr<FrameRing>> FrameRing::create(Context& ctx, Pipelines& pi
     vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice(), &nq, families.data());
     ring->m_timestamps = families[ctx.queueFamily()].timestampValidBits > 0 &&
                          ctx.properties().limits.timestampPeriod > 0;
+    ring->m_clearByDraw = ClearDraw::preferred(ctx);
 #ifdef LANTERN_TESTING_HOOKS
+    // LANTERN_TEST_CLEAR=draw or load (tests only): clear by drawing, or with LOAD_OP_CLEAR,
+    // whatever the device prefers, so that the two can be compared on one device.
+    if (const char* env = std::getenv("LANTERN_TEST_CLEAR"))
+        ring->m_clearByDraw = std::strcmp(env, "draw") == 0;
     // LANTERN_TEST_READBACK=staged (tests only), read when the renderer is made: every plane
     // staged, whatever the device allows, so that the two paths can be compared on one device.
     if (const char* env = std::getenv("LANTERN_TEST_READBACK"))
@@ -315,6 +320,13 @@ Result<std::uint32_t> FrameRing::submit(const DrawList& list,
     bool guardedDraws = false;
     LANTERN_TRY(preparePipelines(list, *scene, flatPerTriangle, pipelines, aovPipelines,
                                  guardedDraws));
+    slot.clear = {};
+    if (m_clearByDraw) {
+        if (!m_clearDraw) m_clearDraw = std::make_unique<ClearDraw>(m_ctx, m_pipelines);
+        auto clear = m_clearDraw->prepare(slot.target);
+        if (!clear) return std::move(clear).error();
+        slot.clear = *clear;
+    }
     slot.overlays = {};
     if (list.overlays.any()) {
         if (!m_overlays) m_overlays = std::make_unique<OverlayPipelines>(m_ctx, m_pipelines);

@@ -6,6 +6,7 @@
 // (gpu/Readback.cpp).
 #pragma once
 
+#include "gpu/ClearDraw.h"
 #include "gpu/Context.h"
 #include "gpu/Deform.h"
 #include "gpu/Device.h"
@@ -67,6 +68,7 @@ public:
         bool readback = true;
         std::size_t draws = 0;
         OverlayFrame overlays;  ///< this frame's display overlays
+        ClearFrame clear;       ///< the passes that clear by drawing (gpu/ClearDraw.h)
         DeformSlot deform;      ///< skinned and morphing streams (frames with deforms only)
         bool deforming = false; ///< this frame records the deformation pre-pass
         FlatSlot flat;          ///< flat triangles lit once per triangle (gpu/FlatLight.h)
@@ -99,10 +101,13 @@ private:
     std::unique_ptr<OverlayPipelines> m_overlays;  ///< made on first use
     std::unique_ptr<Deformer> m_deformer;          ///< made on first use
     std::unique_ptr<FlatLighter> m_flatLighter;    ///< made on first use
+    std::unique_ptr<ClearDraw> m_clearDraw;        ///< made on first use
     std::vector<Slot> m_slots;
     std::uint32_t m_next = 0;
     bool m_timestamps = false;
     bool m_inPlace = true;  ///< false: every plane staged (LANTERN_TEST_READBACK=staged)
+    /// Passes clear by drawing (ClearDraw::preferred; LANTERN_TEST_CLEAR=draw or load in tests).
+    bool m_clearByDraw = false;
     /// Shared with the views collected in place since the last submit (HostView::live); set
     /// false and replaced by the next submit and by the destructor.
     std::shared_ptr<std::atomic<bool>> m_viewsLive = std::make_shared<std::atomic<bool>>(true);

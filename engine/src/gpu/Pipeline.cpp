@@ -66,7 +66,7 @@ VkPipelineRasterizationStateCreateInfo rasterizationState(const GraphicsPipeline
 
 VkPipelineDepthStencilStateCreateInfo depthStencilState(const GraphicsPipelineDesc& d) {
     VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-    ds.depthTestEnable = d.depthFormat != VK_FORMAT_UNDEFINED ? VK_TRUE : VK_FALSE;
+    ds.depthTestEnable = d.depthTest && d.depthFormat != VK_FORMAT_UNDEFINED ? VK_TRUE : VK_FALSE;
     ds.depthWriteEnable = d.depthWrite ? VK_TRUE : VK_FALSE;
     ds.depthCompareOp = d.depthCompare;
     return ds;

@@ -31,6 +31,7 @@ struct GraphicsPipelineDesc {
     VkFormat depthFormat = VK_FORMAT_D32_SFLOAT;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
     bool blend = false;  ///< straight-alpha "over" on attachment 0, premultiplied result
+    bool depthTest = true;  ///< with a depth format: the depth test is on
     bool depthWrite = true;
     VkCompareOp depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL;
     bool provokingLast = false;  ///< VK_EXT_provoking_vertex: the last vertex (GL's rule)

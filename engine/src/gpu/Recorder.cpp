@@ -4,17 +4,12 @@
 // (or, for planes read in place, only the transition that hands them to the host).
 #include "gpu/FrameRing.h"
 
-#include <cfloat>
+#include "gpu/ClearDraw.h"
+
 #include <cstring>
 
 namespace lantern::gpu {
 namespace {
-
-std::uint32_t floatBits(float f) {
-    std::uint32_t u;
-    std::memcpy(&u, &f, 4);
-    return u;
-}
 
 struct FrameRecorder {
     VkCommandBuffer cmd;
@@ -29,7 +24,7 @@ struct FrameRecorder {
     void bindStreams(const DrawCommand& d, std::uint32_t flatJob) const;
     void drawViews(const std::vector<VkPipeline>& pipelines) const;
     void pass(const std::vector<VkRenderingAttachmentInfo>& colors, const Image& depthImage,
-              const std::vector<VkPipeline>& pipelines) const;
+              VkPipeline clear, const std::vector<VkPipeline>& pipelines) const;
     void copyOut(const Image& img, const Buffer& buf, bool readback) const;
 };
 
@@ -182,8 +177,11 @@ void FrameRecorder::drawViews(const std::vector<VkPipeline>& pipelines) const {
     }
 }
 
+// `clear`: the pipeline that clears the colour attachments by drawing (gpu/ClearDraw.h), which
+// are then not loaded; null: they clear themselves (LOAD_OP_CLEAR).
 void FrameRecorder::pass(const std::vector<VkRenderingAttachmentInfo>& colors,
-                         const Image& depthImage, const std::vector<VkPipeline>& pipelines) const {
+                         const Image& depthImage, VkPipeline clear,
+                         const std::vector<VkPipeline>& pipelines) const {
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depth.imageView = depthImage.view.get();
     depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
@@ -198,6 +196,9 @@ void FrameRecorder::pass(const std::vector<VkRenderingAttachmentInfo>& colors,
     ri.pColorAttachments = colors.data();
     ri.pDepthAttachment = &depth;
     vkCmdBeginRendering(cmd, &ri);
+    if (clear != VK_NULL_HANDLE)
+        ClearDraw::record(cmd, layout, clear, slot.target.width, slot.target.height,
+                          colors[LANTERN_OUT_COLOR].clearValue.color.float32);
     drawViews(pipelines);
     vkCmdEndRendering(cmd);
 }
@@ -228,11 +229,12 @@ void FrameRecorder::copyOut(const Image& img, const Buffer& buf, bool readback) 
                            &region);
 }
 
+// `drawn`: the pass clears it by drawing (gpu/ClearDraw.h), so its contents are not loaded.
 VkRenderingAttachmentInfo attachment(const Image& target, const Image* multisampled,
-                                     VkClearValue clear) {
+                                     VkClearValue clear, bool drawn) {
     VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    a.loadOp = drawn ? VK_ATTACHMENT_LOAD_OP_DONT_CARE : VK_ATTACHMENT_LOAD_OP_CLEAR;
     a.clearValue = clear;
     if (multisampled) {
         a.imageView = multisampled->view.get();
@@ -250,15 +252,17 @@ VkRenderingAttachmentInfo attachment(const Image& target, const Image* multisamp
 // The AOV attachments of one pass, after the colour: normal+depth, ids and, when the frame asks
 // for uv or range, the surface plane (otherwise the pass has one attachment fewer and the
 // shader's writes to that location are discarded).
-void aovAttachments(const Target& t, std::vector<VkRenderingAttachmentInfo>& colors) {
+// (clear.frag writes the same background when the pass clears by drawing.)
+void aovAttachments(const Target& t, bool drawn, std::vector<VkRenderingAttachmentInfo>& colors) {
     colors.resize(t.surface ? LANTERN_OUT_COUNT_AOV : LANTERN_OUT_SURFACE);
     VkClearValue normalDepthClear{};
-    normalDepthClear.color.uint32[3] = floatBits(FLT_MAX);  // background depth: the largest float
+    normalDepthClear.color.uint32[3] = LANTERN_FLT_MAX_BITS;  // background depth: the largest float
     VkClearValue surfaceClear{};
-    surfaceClear.color.uint32[2] = floatBits(FLT_MAX);  // background range; uv 0
-    colors[LANTERN_OUT_NORMAL_DEPTH] = attachment(t.normalDepth, nullptr, normalDepthClear);
-    colors[LANTERN_OUT_ID] = attachment(t.ids, nullptr, VkClearValue{});
-    if (t.surface) colors[LANTERN_OUT_SURFACE] = attachment(t.surfaceUvRange, nullptr, surfaceClear);
+    surfaceClear.color.uint32[2] = LANTERN_FLT_MAX_BITS;  // background range; uv 0
+    colors[LANTERN_OUT_NORMAL_DEPTH] = attachment(t.normalDepth, nullptr, normalDepthClear, drawn);
+    colors[LANTERN_OUT_ID] = attachment(t.ids, nullptr, VkClearValue{}, drawn);
+    if (t.surface)
+        colors[LANTERN_OUT_SURFACE] = attachment(t.surfaceUvRange, nullptr, surfaceClear, drawn);
 }
 
 } // namespace
@@ -282,16 +286,19 @@ void recordFrame(VkPipelineLayout layout, const OverlayPipelines* overlays,
     std::memcpy(colorClear.color.float32, &list.target.clear[0], 4 * sizeof(float));
     std::vector<VkRenderingAttachmentInfo> colors(
         t.aov && !t.multisampled() ? LANTERN_OUT_COUNT_AOV : 1);
-    colors[LANTERN_OUT_COLOR] = attachment(t.color, t.multisampled() ? &t.colorMsaa : nullptr, colorClear);
-    if (t.aov && !t.multisampled()) aovAttachments(t, colors);
-    r.pass(colors, t.depth, pipelines);
+    const bool drawn = slot.clear.scene != VK_NULL_HANDLE;
+    colors[LANTERN_OUT_COLOR] =
+        attachment(t.color, t.multisampled() ? &t.colorMsaa : nullptr, colorClear, drawn);
+    if (t.aov && !t.multisampled()) aovAttachments(t, drawn, colors);
+    r.pass(colors, t.depth, slot.clear.scene, pipelines);
     if (t.separateAovPass()) {
         // With MSAA the AOVs come from this single-sampled pass: each plane holds the surface
         // at the pixel centre, never a resolve of several samples.
+        const bool aovDrawn = slot.clear.aov != VK_NULL_HANDLE;
         std::vector<VkRenderingAttachmentInfo> aov(LANTERN_OUT_COUNT_AOV);
-        aov[LANTERN_OUT_COLOR] = attachment(t.aovColor, nullptr, colorClear);
-        aovAttachments(t, aov);
-        r.pass(aov, t.aovDepth, aovPipelines);
+        aov[LANTERN_OUT_COLOR] = attachment(t.aovColor, nullptr, colorClear, aovDrawn);
+        aovAttachments(t, aovDrawn, aov);
+        r.pass(aov, t.aovDepth, slot.clear.aov, aovPipelines);
     }
     if (slot.queries)
         vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, slot.queries, 1);

@@ -1,0 +1,81 @@
+// Clearing by drawing (gpu/ClearDraw.h): one pipeline per (sample count, colour attachments),
+// made on first use.
+#include "gpu/ClearDraw.h"
+
+#include "gpu/Pipeline.h"
+#include "gpu/Pipelines.h"
+
+#include "ShaderBlobs.h"
+
+namespace lantern::gpu {
+
+bool ClearDraw::preferred(const Context& ctx) {
+    return ctx.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+}
+
+Result<VkPipeline> ClearDraw::pipeline(std::uint32_t samples, std::uint32_t colorAttachments) {
+    const auto key = std::make_pair(samples, colorAttachments);
+    if (auto it = m_cache.find(key); it != m_cache.end()) return it->second.get();
+    using shaders::ShaderId;
+    auto vs = m_pipelines.shader(std::uint32_t(ShaderId::clear_vert));
+    if (!vs) return std::move(vs).error();
+    const bool aov = colorAttachments > 1;
+    auto fs = m_pipelines.shader(std::uint32_t(aov ? ShaderId::clear_aov_frag : ShaderId::clear_frag));
+    if (!fs) return std::move(fs).error();
+
+    GraphicsPipelineDesc d;
+    d.layout = m_pipelines.layout();
+    d.vertex = *vs;
+    d.fragment = *fs;
+    // The scene pipelines' attachments (gpu/Pipelines.cpp): colour, then the AOV planes.
+    d.colorFormats.assign(colorAttachments, kColorFormat);
+    if (aov) {
+        d.colorFormats[LANTERN_OUT_NORMAL_DEPTH] = kNormalDepthFormat;
+        d.colorFormats[LANTERN_OUT_ID] = kIdFormat;
+        if (colorAttachments > LANTERN_OUT_SURFACE) d.colorFormats[LANTERN_OUT_SURFACE] = kSurfaceFormat;
+    }
+    d.depthFormat = kDepthFormat;
+    d.depthTest = false;
+    d.depthWrite = false;
+    d.samples = VkSampleCountFlagBits(samples);
+    d.name = aov ? "clear with AOVs" : "clear";
+    auto p = createGraphicsPipeline(m_ctx, d);
+    if (!p) return std::move(p).error();
+    const VkPipeline handle = p->get();
+    m_cache.emplace(key, std::move(*p));
+    return handle;
+}
+
+Result<ClearFrame> ClearDraw::prepare(const Target& t) {
+    const std::uint32_t aovAttachments = t.surface ? LANTERN_OUT_COUNT_AOV : LANTERN_OUT_SURFACE;
+    ClearFrame f;
+    // As gpu/Recorder.cpp builds the passes: the AOV planes join the scene pass unless it is
+    // multisampled, when they have a single-sampled pass of their own.
+    auto scene = pipeline(t.samples, t.aov && !t.multisampled() ? aovAttachments : 1);
+    if (!scene) return std::move(scene).error();
+    f.scene = *scene;
+    if (t.separateAovPass()) {
+        auto aov = pipeline(1, aovAttachments);
+        if (!aov) return std::move(aov).error();
+        f.aov = *aov;
+    }
+    return f;
+}
+
+void ClearDraw::record(VkCommandBuffer cmd, VkPipelineLayout layout, VkPipeline pipeline,
+                       std::uint32_t width, std::uint32_t height, const float clear[4]) {
+    const VkViewport viewport{0.0f, 0.0f, float(width), float(height), 0.0f, 1.0f};
+    const VkRect2D scissor{{0, 0}, {width, height}};
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    vkCmdSetCullMode(cmd, VK_CULL_MODE_NONE);
+    vkCmdSetFrontFace(cmd, VK_FRONT_FACE_COUNTER_CLOCKWISE);
+    // clear.frag reads the colour as the push block's first 16 bytes; the range is pushed for
+    // both stages, as the layout declares it.
+    vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                       4 * sizeof(float), clear);
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+}
+
+} // namespace lantern::gpu
