@@ -73,7 +73,9 @@
 #define LANTERN_SC_AMBIENT_FOLLOWS_DIFFUSE 12
 #define LANTERN_SC_OPAQUE 13         // write alpha 1 (glTF OPAQUE and MASK)
 #define LANTERN_SC_MAPS 14           // bit mask of LANTERN_MAP_*: the material maps compiled in
-#define LANTERN_SC_COUNT 15
+#define LANTERN_SC_UNROLLED_LIGHTS 15  // 0: a loop over frame.lightCount; n: exactly n lights
+#define LANTERN_SC_LIGHT_KINDS 16    // with n lights unrolled: light i's kind in bits 4i..4i+3
+#define LANTERN_SC_COUNT 17
 
 // Material maps (MaterialData.params.y holds the material's, as a float).
 #define LANTERN_MAP_METALLIC_ROUGHNESS 1u
@@ -101,6 +103,12 @@
 // LightData.info.y
 #define LANTERN_FALLOFF_GL 0
 #define LANTERN_FALLOFF_GLTF 1
+// Unrolled lights (LANTERN_SC_UNROLLED_LIGHTS): a frame with at most this many lights is lit
+// by code with one copy of the light's terms per light, at a constant index, each for its
+// light's kind: type | falloff << 2 (4 bits a light in LANTERN_SC_LIGHT_KINDS).
+#define LANTERN_MAX_UNROLLED_LIGHTS 8
+#define LANTERN_LIGHT_KIND_BITS 4u
+#define LANTERN_LIGHT_KIND_ANY 0xFFFFFFFFu  // the loop: type and falloff read from the light
 
 // Numeric guards, shared by the shaders and the CPU reference so both take the same branch.
 // GL attenuation 1/(kc + kl d + kq d^2) is evaluated as 1/max(denominator, this): a light on

@@ -95,6 +95,70 @@ vec3 viewVector(vec3 V) {
     return v == vec3(0.0) ? vec3(0.0, 0.0, 1.0) : v;
 }
 
+// One light's terms of the sum, added to s, for a point at V with unit normal n, view
+// vector v, shininess and the material's specular colour. `kind` is the light's type and
+// falloff (type | falloff << 2) when the pipeline knows it, or LANTERN_LIGHT_KIND_ANY to read
+// them from the light; with a known kind the other kinds' code is removed.
+void addLight(inout LightSums s, LightData light, uint kind, vec3 V, vec3 n, vec3 v,
+              float shininess, vec3 specularM) {
+    bool known = kind != LANTERN_LIGHT_KIND_ANY;
+    uint type = known ? (kind & 3u) : light.info.x;
+    uint falloff = known ? (kind >> 2u) & 1u : light.info.y;
+    vec3 l;
+    float att = 1.0;
+    float spot = 1.0;
+    if (type == LANTERN_LIGHT_DIRECTIONAL) {
+        if ((SC_LIGHT_TYPES & LANTERN_LIGHT_BIT_DIRECTIONAL) == 0u) return;
+        l = light.position.xyz;
+    } else {
+        if ((SC_LIGHT_TYPES & (LANTERN_LIGHT_BIT_POINT | LANTERN_LIGHT_BIT_SPOT)) == 0u) return;
+        vec3 toLight = light.position.xyz - V;
+        float d = safeLength(toLight);
+        // A light exactly at the point shines along the normal (finite, documented).
+        l = d > 0.0 ? safeNormalize(toLight) : n;
+        if (SC_GL_ATTENUATION && falloff == LANTERN_FALLOFF_GL) {
+            vec4 k = light.attenuation;
+            // (kq d) d rather than kq (d d): kq = 0 with d^2 = inf must give 0, not NaN.
+            float denominator = k.x + k.y * d + (k.z * d) * d;
+            att = 1.0 / max(denominator, LANTERN_MIN_ATTENUATION_DENOMINATOR);
+        }
+        if (SC_GLTF_FALLOFF && falloff == LANTERN_FALLOFF_GLTF) {
+            float invRange = light.attenuation.w;
+            float window = 1.0;
+            if (invRange > 0.0) {
+                float q = d * invRange;
+                q = q * q;
+                window = clamp(1.0 - q * q, 0.0, 1.0);
+            }
+            att = window / max(d * d, LANTERN_MIN_GLTF_DISTANCE_SQUARED);
+        }
+        if (type == LANTERN_LIGHT_SPOT) {
+            if ((SC_LIGHT_TYPES & LANTERN_LIGHT_BIT_SPOT) == 0u) return;
+            vec3 axis = light.spotDirection.xyz;
+            if (SC_GL_SPOT && falloff == LANTERN_FALLOFF_GL)
+                spot = glSpotFactor(-l, axis, light.spotDirection.w, light.spot.x);
+            if (SC_GLTF_FALLOFF && falloff == LANTERN_FALLOFF_GLTF) {
+                float t = clamp((dot(-l, axis) - light.spot.y) * light.spot.z, 0.0, 1.0);
+                spot = t * t;
+            }
+        }
+    }
+    float k = att * spot;
+    float ndotl = dot(n, l);
+    s.ambient += k * light.ambient.rgb;
+    s.diffuse += (k * max(ndotl, 0.0)) * light.diffuse.rgb;
+    // f_i selects rather than multiplies, so a non-finite term on the dark side cannot leak.
+    if (SC_SPECULAR != LANTERN_SPECULAR_NONE && ndotl > 0.0) {
+        float spec = specularTerm(n, l, v, shininess);
+        s.emissiveSpecular += (k * spec) * (specularM * light.specular.rgb);
+    }
+}
+
+// Light i's kind when the lights are unrolled (LANTERN_SC_LIGHT_KINDS).
+uint unrolledKind(uint i) {
+    return (SC_LIGHT_KINDS >> (LANTERN_LIGHT_KIND_BITS * i)) & 0xFu;
+}
+
 // The sums of the equation at eye-space point V with unit normal n (zero normal: ambient and
 // emission only) for material side m (its specular, emission and shininess; ambient and
 // diffuse are applied by the caller).
@@ -111,59 +175,23 @@ LightSums evaluateLighting(vec3 V, vec3 n, MaterialSideData m) {
     s.diffuse = vec3(0.0);
     vec3 v = viewVector(V);
     float shininess = m.specular.w;
-
-    for (uint i = 0u; i < frame.lightCount; ++i) {
-        uint type = lights[i].info.x;
-        uint falloff = lights[i].info.y;
-        vec3 l;
-        float att = 1.0;
-        float spot = 1.0;
-        if (type == LANTERN_LIGHT_DIRECTIONAL) {
-            if ((SC_LIGHT_TYPES & LANTERN_LIGHT_BIT_DIRECTIONAL) == 0u) continue;
-            l = lights[i].position.xyz;
-        } else {
-            if ((SC_LIGHT_TYPES & (LANTERN_LIGHT_BIT_POINT | LANTERN_LIGHT_BIT_SPOT)) == 0u) continue;
-            vec3 toLight = lights[i].position.xyz - V;
-            float d = safeLength(toLight);
-            // A light exactly at the point shines along the normal (finite, documented).
-            l = d > 0.0 ? safeNormalize(toLight) : n;
-            if (SC_GL_ATTENUATION && falloff == LANTERN_FALLOFF_GL) {
-                vec4 k = lights[i].attenuation;
-                // (kq d) d rather than kq (d d): kq = 0 with d^2 = inf must give 0, not NaN.
-                float denominator = k.x + k.y * d + (k.z * d) * d;
-                att = 1.0 / max(denominator, LANTERN_MIN_ATTENUATION_DENOMINATOR);
-            }
-            if (SC_GLTF_FALLOFF && falloff == LANTERN_FALLOFF_GLTF) {
-                float invRange = lights[i].attenuation.w;
-                float window = 1.0;
-                if (invRange > 0.0) {
-                    float q = d * invRange;
-                    q = q * q;
-                    window = clamp(1.0 - q * q, 0.0, 1.0);
-                }
-                att = window / max(d * d, LANTERN_MIN_GLTF_DISTANCE_SQUARED);
-            }
-            if (type == LANTERN_LIGHT_SPOT) {
-                if ((SC_LIGHT_TYPES & LANTERN_LIGHT_BIT_SPOT) == 0u) continue;
-                vec3 axis = lights[i].spotDirection.xyz;
-                if (SC_GL_SPOT && falloff == LANTERN_FALLOFF_GL)
-                    spot = glSpotFactor(-l, axis, lights[i].spotDirection.w, lights[i].spot.x);
-                if (SC_GLTF_FALLOFF && falloff == LANTERN_FALLOFF_GLTF) {
-                    float t = clamp((dot(-l, axis) - lights[i].spot.y) * lights[i].spot.z, 0.0, 1.0);
-                    spot = t * t;
-                }
-            }
-        }
-        float k = att * spot;
-        float ndotl = dot(n, l);
-        s.ambient += k * lights[i].ambient.rgb;
-        s.diffuse += (k * max(ndotl, 0.0)) * lights[i].diffuse.rgb;
-        // f_i selects rather than multiplies, so a non-finite term on the dark side cannot leak.
-        if (SC_SPECULAR != LANTERN_SPECULAR_NONE && ndotl > 0.0) {
-            float spec = specularTerm(n, l, v, shininess);
-            s.emissiveSpecular += (k * spec) * (m.specular.rgb * lights[i].specular.rgb);
-        }
+    vec3 specularM = m.specular.rgb;
+    if (SC_UNROLLED_LIGHTS == 0u) {
+        for (uint i = 0u; i < frame.lightCount; ++i)
+            addLight(s, lights[i], LANTERN_LIGHT_KIND_ANY, V, n, v, shininess, specularM);
+        return s;
     }
+    // Unrolled (at most LANTERN_MAX_UNROLLED_LIGHTS lights): each light is read at a constant
+    // index outside any branch, which llvmpipe does once for all lanes, where the loop reads
+    // every lane's copy under the loop's mask (docs/performance.md).
+    if (SC_UNROLLED_LIGHTS > 0u) addLight(s, lights[0], unrolledKind(0u), V, n, v, shininess, specularM);
+    if (SC_UNROLLED_LIGHTS > 1u) addLight(s, lights[1], unrolledKind(1u), V, n, v, shininess, specularM);
+    if (SC_UNROLLED_LIGHTS > 2u) addLight(s, lights[2], unrolledKind(2u), V, n, v, shininess, specularM);
+    if (SC_UNROLLED_LIGHTS > 3u) addLight(s, lights[3], unrolledKind(3u), V, n, v, shininess, specularM);
+    if (SC_UNROLLED_LIGHTS > 4u) addLight(s, lights[4], unrolledKind(4u), V, n, v, shininess, specularM);
+    if (SC_UNROLLED_LIGHTS > 5u) addLight(s, lights[5], unrolledKind(5u), V, n, v, shininess, specularM);
+    if (SC_UNROLLED_LIGHTS > 6u) addLight(s, lights[6], unrolledKind(6u), V, n, v, shininess, specularM);
+    if (SC_UNROLLED_LIGHTS > 7u) addLight(s, lights[7], unrolledKind(7u), V, n, v, shininess, specularM);
     return s;
 }
 

@@ -63,7 +63,8 @@ TEST_F(LightingVariants, OneDirectionalLightWithoutSpecularCompilesNothingElse) 
          {"point", "spot", "attenuation", "falloff", "specular:blinn", "specular:phong"})
         EXPECT_FALSE(anyContains(r->features, absent)) << absent << "\n" << all;
     ASSERT_EQ(r->variants.size(), 1u) << all;
-    EXPECT_NE(r->variants[0].find("phong: lights=directional specular=none"), std::string::npos)
+    EXPECT_NE(r->variants[0].find("phong: lights=directional unrolled=1 specular=none"),
+              std::string::npos)
         << all;
     for (const char* absent :
          {"attenuation", "gl-spot", "gltf-falloff", "point", "spot ", "vertex-color", "texture",
@@ -78,6 +79,8 @@ TEST_F(LightingVariants, OneDirectionalLightWithoutSpecularCompilesNothingElse) 
     EXPECT_EQ(sc[LANTERN_SC_GL_SPOT], 0u);
     EXPECT_EQ(sc[LANTERN_SC_GLTF_FALLOFF], 0u);
     EXPECT_EQ(sc[LANTERN_SC_SPECULAR], std::uint32_t(LANTERN_SPECULAR_NONE));
+    EXPECT_EQ(sc[LANTERN_SC_UNROLLED_LIGHTS], 1u);
+    EXPECT_EQ(sc[LANTERN_SC_LIGHT_KINDS], std::uint32_t(LANTERN_LIGHT_DIRECTIONAL));
     // And the specialised pipeline renders the equation.
     const test::ReferenceComparison c = test::compareWithReference(device(), scene, o);
     EXPECT_LE(c.worst, 1.0 / 255.0) << c.describe("variant_minimal");
@@ -114,6 +117,106 @@ TEST_F(LightingVariants, AllFeaturesVariantDrawsTheSamePicture) {
     ASSERT_TRUE(full);
     for (std::size_t i = 0; i < full->rgba.size(); ++i)
         ASSERT_NEAR(full->rgba[i], minimal->rgba[i], 1e-6) << i;
+}
+
+// `scene` with `count` - 1 more point lights (GL falloff), for the unrolled-light tests.
+Scene withPointLights(LitScene s, int count) {
+    for (int i = 1; i < count; ++i) {
+        Light l = test::makeLight(LightType::Point);
+        l.diffuse = l.specular = glm::dvec3(0.5 / count);
+        s.lights.push_back({l, test::translation({0.5 * i - 2.0, 1.5, 3.0})});
+    }
+    return s.build();
+}
+
+// Up to LANTERN_MAX_UNROLLED_LIGHTS lights are unrolled, each compiled for its own kind (type
+// and falloff, as the light's packed LightData says); more lights, and the all-features
+// variant, loop over frame.lightCount.
+TEST_F(LightingVariants, AFewLightsAreUnrolledEachForItsKind) {
+    const Scene costly = everyCostlyFeature();  // a GL spot, then a glTF point light
+    RenderOptions o = test::optionsFor(48, 48, ShadingMode::Gouraud);
+    auto plan = render::planFrame(costly, o, 0.0);
+    ASSERT_TRUE(plan) << plan.error().describe();
+    const gpu::ViewCommands& view = plan->list.views[0];
+    ASSERT_EQ(view.lights.size(), 2u);
+    const auto& sc = view.draws[0].pipeline.constants;
+    EXPECT_EQ(sc[LANTERN_SC_UNROLLED_LIGHTS], 2u);
+    EXPECT_EQ(sc[LANTERN_SC_LIGHT_KINDS],
+              std::uint32_t(LANTERN_LIGHT_SPOT | LANTERN_FALLOFF_GL << 2 |
+                            (LANTERN_LIGHT_POINT | LANTERN_FALLOFF_GLTF << 2) << 4));
+    for (std::size_t i = 0; i < view.lights.size(); ++i)
+        EXPECT_EQ((sc[LANTERN_SC_LIGHT_KINDS] >> (4 * i)) & 0xFu,
+                  view.lights[i].info.x | view.lights[i].info.y << 2)
+            << "light " << i << ": the kind compiled in is not the light's";
+
+    LitScene base;
+    base.objects.push_back({makeSphere(1.0, 16, 8), Material{}, glm::dmat4(1.0)});
+    base.lights.push_back(
+        {test::makeLight(LightType::Directional), test::aimed({0, 0, 0}, {1, -1, -1})});
+    for (const int count : {LANTERN_MAX_UNROLLED_LIGHTS, LANTERN_MAX_UNROLLED_LIGHTS + 1}) {
+        auto p = render::planFrame(withPointLights(base, count), o, 0.0);
+        ASSERT_TRUE(p) << p.error().describe();
+        EXPECT_EQ(p->list.views[0].draws[0].pipeline.constants[LANTERN_SC_UNROLLED_LIGHTS],
+                  count <= LANTERN_MAX_UNROLLED_LIGHTS ? std::uint32_t(count) : 0u)
+            << count << " lights";
+    }
+    o.features = FeatureMode::AllFeatures;
+    auto all = render::planFrame(costly, o, 0.0);
+    ASSERT_TRUE(all);
+    EXPECT_EQ(all->list.views[0].draws[0].pipeline.constants[LANTERN_SC_UNROLLED_LIGHTS], 0u);
+}
+
+// The unrolled lights draw the loop's picture in every mode, and their kinds are used: the spot
+// compiled as a point light is refused by the reference.
+TEST_F(LightingVariants, UnrolledLightsDrawTheLoopsPicture) {
+    LitScene s;
+    s.objects.push_back(
+        {makeSphere(1.0, 32, 16),
+         test::phongMaterial({0.1, 0.1, 0.1}, {0.6, 0.6, 0.6, 1}, {1, 1, 1}, 20.0), glm::dmat4(1.0)});
+    s.lights.push_back(
+        {test::makeLight(LightType::Directional), test::aimed({0, 0, 0}, {0.3, -0.3, -1})});
+    Light spot = test::makeLight(LightType::Spot);
+    spot.spotCutoffDeg = 12.0;
+    spot.attenuation = {1.0, 0.1, 0.0};
+    s.lights.push_back({spot, test::aimed({0.3, 0.3, 3}, {-0.1, -0.1, -1})});
+    Light gltf = test::makeLight(LightType::Point);
+    gltf.falloff = LightFalloff::Gltf;
+    s.lights.push_back({gltf, test::translation({-2, 1, 2})});
+    const Scene scene = s.build();
+    test::PixelCheck check;
+    check.skipSilhouettes = true;
+    render::FrameEdits loop;
+    loop.list = [](gpu::DrawList& list) {
+        for (gpu::ViewCommands& v : list.views)
+            for (gpu::DrawCommand& d : v.draws) d.pipeline.constants[LANTERN_SC_UNROLLED_LIGHTS] = 0;
+    };
+    for (const ShadingMode mode : {ShadingMode::Phong, ShadingMode::Gouraud, ShadingMode::Flat}) {
+        const RenderOptions o = test::optionsFor(64, 64, mode);
+        auto unrolled = test::renderWithIds(device(), scene, o, {}, 0.0);
+        auto looped = test::renderWithIds(device(), scene, o, loop, 0.0);
+        ASSERT_TRUE(unrolled && looped);
+        const std::vector<float>& a = unrolled->readback.image.rgba;
+        const std::vector<float>& b = looped->readback.image.rgba;
+        ASSERT_EQ(a.size(), b.size());
+        float worst = 0.0f;
+        for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
+        EXPECT_LE(worst, 1e-6f) << toString(mode);
+        EXPECT_GT(test::brightestColour(unrolled->readback.image), 0.3f) << toString(mode);
+        const test::ReferenceComparison right = test::compareWithReference(device(), scene, o, check);
+        EXPECT_LE(right.worst, 1.0 / 255.0) << right.describe("unrolled");
+    }
+    render::FrameEdits wrongKind;
+    wrongKind.list = [](gpu::DrawList& list) {
+        for (gpu::ViewCommands& v : list.views)
+            for (gpu::DrawCommand& d : v.draws) {
+                std::uint32_t& kinds = d.pipeline.constants[LANTERN_SC_LIGHT_KINDS];
+                ASSERT_EQ((kinds >> 4) & 3u, std::uint32_t(LANTERN_LIGHT_SPOT));
+                kinds = (kinds & ~0x30u) | LANTERN_LIGHT_POINT << 4;  // the spot as a point light
+            }
+    };
+    const RenderOptions o = test::optionsFor(64, 64, ShadingMode::Phong);
+    const test::ReferenceComparison c = test::compareWithReference(device(), scene, o, check, wrongKind);
+    EXPECT_GT(c.worst, 0.1) << "the reference did not notice the spot compiled as a point light";
 }
 
 // Variants are created once and reused.

@@ -26,6 +26,7 @@ LightFeatures lightFeatures(const std::vector<EyeLight>& lights, bool glDefault)
         if (l.type == LightType::Spot && l.falloff == LightFalloff::Gl) f.glSpot = true;
         if (positional && l.falloff == LightFalloff::Gltf) f.gltfFalloff = true;
         if (nonZero(l.specular)) f.specular = true;
+        f.kinds.emplace_back(l.type, l.falloff);
     }
     return f;
 }

@@ -16,6 +16,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace lantern::frame {
@@ -116,6 +117,9 @@ struct LightFeatures {
     bool glSpot = false;         ///< a GL spot light with a cone
     bool gltfFalloff = false;    ///< a positional light with glTF's falloff
     bool specular = false;       ///< some light has a specular colour
+    /// Every light's type and falloff, in the order the views list them (the pipeline unrolls
+    /// up to LANTERN_MAX_UNROLLED_LIGHTS of them, each for its kind: render/Variants.cpp).
+    std::vector<std::pair<LightType, LightFalloff>> kinds;
 };
 
 /// What one draw needs beyond its frame's lights: the pipeline variant is chosen from this.

@@ -20,6 +20,16 @@ std::uint32_t lightTypeBits(const frame::LightFeatures& l) {
     return bits;
 }
 
+// A light's kind as the unrolled lighting reads it (shaders/include/lighting.glsl): the type
+// and falloff that render/DrawLists.cpp packs into its LightData.info.
+std::uint32_t lightKind(LightType type, LightFalloff falloff) {
+    const std::uint32_t t = type == LightType::Directional ? LANTERN_LIGHT_DIRECTIONAL
+                            : type == LightType::Point     ? LANTERN_LIGHT_POINT
+                                                           : LANTERN_LIGHT_SPOT;
+    const std::uint32_t f = falloff == LightFalloff::Gl ? LANTERN_FALLOFF_GL : LANTERN_FALLOFF_GLTF;
+    return t | f << 2;
+}
+
 std::uint32_t clampMode(frame::Clamp c) {
     switch (c) {
     case frame::Clamp::None: return LANTERN_CLAMP_NONE;
@@ -63,6 +73,13 @@ gpu::PipelineKey pipelineKey(const frame::Frame& frame, const frame::Draw& d,
     sc[LANTERN_SC_AMBIENT_FOLLOWS_DIFFUSE] = f.ambientFollowsDiffuse;
     sc[LANTERN_SC_OPAQUE] = !f.blend;
     sc[LANTERN_SC_MAPS] = all ? LANTERN_MAP_ALL : f.maps;
+    // A few lights are unrolled, each for its kind; more (and the all-features variant) loop.
+    if (!all && lights.kinds.size() <= LANTERN_MAX_UNROLLED_LIGHTS) {
+        sc[LANTERN_SC_UNROLLED_LIGHTS] = std::uint32_t(lights.kinds.size());
+        for (std::size_t i = 0; i < lights.kinds.size(); ++i)
+            sc[LANTERN_SC_LIGHT_KINDS] |= lightKind(lights.kinds[i].first, lights.kinds[i].second)
+                                          << (LANTERN_LIGHT_KIND_BITS * i);
+    }
     return k;
 }
 
@@ -79,6 +96,7 @@ std::string describe(const gpu::PipelineKey& k) {
             any = true;
         }
     if (!any) s << "none";
+    if (const std::uint32_t n = k.constants[LANTERN_SC_UNROLLED_LIGHTS]) s << " unrolled=" << n;
     const char* spec[] = {"none", "blinn", "phong"};
     s << " specular=" << spec[std::min<std::uint32_t>(k.constants[LANTERN_SC_SPECULAR], 2)];
     auto flag = [&](int id, const char* name) {
