@@ -5,6 +5,7 @@
 // two frames in flight. Clearing by drawing is compared with the attachments' clear the same way.
 #include "TestSupport.h"
 
+#include "gpu/ClearDraw.h"
 #include "gpu/Context.h"
 #include "gpu/ReadbackPath.h"
 #include "gpu/Targets.h"
@@ -254,6 +255,20 @@ TEST(ClearByDrawing, IsBitIdenticalToTheAttachmentsClear) {
     compareFrames(drawn, loaded, o);
     EXPECT_EQ(drawn.renderer->validationMessageCount(), 0u);
     EXPECT_EQ(loaded.renderer->validationMessageCount(), 0u);
+}
+
+// Which frames clear by drawing without the test switch: on a CPU device, frames of a megapixel
+// and more; small ones keep the attachment's clear (its cost is below the clear pipeline's JIT).
+TEST(ClearByDrawing, ACpuDeviceDrawsTheClearOfLargeFramesOnly) {
+    LANTERN_SKIP_IF_MISSING(lantern::test::missingVulkanDevice());
+    gpu::ContextDesc desc;
+    auto ctx = gpu::Context::create(desc);
+    ASSERT_TRUE(ctx);
+    const bool cpu = (*ctx)->properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    EXPECT_EQ(gpu::ClearDraw::preferred(**ctx, 1920, 1080), cpu);
+    EXPECT_EQ(gpu::ClearDraw::preferred(**ctx, 1000, 1000), cpu);
+    EXPECT_FALSE(gpu::ClearDraw::preferred(**ctx, 999, 1000));
+    EXPECT_FALSE(gpu::ClearDraw::preferred(**ctx, 256, 256));
 }
 
 // Two frames in flight: frame k+1 renders into the other slot's images while frame k is read;

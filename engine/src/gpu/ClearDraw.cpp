@@ -7,26 +7,54 @@
 
 #include "ShaderBlobs.h"
 
+#include <utility>
+
 namespace lantern::gpu {
 
-bool ClearDraw::preferred(const Context& ctx) {
-    return ctx.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+namespace {
+
+// The passes' colour attachment counts, as gpu/Recorder.cpp builds them: the AOV planes join the
+// scene pass unless it is multisampled, when they have a single-sampled pass of their own.
+std::uint32_t aovAttachments(const Target& t) {
+    return t.surface ? LANTERN_OUT_COUNT_AOV : LANTERN_OUT_SURFACE;
+}
+std::uint32_t sceneAttachments(const Target& t) {
+    return t.aov && !t.multisampled() ? aovAttachments(t) : 1;
+}
+
+} // namespace
+
+Result<std::unique_ptr<ClearDraw>> ClearDraw::create(Context& ctx, Pipelines& pipelines) {
+    std::unique_ptr<ClearDraw> c(new ClearDraw(ctx, pipelines.layout()));
+    using shaders::ShaderId;
+    for (auto [id, module] : {std::pair{ShaderId::clear_vert, &c->m_vertex},
+                              std::pair{ShaderId::clear_frag, &c->m_fragment},
+                              std::pair{ShaderId::clear_aov_frag, &c->m_fragmentAov}}) {
+        auto m = pipelines.shader(std::uint32_t(id));
+        if (!m) return std::move(m).error();
+        *module = *m;
+    }
+    return c;
+}
+
+bool ClearDraw::preferred(const Context& ctx, std::uint32_t width, std::uint32_t height) {
+    return ctx.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU &&
+           std::uint64_t(width) * height >= kMinPixels;
+}
+
+bool ClearDraw::ready(const Target& t) const {
+    return m_cache.count({t.samples, sceneAttachments(t)}) &&
+           (!t.separateAovPass() || m_cache.count({1u, aovAttachments(t)}));
 }
 
 Result<VkPipeline> ClearDraw::pipeline(std::uint32_t samples, std::uint32_t colorAttachments) {
     const auto key = std::make_pair(samples, colorAttachments);
     if (auto it = m_cache.find(key); it != m_cache.end()) return it->second.get();
-    using shaders::ShaderId;
-    auto vs = m_pipelines.shader(std::uint32_t(ShaderId::clear_vert));
-    if (!vs) return std::move(vs).error();
     const bool aov = colorAttachments > 1;
-    auto fs = m_pipelines.shader(std::uint32_t(aov ? ShaderId::clear_aov_frag : ShaderId::clear_frag));
-    if (!fs) return std::move(fs).error();
-
     GraphicsPipelineDesc d;
-    d.layout = m_pipelines.layout();
-    d.vertex = *vs;
-    d.fragment = *fs;
+    d.layout = m_layout;
+    d.vertex = m_vertex;
+    d.fragment = aov ? m_fragmentAov : m_fragment;
     // The scene pipelines' attachments (gpu/Pipelines.cpp): colour, then the AOV planes.
     d.colorFormats.assign(colorAttachments, kColorFormat);
     if (aov) {
@@ -47,15 +75,12 @@ Result<VkPipeline> ClearDraw::pipeline(std::uint32_t samples, std::uint32_t colo
 }
 
 Result<ClearFrame> ClearDraw::prepare(const Target& t) {
-    const std::uint32_t aovAttachments = t.surface ? LANTERN_OUT_COUNT_AOV : LANTERN_OUT_SURFACE;
     ClearFrame f;
-    // As gpu/Recorder.cpp builds the passes: the AOV planes join the scene pass unless it is
-    // multisampled, when they have a single-sampled pass of their own.
-    auto scene = pipeline(t.samples, t.aov && !t.multisampled() ? aovAttachments : 1);
+    auto scene = pipeline(t.samples, sceneAttachments(t));
     if (!scene) return std::move(scene).error();
     f.scene = *scene;
     if (t.separateAovPass()) {
-        auto aov = pipeline(1, aovAttachments);
+        auto aov = pipeline(1, aovAttachments(t));
         if (!aov) return std::move(aov).error();
         f.aov = *aov;
     }

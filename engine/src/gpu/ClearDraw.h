@@ -13,6 +13,7 @@
 #include "gpu/Targets.h"
 
 #include <map>
+#include <memory>
 #include <utility>
 
 namespace lantern::gpu {
@@ -27,12 +28,19 @@ struct ClearFrame {
 
 class ClearDraw {
 public:
-    ClearDraw(Context& ctx, Pipelines& pipelines) : m_ctx(ctx), m_pipelines(pipelines) {}
+    /// Makes the shader modules (on this thread: Pipelines' module registry is not shared).
+    static Result<std::unique_ptr<ClearDraw>> create(Context& ctx, Pipelines& pipelines);
 
-    /// Whether the device clears faster by drawing: true on a CPU device.
-    static bool preferred(const Context& ctx);
+    /// Whether a frame of `width` x `height` pixels clears faster by drawing: on a CPU device,
+    /// from kMinPixels up (smaller, the clear costs less than the clear pipeline's compilation
+    /// is worth).
+    static bool preferred(const Context& ctx, std::uint32_t width, std::uint32_t height);
+    static constexpr std::uint64_t kMinPixels = 1000000;
 
-    /// The pipelines (made on first use) that clear `target`'s passes.
+    /// Whether `target`'s pipelines are made (prepare() then only looks them up).
+    bool ready(const Target& target) const;
+    /// The pipelines (made on first use) that clear `target`'s passes. May run on another
+    /// thread while the scene's pipelines are made: it touches only this object.
     Result<ClearFrame> prepare(const Target& target);
 
     /// Records the clear as the first command of a begun pass whose attachments are not loaded:
@@ -43,10 +51,12 @@ public:
                        std::uint32_t width, std::uint32_t height, const float clear[4]);
 
 private:
+    ClearDraw(Context& ctx, VkPipelineLayout layout) : m_ctx(ctx), m_layout(layout) {}
     Result<VkPipeline> pipeline(std::uint32_t samples, std::uint32_t colorAttachments);
 
     Context& m_ctx;
-    Pipelines& m_pipelines;
+    VkPipelineLayout m_layout;
+    VkShaderModule m_vertex = VK_NULL_HANDLE, m_fragment = VK_NULL_HANDLE, m_fragmentAov = VK_NULL_HANDLE;
     std::map<std::pair<std::uint32_t, std::uint32_t>, UniquePipeline> m_cache;
 };
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <future>
 
 namespace lantern::gpu {
 namespace {
@@ -65,7 +66,6 @@ Result<std::unique_ptr<FrameRing>> FrameRing::create(Context& ctx, Pipelines& pi
     vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice(), &nq, families.data());
     ring->m_timestamps = families[ctx.queueFamily()].timestampValidBits > 0 &&
                          ctx.properties().limits.timestampPeriod > 0;
-    ring->m_clearByDraw = ClearDraw::preferred(ctx);
 #ifdef LANTERN_TESTING_HOOKS
     // LANTERN_TEST_CLEAR=draw or load (tests only): clear by drawing, or with LOAD_OP_CLEAR,
     // whatever the device prefers, so that the two can be compared on one device.
@@ -318,14 +318,26 @@ Result<std::uint32_t> FrameRing::submit(const DrawList& list,
     std::vector<VkPipeline> pipelines, aovPipelines;
     const bool flatPerTriangle = FlatLighter::available(m_ctx, *scene, list);
     bool guardedDraws = false;
+    // Clearing by drawing (gpu/ClearDraw.h): a missing clear pipeline is compiled on a thread
+    // of its own while this one makes the scene's, so on a first frame the two JIT compiles
+    // overlap.
+    slot.clear = {};
+    std::future<Result<ClearFrame>> clear;
+    if (m_clearByDraw.value_or(ClearDraw::preferred(m_ctx, slot.target.width, slot.target.height))) {
+        if (!m_clearDraw) {
+            auto made = ClearDraw::create(m_ctx, m_pipelines);
+            if (!made) return std::move(made).error();
+            m_clearDraw = std::move(*made);
+        }
+        clear = std::async(m_clearDraw->ready(slot.target) ? std::launch::deferred : std::launch::async,
+                           [this, &slot] { return m_clearDraw->prepare(slot.target); });
+    }
     LANTERN_TRY(preparePipelines(list, *scene, flatPerTriangle, pipelines, aovPipelines,
                                  guardedDraws));
-    slot.clear = {};
-    if (m_clearByDraw) {
-        if (!m_clearDraw) m_clearDraw = std::make_unique<ClearDraw>(m_ctx, m_pipelines);
-        auto clear = m_clearDraw->prepare(slot.target);
-        if (!clear) return std::move(clear).error();
-        slot.clear = *clear;
+    if (clear.valid()) {
+        auto made = clear.get();
+        if (!made) return std::move(made).error();
+        slot.clear = *made;
     }
     slot.overlays = {};
     if (list.overlays.any()) {

@@ -19,6 +19,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace lantern::gpu {
@@ -106,8 +107,9 @@ private:
     std::uint32_t m_next = 0;
     bool m_timestamps = false;
     bool m_inPlace = true;  ///< false: every plane staged (LANTERN_TEST_READBACK=staged)
-    /// Passes clear by drawing (ClearDraw::preferred; LANTERN_TEST_CLEAR=draw or load in tests).
-    bool m_clearByDraw = false;
+    /// Passes clear by drawing where ClearDraw::preferred says so; LANTERN_TEST_CLEAR=draw or
+    /// load (tests) sets it for every frame.
+    std::optional<bool> m_clearByDraw;
     /// Shared with the views collected in place since the last submit (HostView::live); set
     /// false and replaced by the next submit and by the destructor.
     std::shared_ptr<std::atomic<bool>> m_viewsLive = std::make_shared<std::atomic<bool>>(true);
