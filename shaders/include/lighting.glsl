@@ -95,35 +95,38 @@ vec3 viewVector(vec3 V) {
     return v == vec3(0.0) ? vec3(0.0, 0.0, 1.0) : v;
 }
 
-// One light's terms of the sum, added to s, for a point at V with unit normal n, view
-// vector v, shininess and the material's specular colour. `kind` is the light's type and
-// falloff (type | falloff << 2) when the pipeline knows it, or LANTERN_LIGHT_KIND_ANY to read
-// them from the light; with a known kind the other kinds' code is removed.
-void addLight(inout LightSums s, LightData light, uint kind, vec3 V, vec3 n, vec3 v,
+// Light i's terms of the sum, added to s, for a point at V with unit normal n, view vector v,
+// shininess and the material's specular colour. The light is read where it lies, its specular
+// colour before the branch that uses it (llvmpipe reads a storage buffer inside a branch lane
+// by lane). `kind` is the light's type and falloff (type | falloff << 2) when the pipeline
+// knows it, or LANTERN_LIGHT_KIND_ANY to read them from the light; with a known kind the other
+// kinds' code is removed.
+void addLight(inout LightSums s, uint i, uint kind, vec3 V, vec3 n, vec3 v,
               float shininess, vec3 specularM) {
+    vec4 lightSpecular = lights[i].specular;  // read outside the branch below
     bool known = kind != LANTERN_LIGHT_KIND_ANY;
-    uint type = known ? (kind & 3u) : light.info.x;
-    uint falloff = known ? (kind >> 2u) & 1u : light.info.y;
+    uint type = known ? (kind & 3u) : lights[i].info.x;
+    uint falloff = known ? (kind >> 2u) & 1u : lights[i].info.y;
     vec3 l;
     float att = 1.0;
     float spot = 1.0;
     if (type == LANTERN_LIGHT_DIRECTIONAL) {
         if ((SC_LIGHT_TYPES & LANTERN_LIGHT_BIT_DIRECTIONAL) == 0u) return;
-        l = light.position.xyz;
+        l = lights[i].position.xyz;
     } else {
         if ((SC_LIGHT_TYPES & (LANTERN_LIGHT_BIT_POINT | LANTERN_LIGHT_BIT_SPOT)) == 0u) return;
-        vec3 toLight = light.position.xyz - V;
+        vec3 toLight = lights[i].position.xyz - V;
         float d = safeLength(toLight);
         // A light exactly at the point shines along the normal (finite, documented).
         l = d > 0.0 ? safeNormalize(toLight) : n;
         if (SC_GL_ATTENUATION && falloff == LANTERN_FALLOFF_GL) {
-            vec4 k = light.attenuation;
+            vec4 k = lights[i].attenuation;
             // (kq d) d rather than kq (d d): kq = 0 with d^2 = inf must give 0, not NaN.
             float denominator = k.x + k.y * d + (k.z * d) * d;
             att = 1.0 / max(denominator, LANTERN_MIN_ATTENUATION_DENOMINATOR);
         }
         if (SC_GLTF_FALLOFF && falloff == LANTERN_FALLOFF_GLTF) {
-            float invRange = light.attenuation.w;
+            float invRange = lights[i].attenuation.w;
             float window = 1.0;
             if (invRange > 0.0) {
                 float q = d * invRange;
@@ -134,23 +137,23 @@ void addLight(inout LightSums s, LightData light, uint kind, vec3 V, vec3 n, vec
         }
         if (type == LANTERN_LIGHT_SPOT) {
             if ((SC_LIGHT_TYPES & LANTERN_LIGHT_BIT_SPOT) == 0u) return;
-            vec3 axis = light.spotDirection.xyz;
+            vec3 axis = lights[i].spotDirection.xyz;
             if (SC_GL_SPOT && falloff == LANTERN_FALLOFF_GL)
-                spot = glSpotFactor(-l, axis, light.spotDirection.w, light.spot.x);
+                spot = glSpotFactor(-l, axis, lights[i].spotDirection.w, lights[i].spot.x);
             if (SC_GLTF_FALLOFF && falloff == LANTERN_FALLOFF_GLTF) {
-                float t = clamp((dot(-l, axis) - light.spot.y) * light.spot.z, 0.0, 1.0);
+                float t = clamp((dot(-l, axis) - lights[i].spot.y) * lights[i].spot.z, 0.0, 1.0);
                 spot = t * t;
             }
         }
     }
     float k = att * spot;
     float ndotl = dot(n, l);
-    s.ambient += k * light.ambient.rgb;
-    s.diffuse += (k * max(ndotl, 0.0)) * light.diffuse.rgb;
+    s.ambient += k * lights[i].ambient.rgb;
+    s.diffuse += (k * max(ndotl, 0.0)) * lights[i].diffuse.rgb;
     // f_i selects rather than multiplies, so a non-finite term on the dark side cannot leak.
     if (SC_SPECULAR != LANTERN_SPECULAR_NONE && ndotl > 0.0) {
         float spec = specularTerm(n, l, v, shininess);
-        s.emissiveSpecular += (k * spec) * (specularM * light.specular.rgb);
+        s.emissiveSpecular += (k * spec) * (specularM * lightSpecular.rgb);
     }
 }
 
@@ -178,20 +181,20 @@ LightSums evaluateLighting(vec3 V, vec3 n, MaterialSideData m) {
     vec3 specularM = m.specular.rgb;
     if (SC_UNROLLED_LIGHTS == 0u) {
         for (uint i = 0u; i < frame.lightCount; ++i)
-            addLight(s, lights[i], LANTERN_LIGHT_KIND_ANY, V, n, v, shininess, specularM);
+            addLight(s, i, LANTERN_LIGHT_KIND_ANY, V, n, v, shininess, specularM);
         return s;
     }
     // Unrolled (at most LANTERN_MAX_UNROLLED_LIGHTS lights): each light is read at a constant
     // index outside any branch, which llvmpipe does once for all lanes, where the loop reads
     // every lane's copy under the loop's mask (docs/performance.md).
-    if (SC_UNROLLED_LIGHTS > 0u) addLight(s, lights[0], unrolledKind(0u), V, n, v, shininess, specularM);
-    if (SC_UNROLLED_LIGHTS > 1u) addLight(s, lights[1], unrolledKind(1u), V, n, v, shininess, specularM);
-    if (SC_UNROLLED_LIGHTS > 2u) addLight(s, lights[2], unrolledKind(2u), V, n, v, shininess, specularM);
-    if (SC_UNROLLED_LIGHTS > 3u) addLight(s, lights[3], unrolledKind(3u), V, n, v, shininess, specularM);
-    if (SC_UNROLLED_LIGHTS > 4u) addLight(s, lights[4], unrolledKind(4u), V, n, v, shininess, specularM);
-    if (SC_UNROLLED_LIGHTS > 5u) addLight(s, lights[5], unrolledKind(5u), V, n, v, shininess, specularM);
-    if (SC_UNROLLED_LIGHTS > 6u) addLight(s, lights[6], unrolledKind(6u), V, n, v, shininess, specularM);
-    if (SC_UNROLLED_LIGHTS > 7u) addLight(s, lights[7], unrolledKind(7u), V, n, v, shininess, specularM);
+    if (SC_UNROLLED_LIGHTS > 0u) addLight(s, 0u, unrolledKind(0u), V, n, v, shininess, specularM);
+    if (SC_UNROLLED_LIGHTS > 1u) addLight(s, 1u, unrolledKind(1u), V, n, v, shininess, specularM);
+    if (SC_UNROLLED_LIGHTS > 2u) addLight(s, 2u, unrolledKind(2u), V, n, v, shininess, specularM);
+    if (SC_UNROLLED_LIGHTS > 3u) addLight(s, 3u, unrolledKind(3u), V, n, v, shininess, specularM);
+    if (SC_UNROLLED_LIGHTS > 4u) addLight(s, 4u, unrolledKind(4u), V, n, v, shininess, specularM);
+    if (SC_UNROLLED_LIGHTS > 5u) addLight(s, 5u, unrolledKind(5u), V, n, v, shininess, specularM);
+    if (SC_UNROLLED_LIGHTS > 6u) addLight(s, 6u, unrolledKind(6u), V, n, v, shininess, specularM);
+    if (SC_UNROLLED_LIGHTS > 7u) addLight(s, 7u, unrolledKind(7u), V, n, v, shininess, specularM);
     return s;
 }
 
