@@ -21,6 +21,15 @@ std::uint64_t recordVectors(const PipelineKey& key) {
            (key.constants[LANTERN_SC_TWO_SIDED] ? 2u : 1u);
 }
 
+// The pre-pass's constants: it loops over the lights, never unrolled (shaders/include/
+// lighting.glsl). On lavapipe unrolling them in this compute shader made its pipeline far
+// slower to build and the frame no faster (docs/performance.md).
+std::array<std::uint32_t, LANTERN_SC_COUNT> prePassConstants(std::array<std::uint32_t, LANTERN_SC_COUNT> c) {
+    c[LANTERN_SC_UNROLLED_LIGHTS] = 0;
+    c[LANTERN_SC_LIGHT_KINDS] = 0;
+    return c;
+}
+
 Error tooLarge() {
     return makeError(ErrorCode::OutOfMemory,
                      "the frame's flat-shaded triangles exceed the addressable size");
@@ -144,7 +153,7 @@ Result<void> FlatLighter::prepare(FlatSlot& slot, const DrawList& list, const Sc
             count = std::max<std::uint64_t>(count, base + job.count);
             slot.drawJobs.push_back(std::uint32_t(jobs.size()));
             slot.triangles += job.count;
-            auto p = pipeline(d.pipeline.constants);
+            auto p = pipeline(prePassConstants(d.pipeline.constants));
             if (!p) return std::move(p).error();
             slot.dispatches.push_back({std::uint32_t(jobs.size()), vi,
                                        (job.count + LANTERN_FLAT_GROUP - 1) / LANTERN_FLAT_GROUP, *p});
