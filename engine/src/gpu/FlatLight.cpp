@@ -22,8 +22,8 @@ std::uint64_t recordVectors(const PipelineKey& key) {
 }
 
 // The pre-pass's constants: it loops over the lights, never unrolled (shaders/include/
-// lighting.glsl). On lavapipe unrolling them in this compute shader made its pipeline far
-// slower to build and the frame no faster (docs/performance.md).
+// lighting.glsl). On lavapipe unrolling them in this compute shader made the first frame
+// slower and the others no faster (docs/performance.md).
 std::array<std::uint32_t, LANTERN_SC_COUNT> prePassConstants(std::array<std::uint32_t, LANTERN_SC_COUNT> c) {
     c[LANTERN_SC_UNROLLED_LIGHTS] = 0;
     c[LANTERN_SC_LIGHT_KINDS] = 0;
