@@ -157,6 +157,14 @@ void addLight(inout LightSums s, uint i, uint kind, vec3 V, vec3 n, vec3 v,
     }
 }
 
+// LANTERN_UNROLL, a define of each entry point (shaders/CMakeLists.txt): the most lights it
+// unrolls, 2 or 8 (LANTERN_MAX_UNROLLED_LIGHTS), or 0 for the loop. Each copy of a light's
+// terms is inlined before the specialisation removes the unused ones, so an entry point for a
+// few lights has only their copies (gpu/Pipelines.cpp picks it by SC_UNROLLED_LIGHTS).
+#ifndef LANTERN_UNROLL
+#define LANTERN_UNROLL 0
+#endif
+
 // Light i's kind when the lights are unrolled (LANTERN_SC_LIGHT_KINDS).
 uint unrolledKind(uint i) {
     return (SC_LIGHT_KINDS >> (LANTERN_LIGHT_KIND_BITS * i)) & 0xFu;
@@ -179,22 +187,24 @@ LightSums evaluateLighting(vec3 V, vec3 n, MaterialSideData m) {
     vec3 v = viewVector(V);
     float shininess = m.specular.w;
     vec3 specularM = m.specular.rgb;
-    if (SC_UNROLLED_LIGHTS == 0u) {
-        for (uint i = 0u; i < frame.lightCount; ++i)
-            addLight(s, i, LANTERN_LIGHT_KIND_ANY, V, n, v, shininess, specularM);
-        return s;
-    }
+#if LANTERN_UNROLL == 0
+    for (uint i = 0u; i < frame.lightCount; ++i)
+        addLight(s, i, LANTERN_LIGHT_KIND_ANY, V, n, v, shininess, specularM);
+#else
     // Unrolled (at most LANTERN_MAX_UNROLLED_LIGHTS lights): each light is read at a constant
     // index outside any branch, which llvmpipe does once for all lanes, where the loop reads
     // every lane's copy under the loop's mask (docs/performance.md).
     if (SC_UNROLLED_LIGHTS > 0u) addLight(s, 0u, unrolledKind(0u), V, n, v, shininess, specularM);
     if (SC_UNROLLED_LIGHTS > 1u) addLight(s, 1u, unrolledKind(1u), V, n, v, shininess, specularM);
+#if LANTERN_UNROLL > 2
     if (SC_UNROLLED_LIGHTS > 2u) addLight(s, 2u, unrolledKind(2u), V, n, v, shininess, specularM);
     if (SC_UNROLLED_LIGHTS > 3u) addLight(s, 3u, unrolledKind(3u), V, n, v, shininess, specularM);
     if (SC_UNROLLED_LIGHTS > 4u) addLight(s, 4u, unrolledKind(4u), V, n, v, shininess, specularM);
     if (SC_UNROLLED_LIGHTS > 5u) addLight(s, 5u, unrolledKind(5u), V, n, v, shininess, specularM);
     if (SC_UNROLLED_LIGHTS > 6u) addLight(s, 6u, unrolledKind(6u), V, n, v, shininess, specularM);
     if (SC_UNROLLED_LIGHTS > 7u) addLight(s, 7u, unrolledKind(7u), V, n, v, shininess, specularM);
+#endif
+#endif
     return s;
 }
 

@@ -26,20 +26,37 @@ struct ProgramShaders {
     ShaderId vertex, vertexGuard, fragment, fragmentAov;
 };
 
+// The stage that lights comes as the light loop, unrolled for up to 2 lights and for up to 8
+// (LANTERN_UNROLL, shaders/include/lighting.glsl): the entry point with the fewest copies of a
+// light's terms that the variant's SC_UNROLLED_LIGHTS fits, as each copy costs its creation.
+ShaderId byUnroll(std::uint32_t lights, ShaderId loop, ShaderId two, ShaderId eight) {
+    static_assert(LANTERN_MAX_UNROLLED_LIGHTS == 8, "the _u8 entry points unroll 8 lights");
+    return lights == 0 ? loop : lights <= 2 ? two : eight;
+}
+
 ProgramShaders programShaders(const PipelineKey& key) {
     using S = ShaderId;
     if (key.flatPerTriangle)  // lit (and checked) by the pre-pass
         return {S::flatprim_vert, S::flatprim_vert, S::flatprim_frag, S::flatprim_aov_frag};
+    const std::uint32_t n = key.constants[LANTERN_SC_UNROLLED_LIGHTS];
     switch (key.program) {
     case Program::Phong: break;
     case Program::Gouraud:
-        return {S::gouraud_vert, S::gouraud_guard_vert, S::gouraud_frag, S::gouraud_aov_frag};
-    case Program::Flat: return {S::flat_vert, S::flat_guard_vert, S::flat_frag, S::flat_aov_frag};
+        return {byUnroll(n, S::gouraud_vert, S::gouraud_u2_vert, S::gouraud_u8_vert),
+                byUnroll(n, S::gouraud_guard_vert, S::gouraud_guard_u2_vert, S::gouraud_guard_u8_vert),
+                S::gouraud_frag, S::gouraud_aov_frag};
+    case Program::Flat:
+        return {byUnroll(n, S::flat_vert, S::flat_u2_vert, S::flat_u8_vert),
+                byUnroll(n, S::flat_guard_vert, S::flat_guard_u2_vert, S::flat_guard_u8_vert),
+                S::flat_frag, S::flat_aov_frag};
     case Program::GlFlat:
-        return {S::glflat_vert, S::glflat_guard_vert, S::flat_frag, S::flat_aov_frag};
+        return {byUnroll(n, S::glflat_vert, S::glflat_u2_vert, S::glflat_u8_vert),
+                byUnroll(n, S::glflat_guard_vert, S::glflat_guard_u2_vert, S::glflat_guard_u8_vert),
+                S::flat_frag, S::flat_aov_frag};
     case Program::Floor: return {S::mesh_vert, S::mesh_vert, S::floor_frag, S::floor_aov_frag};
     }
-    return {S::mesh_vert, S::mesh_vert, S::phong_frag, S::phong_aov_frag};
+    return {S::mesh_vert, S::mesh_vert, byUnroll(n, S::phong_frag, S::phong_u2_frag, S::phong_u8_frag),
+            byUnroll(n, S::phong_aov_frag, S::phong_aov_u2_frag, S::phong_aov_u8_frag)};
 }
 
 // One vertex-buffer binding per attribute, numbered as its location (non-interleaved streams).
