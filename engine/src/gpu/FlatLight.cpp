@@ -21,9 +21,11 @@ std::uint64_t recordVectors(const PipelineKey& key) {
            (key.constants[LANTERN_SC_TWO_SIDED] ? 2u : 1u);
 }
 
-// The pre-pass's constants: it loops over the lights, never unrolled (shaders/include/
-// lighting.glsl). On lavapipe unrolling them in this compute shader made the first frame
-// slower and the others no faster (docs/performance.md).
+// The pre-pass's constants: it loops over the lights, never unrolled (flatlight.comp is built
+// with the loop alone, shaders/include/lighting.glsl), so the unrolled light count and kinds
+// are cleared and frames that differ only in them share one pipeline. On lavapipe unrolling
+// them in this compute shader made the first frame slower and the others no faster
+// (docs/performance.md).
 std::array<std::uint32_t, LANTERN_SC_COUNT> prePassConstants(std::array<std::uint32_t, LANTERN_SC_COUNT> c) {
     c[LANTERN_SC_UNROLLED_LIGHTS] = 0;
     c[LANTERN_SC_LIGHT_KINDS] = 0;
