@@ -55,13 +55,7 @@ Result<VkPipeline> ClearDraw::pipeline(std::uint32_t samples, std::uint32_t colo
     d.layout = m_layout;
     d.vertex = m_vertex;
     d.fragment = aov ? m_fragmentAov : m_fragment;
-    // The scene pipelines' attachments (gpu/Pipelines.cpp): colour, then the AOV planes.
-    d.colorFormats.assign(colorAttachments, kColorFormat);
-    if (aov) {
-        d.colorFormats[LANTERN_OUT_NORMAL_DEPTH] = kNormalDepthFormat;
-        d.colorFormats[LANTERN_OUT_ID] = kIdFormat;
-        if (colorAttachments > LANTERN_OUT_SURFACE) d.colorFormats[LANTERN_OUT_SURFACE] = kSurfaceFormat;
-    }
+    d.colorFormats = passColorFormats(colorAttachments);  // as the scene pipelines'
     d.depthFormat = kDepthFormat;
     d.depthTest = false;
     d.depthWrite = false;

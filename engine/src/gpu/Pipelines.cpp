@@ -201,14 +201,8 @@ Result<GraphicsPipelineDesc> Pipelines::describe(const PipelineKey& key) {
     // Without the surface plane the pipeline has no attachment at its location, and the
     // shader's writes there are discarded (a null attachment would need its format undefined,
     // which the validation layer reports against the shader's output type).
-    d.colorFormats.assign(key.aov ? (key.aovSurface ? LANTERN_OUT_COUNT_AOV : LANTERN_OUT_SURFACE) : 1,
-                          VK_FORMAT_UNDEFINED);
-    d.colorFormats[LANTERN_OUT_COLOR] = kColorFormat;
-    if (key.aov) {
-        d.colorFormats[LANTERN_OUT_NORMAL_DEPTH] = kNormalDepthFormat;
-        d.colorFormats[LANTERN_OUT_ID] = kIdFormat;
-        if (key.aovSurface) d.colorFormats[LANTERN_OUT_SURFACE] = kSurfaceFormat;
-    }
+    d.colorFormats = passColorFormats(
+        key.aov ? (key.aovSurface ? LANTERN_OUT_COUNT_AOV : LANTERN_OUT_SURFACE) : 1);
     d.depthFormat = kDepthFormat;
     d.samples = VkSampleCountFlagBits(key.samples);
     d.blend = key.blend;

@@ -135,6 +135,14 @@ Result<void> checkPointsAndLines(const Context& ctx, const TargetDesc& d) {
 
 } // namespace
 
+std::vector<VkFormat> passColorFormats(std::uint32_t attachments) {
+    std::vector<VkFormat> f(attachments, kColorFormat);
+    if (attachments > LANTERN_OUT_NORMAL_DEPTH) f[LANTERN_OUT_NORMAL_DEPTH] = kNormalDepthFormat;
+    if (attachments > LANTERN_OUT_ID) f[LANTERN_OUT_ID] = kIdFormat;
+    if (attachments > LANTERN_OUT_SURFACE) f[LANTERN_OUT_SURFACE] = kSurfaceFormat;
+    return f;
+}
+
 Result<void> checkTarget(const Context& ctx, const TargetDesc& d, std::uint32_t slots) {
     const auto& lim = ctx.properties().limits;
     if (d.width < 1 || d.height < 1)

@@ -11,6 +11,8 @@
 #include "gpu/DrawList.h"
 #include "gpu/Resources.h"
 
+#include <vector>
+
 namespace lantern::gpu {
 
 inline constexpr VkFormat kColorFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
@@ -44,5 +46,10 @@ Result<void> ensureTarget(Context& ctx, Target& target, const TargetDesc& desc,
 /// image, an unsupported sample count, AOVs without primitive ids, more memory than the
 /// device has for `slots` frame slots.
 Result<void> checkTarget(const Context& ctx, const TargetDesc& desc, std::uint32_t slots);
+
+/// The colour attachment formats of a pass with `attachments` of them, in the order of the
+/// fragment outputs: the colour alone (1), or with the AOV planes, the surface plane last (3
+/// or LANTERN_OUT_COUNT_AOV).
+std::vector<VkFormat> passColorFormats(std::uint32_t attachments);
 
 } // namespace lantern::gpu
