@@ -12,6 +12,8 @@
 #define LANTERN_BINDING_FLAT_COLORS 3   // buffer: per-triangle flat colours (flatlight.comp)
 #define LANTERN_BINDING_FLAT_NORMALS 4  // buffer: per-triangle eye normals (frames with AOVs)
 #define LANTERN_BINDING_GUARD 5         // buffer: the frame's output guard word (guard.glsl)
+#define LANTERN_BINDING_LIGHTS_UNIFORM 6  // uniform: the same lights as LIGHTS, for up to
+                                          // LANTERN_UNIFORM_LIGHTS of them (SC_LIGHTS_UNIFORM)
 #define LANTERN_SET_TEXTURE 1
 #define LANTERN_BINDING_BASE_COLOR 0 // sampler2D, the material's base-colour texture
 #define LANTERN_BINDING_METALLIC_ROUGHNESS 1  // sampler2D: B metallic, G roughness (linear)
@@ -75,7 +77,8 @@
 #define LANTERN_SC_MAPS 14           // bit mask of LANTERN_MAP_*: the material maps compiled in
 #define LANTERN_SC_UNROLLED_LIGHTS 15  // 0: a loop over frame.lightCount; n: exactly n lights
 #define LANTERN_SC_LIGHT_KINDS 16    // with n lights unrolled: light i's kind in bits 4i..4i+3
-#define LANTERN_SC_COUNT 17
+#define LANTERN_SC_LIGHTS_UNIFORM 17  // 1: the lights are read from LIGHTS_UNIFORM, not LIGHTS
+#define LANTERN_SC_COUNT 18
 
 // Material maps (MaterialData.params.y holds the material's, as a float).
 #define LANTERN_MAP_METALLIC_ROUGHNESS 1u
@@ -107,6 +110,9 @@
 // by code with one copy of the light's terms per light, at a constant index, each for its
 // light's kind: type | falloff << 2 (4 bits a light in LANTERN_SC_LIGHT_KINDS).
 #define LANTERN_MAX_UNROLLED_LIGHTS 8
+// The most lights a frame reads from a uniform buffer: 16 KiB (128-byte LightData), the least
+// maxUniformBufferRange Vulkan allows. More are read from the storage buffer.
+#define LANTERN_UNIFORM_LIGHTS 128
 #define LANTERN_LIGHT_KIND_BITS 4u
 #define LANTERN_LIGHT_KIND_ANY 0xFFFFFFFFu  // the loop: type and falloff read from the light
 

@@ -103,30 +103,30 @@ vec3 viewVector(vec3 V) {
 // kinds' code is removed.
 void addLight(inout LightSums s, uint i, uint kind, vec3 V, vec3 n, vec3 v,
               float shininess, vec3 specularM) {
-    vec4 lightSpecular = lights[i].specular;  // read outside the branch below
+    vec4 lightSpecular = LIGHT(i, specular);  // read outside the branch below
     bool known = kind != LANTERN_LIGHT_KIND_ANY;
-    uint type = known ? (kind & 3u) : lights[i].info.x;
-    uint falloff = known ? (kind >> 2u) & 1u : lights[i].info.y;
+    uint type = known ? (kind & 3u) : LIGHT(i, info).x;
+    uint falloff = known ? (kind >> 2u) & 1u : LIGHT(i, info).y;
     vec3 l;
     float att = 1.0;
     float spot = 1.0;
     if (type == LANTERN_LIGHT_DIRECTIONAL) {
         if ((SC_LIGHT_TYPES & LANTERN_LIGHT_BIT_DIRECTIONAL) == 0u) return;
-        l = lights[i].position.xyz;
+        l = LIGHT(i, position).xyz;
     } else {
         if ((SC_LIGHT_TYPES & (LANTERN_LIGHT_BIT_POINT | LANTERN_LIGHT_BIT_SPOT)) == 0u) return;
-        vec3 toLight = lights[i].position.xyz - V;
+        vec3 toLight = LIGHT(i, position).xyz - V;
         float d = safeLength(toLight);
         // A light exactly at the point shines along the normal (finite, documented).
         l = d > 0.0 ? safeNormalize(toLight) : n;
         if (SC_GL_ATTENUATION && falloff == LANTERN_FALLOFF_GL) {
-            vec4 k = lights[i].attenuation;
+            vec4 k = LIGHT(i, attenuation);
             // (kq d) d rather than kq (d d): kq = 0 with d^2 = inf must give 0, not NaN.
             float denominator = k.x + k.y * d + (k.z * d) * d;
             att = 1.0 / max(denominator, LANTERN_MIN_ATTENUATION_DENOMINATOR);
         }
         if (SC_GLTF_FALLOFF && falloff == LANTERN_FALLOFF_GLTF) {
-            float invRange = lights[i].attenuation.w;
+            float invRange = LIGHT(i, attenuation).w;
             float window = 1.0;
             if (invRange > 0.0) {
                 float q = d * invRange;
@@ -137,19 +137,19 @@ void addLight(inout LightSums s, uint i, uint kind, vec3 V, vec3 n, vec3 v,
         }
         if (type == LANTERN_LIGHT_SPOT) {
             if ((SC_LIGHT_TYPES & LANTERN_LIGHT_BIT_SPOT) == 0u) return;
-            vec3 axis = lights[i].spotDirection.xyz;
+            vec3 axis = LIGHT(i, spotDirection).xyz;
             if (SC_GL_SPOT && falloff == LANTERN_FALLOFF_GL)
-                spot = glSpotFactor(-l, axis, lights[i].spotDirection.w, lights[i].spot.x);
+                spot = glSpotFactor(-l, axis, LIGHT(i, spotDirection).w, LIGHT(i, spot).x);
             if (SC_GLTF_FALLOFF && falloff == LANTERN_FALLOFF_GLTF) {
-                float t = clamp((dot(-l, axis) - lights[i].spot.y) * lights[i].spot.z, 0.0, 1.0);
+                float t = clamp((dot(-l, axis) - LIGHT(i, spot).y) * LIGHT(i, spot).z, 0.0, 1.0);
                 spot = t * t;
             }
         }
     }
     float k = att * spot;
     float ndotl = dot(n, l);
-    s.ambient += k * lights[i].ambient.rgb;
-    s.diffuse += (k * max(ndotl, 0.0)) * lights[i].diffuse.rgb;
+    s.ambient += k * LIGHT(i, ambient).rgb;
+    s.diffuse += (k * max(ndotl, 0.0)) * LIGHT(i, diffuse).rgb;
     // f_i selects rather than multiplies, so a non-finite term on the dark side cannot leak.
     if (SC_SPECULAR != LANTERN_SPECULAR_NONE && ndotl > 0.0) {
         float spec = specularTerm(n, l, v, shininess);

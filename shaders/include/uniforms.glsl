@@ -30,6 +30,15 @@ struct LightData {
 layout(set = LANTERN_SET_FRAME, binding = LANTERN_BINDING_LIGHTS, std430) readonly buffer LightBlock {
     LightData lights[];
 };
+// The same lights, bound as a uniform buffer. llvmpipe reads a uniform buffer at an index that
+// differs between lanes (a light loop's counter) with one gather, a storage buffer one lane at
+// a time (docs/performance.md).
+layout(set = LANTERN_SET_FRAME, binding = LANTERN_BINDING_LIGHTS_UNIFORM, std140) uniform LightUniforms {
+    LightData uniformLights[LANTERN_UNIFORM_LIGHTS];
+};
+// Field f of light i, from the buffer the variant reads (SC_LIGHTS_UNIFORM, resolved at
+// pipeline creation: the other read is removed).
+#define LIGHT(i, f) (SC_LIGHTS_UNIFORM ? uniformLights[i].f : lights[i].f)
 
 struct MaterialSideData {
     vec4 ambient;   // rgb

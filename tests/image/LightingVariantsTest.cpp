@@ -81,6 +81,7 @@ TEST_F(LightingVariants, OneDirectionalLightWithoutSpecularCompilesNothingElse) 
     EXPECT_EQ(sc[LANTERN_SC_SPECULAR], std::uint32_t(LANTERN_SPECULAR_NONE));
     EXPECT_EQ(sc[LANTERN_SC_UNROLLED_LIGHTS], 1u);
     EXPECT_EQ(sc[LANTERN_SC_LIGHT_KINDS], std::uint32_t(LANTERN_LIGHT_DIRECTIONAL));
+    EXPECT_EQ(sc[LANTERN_SC_LIGHTS_UNIFORM], 0u);  // unrolled: the storage buffer
     // And the specialised pipeline renders the equation.
     const test::ReferenceComparison c = test::compareWithReference(device(), scene, o);
     EXPECT_LE(c.worst, 1.0 / 255.0) << c.describe("variant_minimal");
@@ -166,9 +167,32 @@ TEST_F(LightingVariants, AFewLightsAreUnrolledEachForItsKind) {
     EXPECT_EQ(all->list.views[0].draws[0].pipeline.constants[LANTERN_SC_UNROLLED_LIGHTS], 0u);
 }
 
-// The unrolled lights draw the loop's picture in every mode, and their kinds are used: the spot
-// compiled as a point light is refused by the reference.
-TEST_F(LightingVariants, UnrolledLightsDrawTheLoopsPicture) {
+// A loop over up to LANTERN_UNIFORM_LIGHTS lights reads them from the uniform buffer; unrolled
+// lights, more lights and the all-features variant read the storage buffer.
+TEST_F(LightingVariants, ALoopOverAUniformBuffersLightsReadsThemFromOne) {
+    LitScene base;
+    base.objects.push_back({makeSphere(1.0, 16, 8), Material{}, glm::dmat4(1.0)});
+    base.lights.push_back(
+        {test::makeLight(LightType::Directional), test::aimed({0, 0, 0}, {1, -1, -1})});
+    RenderOptions o = test::optionsFor(32, 32, ShadingMode::Gouraud);
+    for (const int count : {LANTERN_MAX_UNROLLED_LIGHTS, LANTERN_MAX_UNROLLED_LIGHTS + 1,
+                            LANTERN_UNIFORM_LIGHTS, LANTERN_UNIFORM_LIGHTS + 1}) {
+        auto p = render::planFrame(withPointLights(base, count), o, 0.0);
+        ASSERT_TRUE(p) << p.error().describe();
+        const bool uniform = count > LANTERN_MAX_UNROLLED_LIGHTS && count <= LANTERN_UNIFORM_LIGHTS;
+        EXPECT_EQ(p->list.views[0].draws[0].pipeline.constants[LANTERN_SC_LIGHTS_UNIFORM],
+                  uniform ? 1u : 0u)
+            << count << " lights";
+    }
+    o.features = FeatureMode::AllFeatures;
+    auto all = render::planFrame(withPointLights(base, 2), o, 0.0);
+    ASSERT_TRUE(all);
+    EXPECT_EQ(all->list.views[0].draws[0].pipeline.constants[LANTERN_SC_LIGHTS_UNIFORM], 0u);
+}
+
+// A specular sphere under three kinds of light: directional, a GL spot with attenuation, a
+// glTF point light.
+LitScene threeKindsOfLight() {
     LitScene s;
     s.objects.push_back(
         {makeSphere(1.0, 32, 16),
@@ -182,6 +206,13 @@ TEST_F(LightingVariants, UnrolledLightsDrawTheLoopsPicture) {
     Light gltf = test::makeLight(LightType::Point);
     gltf.falloff = LightFalloff::Gltf;
     s.lights.push_back({gltf, test::translation({-2, 1, 2})});
+    return s;
+}
+
+// The unrolled lights draw the loop's picture in every mode, and their kinds are used: the spot
+// compiled as a point light is refused by the reference.
+TEST_F(LightingVariants, UnrolledLightsDrawTheLoopsPicture) {
+    const LitScene s = threeKindsOfLight();
     const Scene scene = s.build();
     test::PixelCheck check;
     check.skipSilhouettes = true;
@@ -217,6 +248,48 @@ TEST_F(LightingVariants, UnrolledLightsDrawTheLoopsPicture) {
     const RenderOptions o = test::optionsFor(64, 64, ShadingMode::Phong);
     const test::ReferenceComparison c = test::compareWithReference(device(), scene, o, check, wrongKind);
     EXPECT_GT(c.worst, 0.1) << "the reference did not notice the spot compiled as a point light";
+}
+
+// The lights read from the uniform buffer draw the storage buffer's picture, looped (12 lights)
+// and unrolled (3: read from the uniform buffer only when forced), in every mode, and the
+// reference accepts both.
+TEST_F(LightingVariants, UniformLightsDrawTheStorageBuffersPicture) {
+    const LitScene s = threeKindsOfLight();
+    LitScene many = s;
+    for (int i = 0; i < 9; ++i) {
+        Light l = test::makeLight(LightType::Point);
+        l.diffuse = l.specular = glm::dvec3(0.05);
+        l.attenuation = {1.0, 0.0, 0.05 * i};
+        many.lights.push_back({l, test::translation({0.6 * i - 2.4, -1.5, 2.5})});
+    }
+    test::PixelCheck check;
+    check.skipSilhouettes = true;
+    auto reading = [](std::uint32_t fromUniform) {
+        render::FrameEdits e;
+        e.list = [fromUniform](gpu::DrawList& list) {
+            for (gpu::ViewCommands& v : list.views)
+                for (gpu::DrawCommand& d : v.draws)
+                    d.pipeline.constants[LANTERN_SC_LIGHTS_UNIFORM] = fromUniform;
+        };
+        return e;
+    };
+    const LitScene* const scenes[] = {&s, &many};
+    for (const LitScene* lit : scenes) {
+        const Scene scene = lit->build();
+        for (const ShadingMode mode : {ShadingMode::Phong, ShadingMode::Gouraud, ShadingMode::Flat}) {
+            const RenderOptions o = test::optionsFor(64, 64, mode);
+            auto uniform = test::renderWithIds(device(), scene, o, reading(1), 0.0);
+            auto stored = test::renderWithIds(device(), scene, o, reading(0), 0.0);
+            ASSERT_TRUE(uniform && stored);
+            EXPECT_LE(test::maxAbsDifference(uniform->readback.image, stored->readback.image), 1e-6f)
+                << toString(mode) << ", " << lit->lights.size() << " lights";
+            EXPECT_GT(test::brightestColour(uniform->readback.image), 0.3f) << toString(mode);
+            const test::ReferenceComparison right =
+                test::compareWithReference(device(), scene, o, check, reading(1));
+            EXPECT_LE(right.worst, 1.0 / 255.0)
+                << right.describe("uniform lights") << ", " << lit->lights.size() << " lights";
+        }
+    }
 }
 
 // Variants are created once and reused.

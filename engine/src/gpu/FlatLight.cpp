@@ -27,6 +27,9 @@ std::uint64_t recordVectors(const PipelineKey& key) {
 // them in this compute shader made the first frame slower and the others no faster
 // (docs/performance.md).
 std::array<std::uint32_t, LANTERN_SC_COUNT> prePassConstants(std::array<std::uint32_t, LANTERN_SC_COUNT> c) {
+    // It loops, so it reads the lights from the uniform buffer wherever there are few enough:
+    // a draw's variant does for 9 to LANTERN_UNIFORM_LIGHTS, and an unrolled one has at most 8.
+    c[LANTERN_SC_LIGHTS_UNIFORM] = c[LANTERN_SC_UNROLLED_LIGHTS] != 0 || c[LANTERN_SC_LIGHTS_UNIFORM];
     c[LANTERN_SC_UNROLLED_LIGHTS] = 0;
     c[LANTERN_SC_LIGHT_KINDS] = 0;
     return c;
@@ -213,10 +216,10 @@ void FlatLighter::record(VkCommandBuffer cmd, const FlatSlot& slot, VkDescriptor
     std::uint32_t boundView = ~0u;
     for (const FlatSlot::Dispatch& d : slot.dispatches) {
         if (d.view != boundView) {
-            const std::uint32_t offsets[2] = {std::uint32_t(frameOffsets[d.view]),
-                                              std::uint32_t(lightOffsets[d.view])};
+            const FrameSetOffsets offsets = frameSetOffsets(frameOffsets[d.view], lightOffsets[d.view]);
             vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m_layout.get(),
-                                    LANTERN_SET_FRAME, 1, &frameSet, 2, offsets);
+                                    LANTERN_SET_FRAME, 1, &frameSet, std::uint32_t(offsets.size()),
+                                    offsets.data());
             boundView = d.view;
         }
         if (d.pipeline != bound) {

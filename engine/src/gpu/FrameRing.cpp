@@ -11,6 +11,9 @@
 namespace lantern::gpu {
 namespace {
 
+// The lights' uniform binding: LANTERN_UNIFORM_LIGHTS of them (shaders/include/uniforms.glsl).
+constexpr VkDeviceSize kUniformLightBytes = LANTERN_UNIFORM_LIGHTS * sizeof(LightData);
+
 VkDeviceSize alignUp(VkDeviceSize v, VkDeviceSize a) { return (v + a - 1) / a * a; }
 
 // Whether draw `k`'s colours are checked where they are made (shaders/include/guard.glsl):
@@ -102,7 +105,7 @@ Result<void> FrameRing::createSlot(Slot& s, std::size_t index) {
     LANTERN_VK_TRY(vkCreateFence(dev, &fci, nullptr, &fence));
     s.fence = UniqueFence(dev, fence);
 
-    VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1},
+    VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 2},
                                      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, 1},
                                      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4}};
     VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -226,13 +229,17 @@ Result<FrameRing::ArenaLayout> FrameRing::fillArena(Slot& slot, const DrawList& 
         size = alignUp(size, uboAlign);
         a.frameOffsets.push_back(size);
         size += sizeof(FrameBlock);
-        size = alignUp(size, ssboAlign);
+        size = alignUp(size, std::max(uboAlign, ssboAlign));  // read as either (uniforms.glsl)
         a.lightOffsets.push_back(size);
         size += std::max<std::size_t>(v.lights.size(), 1) * sizeof(LightData);
         maxLights = std::max(maxLights, v.lights.size());
     }
     a.lightRange = maxLights * sizeof(LightData);
-    a.guardOffset = alignUp(std::max(size, a.lightOffsets.back() + a.lightRange), ssboAlign);
+    // The uniform binding always spans LANTERN_UNIFORM_LIGHTS lights, the block's size; a
+    // variant reads it only with at most that many (render/Variants.cpp).
+    a.guardOffset = alignUp(std::max({size, a.lightOffsets.back() + a.lightRange,
+                                      a.lightOffsets.back() + kUniformLightBytes}),
+                            ssboAlign);
     a.size = a.guardOffset + 16;
     if (slot.arena.size < a.size) {
         auto arena = createBuffer(m_ctx, a.size * 2,
@@ -259,6 +266,8 @@ Result<FrameRing::ArenaLayout> FrameRing::fillArena(Slot& slot, const DrawList& 
           {slot.arena.get(), 0, sizeof(FrameBlock)}},
          {LANTERN_BINDING_LIGHTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC,
           {slot.arena.get(), 0, a.lightRange}},
+         {LANTERN_BINDING_LIGHTS_UNIFORM, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC,
+          {slot.arena.get(), 0, kUniformLightBytes}},
          {LANTERN_BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
           {slot.arena.get(), 0, std::max<VkDeviceSize>(a.materialBytes, sizeof(MaterialData))}},
          {LANTERN_BINDING_GUARD, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,

@@ -6,6 +6,7 @@
 
 #include "lantern_shared.h"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 
@@ -53,6 +54,13 @@ static_assert(offsetof(LightData, spotDirection) == 64);
 static_assert(offsetof(LightData, attenuation) == 80);
 static_assert(offsetof(LightData, spot) == 96);
 static_assert(offsetof(LightData, info) == 112);
+
+/// The frame set's dynamic offsets, in binding order: the view's FrameBlock, its lights as a
+/// storage buffer, the same lights as a uniform buffer (LANTERN_BINDING_LIGHTS_UNIFORM).
+using FrameSetOffsets = std::array<std::uint32_t, 3>;
+inline FrameSetOffsets frameSetOffsets(std::uint64_t frame, std::uint64_t lights) {
+    return {std::uint32_t(frame), std::uint32_t(lights), std::uint32_t(lights)};
+}
 
 struct MaterialSideData {
     Vec4 ambient;

@@ -90,12 +90,12 @@ Result<OverlayFrame> OverlayPipelines::prepare(const Overlays& o, const TargetDe
 
 void OverlayPipelines::recordView(VkCommandBuffer cmd, const SceneBuffers& scene,
                                   const ViewCommands& view, VkDescriptorSet frameSet,
-                                  const std::uint32_t dynamicOffsets[2],
+                                  const FrameSetOffsets& dynamicOffsets,
                                   const OverlayFrame& f) const {
     const VkPipelineLayout layout = m_pipelines.layout();
     if (!f.any() || view.draws.empty()) return;
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, LANTERN_SET_FRAME, 1, &frameSet, 2,
-                            dynamicOffsets);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, LANTERN_SET_FRAME, 1,
+                            &frameSet, std::uint32_t(dynamicOffsets.size()), dynamicOffsets.data());
     const VkBuffer geometry = scene.geometry();
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     if (f.wireframe) {

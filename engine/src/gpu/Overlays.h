@@ -37,7 +37,7 @@ public:
     /// Records the overlays of one view; the view's viewport and scissor are set. Binds the
     /// frame set with the view's dynamic offsets itself (a view may have no draws).
     void recordView(VkCommandBuffer cmd, const SceneBuffers& scene, const ViewCommands& view,
-                    VkDescriptorSet frameSet, const std::uint32_t dynamicOffsets[2],
+                    VkDescriptorSet frameSet, const FrameSetOffsets& dynamicOffsets,
                     const OverlayFrame& frame) const;
 
 private:

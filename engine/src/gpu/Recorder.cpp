@@ -133,8 +133,8 @@ void FrameRecorder::drawViews(const std::vector<VkPipeline>& pipelines) const {
         const VkRect2D scissor{{v.x, int(vy)}, {std::uint32_t(v.width), std::uint32_t(v.height)}};
         vkCmdSetViewport(cmd, 0, 1, &viewport);
         vkCmdSetScissor(cmd, 0, 1, &scissor);
-        const std::uint32_t dynamicOffsets[2] = {std::uint32_t(arena.frameOffsets[vi]),
-                                                 std::uint32_t(arena.lightOffsets[vi])};
+        const FrameSetOffsets dynamicOffsets =
+            frameSetOffsets(arena.frameOffsets[vi], arena.lightOffsets[vi]);
         // The per-triangle flat draws' jobs and corners (bound per view: the overlays bind
         // their own layouts between views).
         if (slot.flat.any())
@@ -150,7 +150,9 @@ void FrameRecorder::drawViews(const std::vector<VkPipeline>& pipelines) const {
                 vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
                 if (bound == VK_NULL_HANDLE)
                     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout,
-                                            LANTERN_SET_FRAME, 1, &slot.frameSet, 2, dynamicOffsets);
+                                            LANTERN_SET_FRAME, 1, &slot.frameSet,
+                                            std::uint32_t(dynamicOffsets.size()),
+                                            dynamicOffsets.data());
                 bound = p;
             }
             const VkDescriptorSet tex = scene.textureSet(d.textureSet);

@@ -73,6 +73,12 @@ gpu::PipelineKey pipelineKey(const frame::Frame& frame, const frame::Draw& d,
     sc[LANTERN_SC_AMBIENT_FOLLOWS_DIFFUSE] = f.ambientFollowsDiffuse;
     sc[LANTERN_SC_OPAQUE] = !f.blend;
     sc[LANTERN_SC_MAPS] = all ? LANTERN_MAP_ALL : f.maps;
+    // A loop over up to LANTERN_UNIFORM_LIGHTS lights reads them from a uniform buffer, which
+    // llvmpipe reads faster at an index that differs between lanes; unrolled lights (read at
+    // constant indices, where the storage buffer is the faster on llvmpipe), more lights and
+    // the all-features variant read the storage buffer (docs/performance.md).
+    sc[LANTERN_SC_LIGHTS_UNIFORM] = !all && lights.kinds.size() > LANTERN_MAX_UNROLLED_LIGHTS &&
+                                    lights.kinds.size() <= LANTERN_UNIFORM_LIGHTS;
     // A few lights are unrolled, each for its kind; more (and the all-features variant) loop.
     if (!all && lights.kinds.size() <= LANTERN_MAX_UNROLLED_LIGHTS) {
         sc[LANTERN_SC_UNROLLED_LIGHTS] = std::uint32_t(lights.kinds.size());
@@ -112,6 +118,7 @@ std::string describe(const gpu::PipelineKey& k) {
     flag(LANTERN_SC_ALPHA_MASK, "alpha-mask");
     flag(LANTERN_SC_UNLIT, "unlit");
     flag(LANTERN_SC_AMBIENT_FOLLOWS_DIFFUSE, "ambient=diffuse");
+    flag(LANTERN_SC_LIGHTS_UNIFORM, "uniform-lights");
     const std::uint32_t maps = k.constants[LANTERN_SC_MAPS];
     for (auto [bit, name] : {std::pair{LANTERN_MAP_METALLIC_ROUGHNESS, "metallic-roughness-map"},
                              std::pair{LANTERN_MAP_NORMAL, "normal-map"},
