@@ -2,7 +2,8 @@
 // orthographic view, unlit so that each pixel is its texel. A material's uv transform must
 // draw exactly what the same transform applied to the texture coordinates draws (and differ
 // from the untransformed picture); MIRRORED_REPEAT over u in [0, 2] must give a picture whose
-// right half mirrors its left, where REPEAT gives a translated copy.
+// right half mirrors its left, where REPEAT gives a translated copy. A minified texture samples
+// the mip levels the host made (gpu/TextureMips.h), each copied to its own level.
 #include "LightingCompare.h"
 
 #include "io/GltfInternal.h"
@@ -122,6 +123,33 @@ TEST_F(TextureTransform, MirroredRepeatMirrorsWhereRepeatTranslates) {
         for (int x = 0; x < kSize / 2; ++x)
             leftError = std::max(leftError, double(std::abs(mirrored.pixel(x, y)[0] - repeated.pixel(x, y)[0])));
     EXPECT_LT(leftError, 1e-5);
+}
+
+// A black and white checker of single texels, 128 x 32 (levels 64x16 down to 1x1, each a
+// different shape), repeated 8 times across the square: each pixel covers 16 x 4 texels, so
+// the sampler reads levels 2 to 4, where every texel is half the light (sRGB 188: 0.5029
+// linear). Level 0 alone, or a level copied to the wrong place, would alias to black and white.
+TEST_F(TextureTransform, AMinifiedCheckerSamplesTheHostsMipLevels) {
+    Texture t;
+    t.name = "fine checker";
+    t.width = 128;
+    t.height = 32;
+    for (int y = 0; y < t.height; ++y)
+        for (int x = 0; x < t.width; ++x) {
+            const std::uint8_t v = (x + y) % 2 ? 255 : 0;
+            t.rgba8.insert(t.rgba8.end(), {v, v, v, 255});
+        }
+    const Image image = render(device(), texturedSquare(t, glm::dmat3(1.0), [](glm::vec2 uv) {
+        return uv * 8.0f;
+    }));
+    ASSERT_EQ(image.width, kSize);
+    const double half = std::pow((188 / 255.0 + 0.055) / 1.055, 2.4);
+    double worst = 0.0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x)
+            for (int c = 0; c < 3; ++c)
+                worst = std::max(worst, std::abs(double(image.pixel(x, y)[c]) - half));
+    EXPECT_LT(worst, 0.01) << "a minified pixel is not the checker's mean";
 }
 
 } // namespace

@@ -1,6 +1,7 @@
-// A scene's textures on the GPU: each uploaded with a mip chain (linear blits where the format
-// allows), the samplers their glTF samplers ask for, one descriptor set per material.
+// A scene's textures on the GPU: each uploaded with its whole mip chain (made on the host,
+// gpu/TextureMips.h), the samplers their glTF samplers ask for, one descriptor set per material.
 #include "gpu/SceneBuffers.h"
+#include "gpu/TextureMips.h"
 
 #include "lantern_shared.h"
 
@@ -9,16 +10,6 @@
 
 namespace lantern::gpu {
 namespace {
-
-// Linear blits build the mip chain when the format supports them.
-bool canBlitMips(const Context& c, VkFormat format) {
-    VkFormatProperties fp;
-    vkGetPhysicalDeviceFormatProperties(c.physicalDevice(), format, &fp);
-    const VkFormatFeatureFlags blitNeeds = VK_FORMAT_FEATURE_BLIT_SRC_BIT |
-                                           VK_FORMAT_FEATURE_BLIT_DST_BIT |
-                                           VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
-    return (fp.optimalTilingFeatures & blitNeeds) == blitNeeds;
-}
 
 struct TextureSource {
     int width, height;
@@ -36,16 +27,45 @@ std::vector<TextureSource> textureSources(const Scene& s) {
     return sources;
 }
 
-// Every source's pixels in one host-visible buffer, one after the other.
+// Every source's mip chain in one host-visible buffer, level after level, source after source.
 struct TextureStaging {
     Buffer buffer;
-    std::vector<VkDeviceSize> offsets; ///< per source
+    std::vector<VkDeviceSize> offsets; ///< per source, its level 0; the levels follow packed
 };
+
+VkDeviceSize chainBytes(const TextureSource& src) {
+    VkDeviceSize bytes = 0;
+    for (std::uint32_t m = 0; m < mipLevelCount(src.width, src.height); ++m)
+        bytes += VkDeviceSize(mipExtent(src.width, m)) * VkDeviceSize(mipExtent(src.height, m)) * 4;
+    return bytes;
+}
+
+// Level 0 copied from the source, each further level made from the one before it on the host
+// (a copy of it kept in `previous`, so the mapped buffer is only written).
+void writeChain(const TextureSource& src, char* to) {
+    const bool srgb = src.format == VK_FORMAT_R8G8B8A8_SRGB;
+    std::size_t bytes = std::size_t(src.width) * std::size_t(src.height) * 4;
+    std::memcpy(to, src.pixels, bytes);
+    to += bytes;
+    std::vector<std::uint8_t> previous, level;
+    const std::uint8_t* from = src.pixels;
+    int w = src.width, h = src.height;
+    for (std::uint32_t m = 1; m < mipLevelCount(src.width, src.height); ++m) {
+        const int nw = std::max(w / 2, 1), nh = std::max(h / 2, 1);
+        level.resize(std::size_t(nw) * std::size_t(nh) * 4);
+        downsampleRgba8(from, w, h, level.data(), nw, nh, srgb);
+        std::memcpy(to, level.data(), level.size());
+        to += level.size();
+        previous.swap(level);
+        from = previous.data();
+        w = nw;
+        h = nh;
+    }
+}
 
 Result<TextureStaging> stageTextures(Context& c, const std::vector<TextureSource>& sources) {
     VkDeviceSize stagingSize = 0;
-    for (const TextureSource& src : sources)
-        stagingSize += VkDeviceSize(src.width) * src.height * 4;
+    for (const TextureSource& src : sources) stagingSize += chainBytes(src);
     auto staging = createBuffer(c, stagingSize, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                 MemoryUsage::Upload, "texture staging");
     if (!staging) return std::move(staging).error();
@@ -53,69 +73,48 @@ Result<TextureStaging> stageTextures(Context& c, const std::vector<TextureSource
     VkDeviceSize offset = 0;
     for (const TextureSource& src : sources) {
         out.offsets.push_back(offset);
-        const VkDeviceSize bytes = VkDeviceSize(src.width) * src.height * 4;
-        std::memcpy(static_cast<char*>(out.buffer.mapped) + offset, src.pixels, bytes);
-        offset += bytes;
+        writeChain(src, static_cast<char*>(out.buffer.mapped) + offset);
+        offset += chainBytes(src);
     }
     LANTERN_TRY(flush(c, out.buffer));
     return out;
 }
 
-// Source `i`'s image (0 is the white texture), with a full mip chain where its format blits.
+// Source `i`'s image (0 is the white texture), with room for its whole mip chain.
 Result<Image> createTextureImage(Context& c, const TextureSource& src, std::size_t i) {
-    const bool canMip = canBlitMips(c, src.format);
     ImageDesc d;
     d.format = src.format;
     d.width = std::uint32_t(src.width);
     d.height = std::uint32_t(src.height);
-    d.mipLevels =
-        canMip ? std::uint32_t(std::floor(std::log2(std::max(d.width, d.height)))) + 1 : 1;
-    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
-              VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    d.mipLevels = mipLevelCount(src.width, src.height);
+    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     d.name = i == 0 ? "white texture" : "texture " + std::to_string(i - 1);
     return createImage(c, d);
 }
 
-// Level 0 copied from the staging buffer at `offset`, each further level blitted from the one
-// before; every level ends shader-readable.
+// Every level copied from the staging buffer at `offset` (packed, level 0 first), then made
+// shader-readable.
 void recordTextureUpload(VkCommandBuffer cmd, const Image& img, VkBuffer staging,
                          VkDeviceSize offset) {
     const std::uint32_t mips = img.desc.mipLevels;
     imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                  VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
-                 VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    VkBufferImageCopy region{};
-    region.bufferOffset = offset;
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {img.desc.width, img.desc.height, 1};
-    vkCmdCopyBufferToImage(cmd, staging, img.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
-                           &region);
-    std::int32_t w = std::int32_t(img.desc.width), h = std::int32_t(img.desc.height);
-    for (std::uint32_t m = 1; m < mips; ++m) {
-        imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT,
-                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                     VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                     VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, m - 1, 1);
-        const std::int32_t nw = std::max(w / 2, 1), nh = std::max(h / 2, 1);
-        VkImageBlit blit{};
-        blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m - 1, 0, 1};
-        blit.srcOffsets[1] = {w, h, 1};
-        blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m, 0, 1};
-        blit.dstOffsets[1] = {nw, nh, 1};
-        vkCmdBlitImage(cmd, img.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, img.get(),
-                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
-        imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT,
-                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                     VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
-                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
-                     m - 1, 1);
-        w = nw;
-        h = nh;
+                 VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, 0, mips);
+    std::vector<VkBufferImageCopy> regions(mips);
+    for (std::uint32_t m = 0; m < mips; ++m) {
+        const int w = mipExtent(int(img.desc.width), m), h = mipExtent(int(img.desc.height), m);
+        VkBufferImageCopy& region = regions[m];
+        region.bufferOffset = offset;
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m, 0, 1};
+        region.imageExtent = {std::uint32_t(w), std::uint32_t(h), 1};
+        offset += VkDeviceSize(w) * VkDeviceSize(h) * 4;
     }
+    vkCmdCopyBufferToImage(cmd, staging, img.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, mips,
+                           regions.data());
     imageBarrier(cmd, img.get(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                  VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
-                 VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, mips - 1, 1);
+                 VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, 0, mips);
 }
 
 } // namespace
