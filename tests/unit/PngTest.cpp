@@ -109,6 +109,28 @@ TEST(Png, TheColourSpaceChunkComesBeforeThePixels) {
     EXPECT_LT(srgb, idat) << "PNG requires sRGB before the first IDAT";
 }
 
+// A picture large enough to be converted on a second thread while libpng compresses
+// (PngIo.cpp, 2^18 pixels and up) reads back as pngPixels' rows, every pixel different.
+TEST(Png, ALargePictureEncodedWhileItIsConvertedReadsBackRowForRow) {
+    Image image(640, 480);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            float* p = image.pixel(x, y);
+            p[0] = float(x) / 639.0f;
+            p[1] = float(y) / 479.0f;
+            p[2] = float((x * 7 + y * 13) % 256) / 255.0f;
+            p[3] = 1.0f;
+        }
+    const auto path = test::testOutputDir() / "large.png";
+    ASSERT_TRUE(writePng(path, image));
+    PngFacts facts;
+    readPng(path, &facts);
+    ASSERT_TRUE(facts.read) << "libpng could not read " << path;
+    ASSERT_EQ(facts.width, 640);
+    ASSERT_EQ(facts.height, 480);
+    EXPECT_EQ(facts.rgba, io::pngPixels(image));
+}
+
 } // namespace
 
 // The step table PNGs are quantised with (io::srgb8) gives the formula's code for every float

@@ -9,8 +9,11 @@
 #include <png.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
+#include <system_error>
+#include <thread>
 #include <vector>
 
 namespace lantern {
@@ -32,9 +35,22 @@ struct PngWriteState {
     ~PngWriteState() { png_destroy_write_struct(&png, &info); }
 };
 
+// Rows handed to libpng as they are made: `ready` counts the rows made so far (another thread
+// may be making them), and libpng takes row y once it is.
+struct RowSource {
+    unsigned char* const* rows;
+    const std::atomic<int>* ready;
+};
+
+void waitForRow(const RowSource& source, int y) {
+    for (int made = source.ready->load(std::memory_order_acquire); made <= y;
+         made = source.ready->load(std::memory_order_acquire))
+        source.ready->wait(made, std::memory_order_acquire);
+}
+
 // libpng reports errors by longjmp back here: this frame holds no object with a destructor and
-// changes no local after setjmp; the caller owns the state, the rows and the output.
-bool encodePng(PngWriteState* state, int width, int height, unsigned char* const* rows,
+// changes no local declared before setjmp; the caller owns the state, the rows and the output.
+bool encodePng(PngWriteState* state, int width, int height, const RowSource& source,
                const io::PngEncoding& encoding, std::vector<unsigned char>* out) {
     if (!state->png || !state->info) return false;
     if (setjmp(png_jmpbuf(state->png))) return false;
@@ -54,8 +70,12 @@ bool encodePng(PngWriteState* state, int width, int height, unsigned char* const
     png_set_compression_level(state->png, encoding.zlibLevel);
     png_set_filter(state->png, PNG_FILTER_TYPE_BASE,
                    encoding.everyFilter ? PNG_ALL_FILTERS : PNG_FILTER_UP);
-    png_set_rows(state->png, state->info, const_cast<png_bytepp>(rows));
-    png_write_png(state->png, state->info, PNG_TRANSFORM_IDENTITY, nullptr);
+    png_write_info(state->png, state->info);
+    for (int y = 0; y < height; ++y) {
+        waitForRow(source, y);
+        png_write_row(state->png, source.rows[y]);
+    }
+    png_write_end(state->png, state->info);
     return true;
 }
 
@@ -136,6 +156,10 @@ void pngRow(const SrgbSteps& steps, const float* src, std::size_t width, unsigne
     }
 }
 
+// Pictures of at least this many pixels are converted on a second thread while libpng
+// compresses the rows already converted (the two take about as long).
+constexpr std::size_t kPipelinedPixels = std::size_t(1) << 18;
+
 // The PNG bytes of a picture given row by row (row(y): width RGBA floats, y = 0 the top).
 template <typename Row>
 Result<std::vector<unsigned char>> encodePngRows(int width, int height, Row&& row,
@@ -143,16 +167,31 @@ Result<std::vector<unsigned char>> encodePngRows(int width, int height, Row&& ro
     const std::size_t w = std::size_t(width);
     std::vector<unsigned char> pixels(w * std::size_t(height) * 4);
     std::vector<unsigned char*> rows(static_cast<std::size_t>(height));
+    for (int y = 0; y < height; ++y) rows[std::size_t(y)] = pixels.data() + std::size_t(y) * w * 4;
     const SrgbSteps& steps = srgbSteps();
-    for (int y = 0; y < height; ++y) {
-        rows[std::size_t(y)] = pixels.data() + std::size_t(y) * w * 4;
-        pngRow(steps, row(y), w, rows[std::size_t(y)]);
+    std::atomic<int> ready{0};
+    auto convert = [&] {
+        for (int y = 0; y < height; ++y) {
+            pngRow(steps, row(y), w, rows[std::size_t(y)]);
+            ready.store(y + 1, std::memory_order_release);
+            ready.notify_all();
+        }
+    };
+    std::thread converter;
+    if (w * std::size_t(height) >= kPipelinedPixels && std::thread::hardware_concurrency() > 1) {
+        try {
+            converter = std::thread(convert);
+        } catch (const std::system_error&) {  // no thread to be had: convert here
+        }
     }
+    if (!converter.joinable()) convert();
     std::vector<unsigned char> encoded;
     encoded.reserve(w * std::size_t(height) * 2);
     PngWriteState state;
-    if (!encodePng(&state, width, height, rows.data(), encoding, &encoded))
-        return makeError(ErrorCode::IoError, "PNG encoding failed (libpng)");
+    const bool ok = encodePng(&state, width, height, RowSource{rows.data(), &ready}, encoding,
+                              &encoded);
+    if (converter.joinable()) converter.join();
+    if (!ok) return makeError(ErrorCode::IoError, "PNG encoding failed (libpng)");
     return encoded;
 }
 
