@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <future>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -344,6 +345,14 @@ int run(RenderArgs a) {
     load.maxBytes = a.maxSize;
     load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
     load.log = stderrSink(a.device.verbose);
+    // The device is made while the scene loads: the two take about as long on a 2-core machine
+    // (docs/performance.md). A scene that fails to load is reported first; the device is then
+    // waited for and dropped.
+    std::future<Result<Renderer>> pendingRenderer;
+    if (!a.dryRun)
+        pendingRenderer = std::async(std::launch::async, [device = a.device.desc()] {
+            return Renderer::create(device);
+        });
     auto scene = loadScene(a.scenes.front(), load);
     if (!scene) return report(scene.error());
     auto shared = std::make_shared<const Scene>(std::move(*scene));
@@ -354,7 +363,7 @@ int run(RenderArgs a) {
 
     if (a.dryRun) return reportDryRun(a, *shared, seq, frame, outputs);
 
-    auto renderer = Renderer::create(a.device.desc());
+    auto renderer = pendingRenderer.get();
     if (!renderer) return report(renderer.error());
     if (a.device.verbose)
         std::cerr << "lantern: device: " << renderer->device().name << " ("
