@@ -258,17 +258,20 @@ TEST(ClearByDrawing, IsBitIdenticalToTheAttachmentsClear) {
 }
 
 // Which frames clear by drawing without the test switch: on a CPU device, frames of a megapixel
-// and more; small ones keep the attachment's clear (its cost is below the clear pipeline's JIT).
-TEST(ClearByDrawing, ACpuDeviceDrawsTheClearOfLargeFramesOnly) {
+// and more after a renderer's first; small ones and the first keep the attachment's clear (its
+// cost is below the clear pipeline's JIT).
+TEST(ClearByDrawing, ACpuDeviceDrawsTheClearOfLargeFramesAfterTheFirstOnly) {
     LANTERN_SKIP_IF_MISSING(lantern::test::missingVulkanDevice());
     gpu::ContextDesc desc;
     auto ctx = gpu::Context::create(desc);
     ASSERT_TRUE(ctx);
     const bool cpu = (*ctx)->properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
-    EXPECT_EQ(gpu::ClearDraw::preferred(**ctx, 1920, 1080), cpu);
-    EXPECT_EQ(gpu::ClearDraw::preferred(**ctx, 1000, 1000), cpu);
-    EXPECT_FALSE(gpu::ClearDraw::preferred(**ctx, 999, 1000));
-    EXPECT_FALSE(gpu::ClearDraw::preferred(**ctx, 256, 256));
+    EXPECT_EQ(gpu::ClearDraw::preferred(**ctx, 1920, 1080, false), cpu);
+    EXPECT_EQ(gpu::ClearDraw::preferred(**ctx, 1000, 1000, false), cpu);
+    EXPECT_FALSE(gpu::ClearDraw::preferred(**ctx, 999, 1000, false));
+    EXPECT_FALSE(gpu::ClearDraw::preferred(**ctx, 256, 256, false));
+    EXPECT_FALSE(gpu::ClearDraw::preferred(**ctx, 1920, 1080, true));
+    EXPECT_FALSE(gpu::ClearDraw::preferred(**ctx, 1000, 1000, true));
 }
 
 // Two frames in flight: frame k+1 renders into the other slot's images while frame k is read;

@@ -37,8 +37,9 @@ Result<std::unique_ptr<ClearDraw>> ClearDraw::create(Context& ctx, Pipelines& pi
     return c;
 }
 
-bool ClearDraw::preferred(const Context& ctx, std::uint32_t width, std::uint32_t height) {
-    return ctx.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU &&
+bool ClearDraw::preferred(const Context& ctx, std::uint32_t width, std::uint32_t height,
+                          bool firstFrame) {
+    return !firstFrame && ctx.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU &&
            std::uint64_t(width) * height >= kMinPixels;
 }
 

@@ -33,8 +33,11 @@ public:
 
     /// Whether a frame of `width` x `height` pixels clears faster by drawing: on a CPU device,
     /// from kMinPixels up (smaller, the clear costs less than the clear pipeline's compilation
-    /// is worth).
-    static bool preferred(const Context& ctx, std::uint32_t width, std::uint32_t height);
+    /// is worth), and not on a renderer's first frame: llvmpipe compiles a draw's triangle
+    /// setup on its first use, outside any cache, which costs a one-frame render (a single
+    /// `lantern render`) more than the drawn clear saves (docs/performance.md).
+    static bool preferred(const Context& ctx, std::uint32_t width, std::uint32_t height,
+                          bool firstFrame);
     static constexpr std::uint64_t kMinPixels = 1000000;
 
     /// Whether `target`'s pipelines are made (prepare() then only looks them up).

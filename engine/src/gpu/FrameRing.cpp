@@ -332,7 +332,8 @@ Result<std::uint32_t> FrameRing::submit(const DrawList& list,
     // overlap.
     slot.clear = {};
     std::future<Result<ClearFrame>> clear;
-    if (m_clearByDraw.value_or(ClearDraw::preferred(m_ctx, slot.target.width, slot.target.height))) {
+    if (m_clearByDraw.value_or(ClearDraw::preferred(m_ctx, slot.target.width, slot.target.height,
+                                                    !m_submittedOnce))) {
         if (!m_clearDraw) {
             auto made = ClearDraw::create(m_ctx, m_pipelines);
             if (!made) return std::move(made).error();
@@ -367,6 +368,7 @@ Result<std::uint32_t> FrameRing::submit(const DrawList& list,
                 *scene, list, *arena, pipelines, aovPipelines, hooks);
     LANTERN_VK_TRY(vkEndCommandBuffer(slot.cmd));
     LANTERN_TRY(queueSubmit(slot, hooks));
+    m_submittedOnce = true;
     slot.scene = scene;
     slot.busy = true;
     slot.readback = hooks.readback;

@@ -110,6 +110,7 @@ private:
     /// Passes clear by drawing where ClearDraw::preferred says so; LANTERN_TEST_CLEAR=draw or
     /// load (tests) sets it for every frame.
     std::optional<bool> m_clearByDraw;
+    bool m_submittedOnce = false;  ///< a frame was submitted (the first clears its attachments)
     /// Shared with the views collected in place since the last submit (HostView::live); set
     /// false and replaced by the next submit and by the destructor.
     std::shared_ptr<std::atomic<bool>> m_viewsLive = std::make_shared<std::atomic<bool>>(true);
