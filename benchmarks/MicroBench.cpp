@@ -5,6 +5,7 @@
 #include "GltfEncode.h"
 #include "reference/Lighting.h"
 #include "io/ImageEncode.h"
+#include "math/Srgb.h"
 #include "render/FrameRender.h"
 
 #include <lantern/Lantern.h>
@@ -485,9 +486,9 @@ void BM_Srgb8(benchmark::State& state) {
     std::vector<unsigned char> out(values.size());
     for (auto _ : state) {
         if (table)
-            for (std::size_t i = 0; i < values.size(); ++i) out[i] = io::srgb8(values[i]);
+            for (std::size_t i = 0; i < values.size(); ++i) out[i] = math::srgb8(values[i]);
         else
-            for (std::size_t i = 0; i < values.size(); ++i) out[i] = io::srgb8Reference(values[i]);
+            for (std::size_t i = 0; i < values.size(); ++i) out[i] = math::srgb8Reference(values[i]);
         benchmark::DoNotOptimize(out.data());
     }
     state.SetLabel(table ? "step table" : "pow");

@@ -1,11 +1,15 @@
 #include "gpu/TextureMips.h"
 
+#include "math/Srgb.h"
+
 #include <lantern/Assert.h>
 
 #include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
+#include <system_error>
+#include <thread>
 #include <vector>
 
 namespace lantern::gpu {
@@ -38,43 +42,6 @@ std::vector<Taps> tapsAlong(int src, int dst) {
     return taps;
 }
 
-double srgbToLinear(double c) {
-    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-}
-
-// sRGB codes to linear light, and back to the nearest code: `threshold[k]` is the linear value
-// halfway (in code space) between codes k and k + 1, so a value's code is the number of
-// thresholds at or below it; a coarse table gives a start one or two steps from it.
-struct SrgbTables {
-    std::array<float, 256> toLinear{};
-    std::array<float, 255> threshold{};
-    std::array<std::uint8_t, 4097> coarse{};
-
-    SrgbTables() {
-        for (int k = 0; k < 256; ++k) toLinear[std::size_t(k)] = float(srgbToLinear(k / 255.0));
-        for (int k = 0; k < 255; ++k)
-            threshold[std::size_t(k)] = float(srgbToLinear((k + 0.5) / 255.0));
-        for (int i = 0; i <= 4096; ++i) {
-            const float v = float(i) / 4096.0f;
-            coarse[std::size_t(i)] = std::uint8_t(
-                std::upper_bound(threshold.begin(), threshold.end(), v) - threshold.begin());
-        }
-    }
-
-    std::uint8_t encode(float linear) const {
-        const float v = std::clamp(linear, 0.0f, 1.0f);
-        int k = coarse[std::size_t(v * 4096.0f)];
-        while (k < 255 && v >= threshold[std::size_t(k)]) ++k;
-        while (k > 0 && v < threshold[std::size_t(k - 1)]) --k;
-        return std::uint8_t(k);
-    }
-};
-
-const SrgbTables& srgbTables() {
-    static const SrgbTables tables;
-    return tables;
-}
-
 std::uint8_t roundUnorm(float v) { return std::uint8_t(std::clamp(v + 0.5f, 0.0f, 255.0f)); }
 
 } // namespace
@@ -88,44 +55,104 @@ int mipExtent(int extent, std::uint32_t level) {
     return level >= 31 ? 1 : std::max(extent >> level, 1);
 }
 
+namespace {
+
+// Destination rows [y0, y1) of downsampleRgba8. `colour` maps a colour channel's code to the
+// value averaged (linear light for sRGB, the code otherwise), `plain` alpha's.
+struct Downsample {
+    const std::uint8_t* src;
+    int srcWidth, srcHeight;
+    std::uint8_t* dst;
+    int dstWidth, dstHeight;
+    bool srgb;
+    std::vector<Taps> across, down;
+    std::array<float, 256> colour{}, plain{};
+
+    const math::Srgb8Encoder& srgb8 = math::srgb8Encoder();
+
+    std::uint8_t store(float v) const { return srgb ? srgb8(v) : roundUnorm(v); }
+
+    // Both sides even: every texel the plain mean of a 2 x 2 block.
+    void evenRows(int y0, int y1) const {
+        const std::size_t srcRow = std::size_t(srcWidth) * 4;
+        for (int y = y0; y < y1; ++y) {
+            const std::uint8_t* a = src + std::size_t(2 * y) * srcRow;
+            const std::uint8_t* b = a + srcRow;
+            std::uint8_t* out = dst + std::size_t(y) * std::size_t(dstWidth) * 4;
+            for (int x = 0; x < dstWidth; ++x, a += 8, b += 8, out += 4) {
+                for (int c = 0; c < 3; ++c)
+                    out[c] = store(0.25f * (colour[a[c]] + colour[a[4 + c]] + colour[b[c]] +
+                                            colour[b[4 + c]]));
+                out[3] = roundUnorm(0.25f * (plain[a[3]] + plain[a[7]] + plain[b[3]] + plain[b[7]]));
+            }
+        }
+    }
+
+    void weightedRows(int y0, int y1) const {
+        const std::size_t srcRow = std::size_t(srcWidth) * 4;
+        for (int y = y0; y < y1; ++y) {
+            const Taps& ty = down[std::size_t(y)];
+            std::uint8_t* out = dst + std::size_t(y) * std::size_t(dstWidth) * 4;
+            for (int x = 0; x < dstWidth; ++x, out += 4) {
+                const Taps& tx = across[std::size_t(x)];
+                float sum[4] = {0, 0, 0, 0};
+                for (int j = 0; j < ty.count; ++j) {
+                    const std::uint8_t* row = src + std::size_t(ty.first + j) * srcRow;
+                    const float wy = ty.weight[std::size_t(j)];
+                    for (int i = 0; i < tx.count; ++i) {
+                        const std::uint8_t* p = row + std::size_t(tx.first + i) * 4;
+                        const float w = wy * tx.weight[std::size_t(i)];
+                        sum[0] += w * colour[p[0]];
+                        sum[1] += w * colour[p[1]];
+                        sum[2] += w * colour[p[2]];
+                        sum[3] += w * plain[p[3]];
+                    }
+                }
+                for (int c = 0; c < 3; ++c) out[c] = store(sum[c]);
+                out[3] = roundUnorm(sum[3]);
+            }
+        }
+    }
+
+    void rows(int y0, int y1) const {
+        if (srcWidth % 2 == 0 && srcHeight % 2 == 0)
+            evenRows(y0, y1);
+        else
+            weightedRows(y0, y1);
+    }
+};
+
+// Levels with at least this many texels are split between two threads.
+constexpr std::size_t kThreadedTexels = std::size_t(1) << 16;
+
+} // namespace
+
 void downsampleRgba8(const std::uint8_t* src, int srcWidth, int srcHeight, std::uint8_t* dst,
                      int dstWidth, int dstHeight, bool srgb) {
     LANTERN_ASSERT(dstWidth == std::max(srcWidth / 2, 1) &&
-                   dstHeight == std::max(srcHeight / 2, 1),
+                       dstHeight == std::max(srcHeight / 2, 1),
                    "the destination is the next mip level of the source");
-    const std::vector<Taps> across = tapsAlong(srcWidth, dstWidth);
-    const std::vector<Taps> down = tapsAlong(srcHeight, dstHeight);
-    const SrgbTables& tables = srgbTables();
-    // Channel values as averaged: linear light in 0..1 for sRGB colour, codes 0..255 otherwise.
-    std::array<float, 256> colour{}, plain{};
+    Downsample d{src, srcWidth, srcHeight, dst, dstWidth, dstHeight, srgb,
+                 tapsAlong(srcWidth, dstWidth), tapsAlong(srcHeight, dstHeight), {}, {}};
+    const float* toLinear = math::srgb8ToLinear();
     for (int k = 0; k < 256; ++k) {
-        plain[std::size_t(k)] = float(k);
-        colour[std::size_t(k)] = srgb ? tables.toLinear[std::size_t(k)] : float(k);
+        d.plain[std::size_t(k)] = float(k);
+        d.colour[std::size_t(k)] = srgb ? toLinear[k] : float(k);
     }
-    const std::size_t srcRow = std::size_t(srcWidth) * 4;
-    for (int y = 0; y < dstHeight; ++y) {
-        const Taps& ty = down[std::size_t(y)];
-        std::uint8_t* out = dst + std::size_t(y) * std::size_t(dstWidth) * 4;
-        for (int x = 0; x < dstWidth; ++x, out += 4) {
-            const Taps& tx = across[std::size_t(x)];
-            float sum[4] = {0, 0, 0, 0};
-            for (int j = 0; j < ty.count; ++j) {
-                const std::uint8_t* row = src + std::size_t(ty.first + j) * srcRow;
-                const float wy = ty.weight[std::size_t(j)];
-                for (int i = 0; i < tx.count; ++i) {
-                    const std::uint8_t* p = row + std::size_t(tx.first + i) * 4;
-                    const float w = wy * tx.weight[std::size_t(i)];
-                    sum[0] += w * colour[p[0]];
-                    sum[1] += w * colour[p[1]];
-                    sum[2] += w * colour[p[2]];
-                    sum[3] += w * plain[p[3]];
-                }
-            }
-            for (int c = 0; c < 3; ++c)
-                out[c] = srgb ? tables.encode(sum[c]) : roundUnorm(sum[c]);
-            out[3] = roundUnorm(sum[3]);
+    // The bottom half of the rows on a second thread where the level is large enough to pay
+    // for it; the results do not depend on the split.
+    std::thread helper;
+    int split = dstHeight;
+    if (std::size_t(dstWidth) * std::size_t(dstHeight) >= kThreadedTexels && dstHeight > 1 &&
+        std::thread::hardware_concurrency() > 1) {
+        try {
+            helper = std::thread([&d, half = dstHeight / 2] { d.rows(half, d.dstHeight); });
+            split = dstHeight / 2;
+        } catch (const std::system_error&) {  // no thread to be had: all rows here
         }
     }
+    d.rows(0, split);
+    if (helper.joinable()) helper.join();
 }
 
 } // namespace lantern::gpu

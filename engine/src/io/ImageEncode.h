@@ -32,13 +32,6 @@ struct PngEncoding {
 /// The PNG file's bytes for `image` (pngPixels, then libpng).
 Result<std::vector<unsigned char>> encodePng(const Image& image, const PngEncoding& encoding);
 
-/// The 8-bit sRGB code of a linear value, round(255 * srgbEncode(clamp(v, 0, 1))) computed with
-/// the sRGB formula (std::pow): the definition pngPixels must match.
-unsigned char srgb8Reference(float linear);
-/// The same code from a table of the 255 linear values where it steps (a binary search, no
-/// pow): what pngPixels uses. Equal to srgb8Reference for every float.
-unsigned char srgb8(float linear);
-
 /// An EXR data window, corners inclusive (Imath::Box2i's min and max, without OpenEXR's headers).
 struct ExrWindow {
     int minX = 0, minY = 0, maxX = -1, maxY = -1;

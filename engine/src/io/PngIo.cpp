@@ -5,6 +5,7 @@
 
 #include "io/AtomicFile.h"
 #include "io/ImageEncode.h"
+#include "math/Srgb.h"
 
 #include <png.h>
 
@@ -17,14 +18,6 @@
 #include <vector>
 
 namespace lantern {
-namespace {
-
-float srgbEncode(float linear) {
-    const float c = std::clamp(linear, 0.0f, 1.0f);
-    return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-}
-
-} // namespace
 
 namespace {
 
@@ -79,70 +72,9 @@ bool encodePng(PngWriteState* state, int width, int height, const RowSource& sou
     return true;
 }
 
-} // namespace
-
-unsigned char io::srgb8Reference(float linear) {
-    return static_cast<unsigned char>(std::lround(srgbEncode(linear) * 255.0f));
-}
-
-namespace {
-
-// steps[k]: the smallest float whose code is k + 1 (k = 0..254), found by bisection over the
-// floats' bit patterns (non-negative floats order as their bits). The code of v is the number
-// of steps at or below it: start[] holds that count at the first float of each run of 2^15
-// floats below 1.0, and at most a step or two lies inside a run. srgbEncode is non-decreasing
-// over the floats (Png.Srgb8MatchesTheFormulaForEveryFloatNearEachStep).
-struct SrgbSteps {
-    static constexpr int kShift = 15;
-    static constexpr std::uint32_t kOne = 0x3F800000u;  // 1.0f
-    float steps[255];
-    unsigned char start[(kOne >> kShift) + 1];
-    SrgbSteps() {
-        for (int k = 0; k < 255; ++k) {
-            std::uint32_t lo = 0, hi = kOne;  // 0.0f and 1.0f: codes 0 and 255
-            while (hi - lo > 1) {
-                const std::uint32_t mid = lo + (hi - lo) / 2;
-                (io::srgb8Reference(floatOf(mid)) > k ? hi : lo) = mid;
-            }
-            steps[k] = floatOf(hi);
-        }
-        for (std::uint32_t i = 0; i <= (kOne >> kShift); ++i) {
-            const float first = floatOf(i << kShift);
-            int code = 0;
-            while (code < 255 && steps[code] <= first) ++code;
-            start[i] = static_cast<unsigned char>(code);
-        }
-    }
-    static float floatOf(std::uint32_t bits) {
-        float v;
-        std::memcpy(&v, &bits, sizeof v);
-        return v;
-    }
-};
-
-const SrgbSteps& srgbSteps() {
-    static const SrgbSteps table;
-    return table;
-}
-
-unsigned char srgb8With(const SrgbSteps& t, float linear) {
-    if (!(linear > 0.0f)) return 0;  // also NaN
-    if (linear >= 1.0f) return 255;
-    std::uint32_t bits;
-    std::memcpy(&bits, &linear, sizeof bits);
-    int code = t.start[bits >> SrgbSteps::kShift];
-    while (code < 255 && t.steps[code] <= linear) ++code;
-    return static_cast<unsigned char>(code);
-}
-
-} // namespace
-
-unsigned char io::srgb8(float linear) { return srgb8With(srgbSteps(), linear); }
-
-namespace {
-
 // One row of `width` premultiplied linear RGBA floats as 8-bit straight-alpha sRGB.
-void pngRow(const SrgbSteps& steps, const float* src, std::size_t width, unsigned char* dst) {
+void pngRow(const math::Srgb8Encoder& srgb8, const float* src, std::size_t width,
+            unsigned char* dst) {
     for (std::size_t i = 0; i < width; ++i) {
         const float* p = src + i * 4;
         const float a = std::clamp(std::isfinite(p[3]) ? p[3] : 0.0f, 0.0f, 1.0f);
@@ -150,7 +82,7 @@ void pngRow(const SrgbSteps& steps, const float* src, std::size_t width, unsigne
             // PNG stores straight alpha: undo the premultiplication first.
             float v = std::isfinite(p[c]) ? p[c] : 0.0f;
             if (a > 0.0f && a < 1.0f) v /= a;
-            dst[i * 4 + c] = srgb8With(steps, v);
+            dst[i * 4 + c] = srgb8(v);
         }
         dst[i * 4 + 3] = static_cast<unsigned char>(std::lround(a * 255.0f));
     }
@@ -168,11 +100,11 @@ Result<std::vector<unsigned char>> encodePngRows(int width, int height, Row&& ro
     std::vector<unsigned char> pixels(w * std::size_t(height) * 4);
     std::vector<unsigned char*> rows(static_cast<std::size_t>(height));
     for (int y = 0; y < height; ++y) rows[std::size_t(y)] = pixels.data() + std::size_t(y) * w * 4;
-    const SrgbSteps& steps = srgbSteps();
+    const math::Srgb8Encoder& srgb8 = math::srgb8Encoder();
     std::atomic<int> ready{0};
     auto convert = [&] {
         for (int y = 0; y < height; ++y) {
-            pngRow(steps, row(y), w, rows[std::size_t(y)]);
+            pngRow(srgb8, row(y), w, rows[std::size_t(y)]);
             ready.store(y + 1, std::memory_order_release);
             ready.notify_all();
         }
@@ -214,9 +146,9 @@ Result<void> writePngRows(const std::filesystem::path& path, int width, int heig
 std::vector<unsigned char> io::pngPixels(const Image& image) {
     const std::size_t w = std::size_t(image.width);
     std::vector<unsigned char> pixels(image.pixelCount() * 4);
-    const SrgbSteps& steps = srgbSteps();
+    const math::Srgb8Encoder& srgb8 = math::srgb8Encoder();
     for (int y = 0; y < image.height; ++y)
-        pngRow(steps, image.pixel(0, y), w, pixels.data() + std::size_t(y) * w * 4);
+        pngRow(srgb8, image.pixel(0, y), w, pixels.data() + std::size_t(y) * w * 4);
     return pixels;
 }
 
