@@ -288,6 +288,15 @@ int runBatchArgs(RenderArgs a) {
     return runBatch(r);
 }
 
+// The renderer, made on a thread of its own while the scene loads (the two take about as long
+// on a 2-core machine, docs/performance.md); none for --dry-run. A scene that fails to load is
+// reported first; the renderer is then waited for and dropped.
+std::future<Result<Renderer>> startRenderer(const RenderArgs& a) {
+    if (a.dryRun) return {};
+    return std::async(std::launch::async,
+                      [device = a.device.desc()] { return Renderer::create(device); });
+}
+
 int run(RenderArgs a) {
     auto options = renderOptionsAndSize(a);
     if (!options) return report(options.error());
@@ -345,14 +354,7 @@ int run(RenderArgs a) {
     load.maxBytes = a.maxSize;
     load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
     load.log = stderrSink(a.device.verbose);
-    // The device is made while the scene loads: the two take about as long on a 2-core machine
-    // (docs/performance.md). A scene that fails to load is reported first; the device is then
-    // waited for and dropped.
-    std::future<Result<Renderer>> pendingRenderer;
-    if (!a.dryRun)
-        pendingRenderer = std::async(std::launch::async, [device = a.device.desc()] {
-            return Renderer::create(device);
-        });
+    std::future<Result<Renderer>> pendingRenderer = startRenderer(a);
     auto scene = loadScene(a.scenes.front(), load);
     if (!scene) return report(scene.error());
     auto shared = std::make_shared<const Scene>(std::move(*scene));
