@@ -62,6 +62,14 @@ void readPng(const std::filesystem::path& path, PngFacts* facts) {
     facts->read = true;
 }
 
+// Writes `image` as NAME in the test's output folder and reads it back into `facts`.
+void writeAndRead(const Image& image, const std::string& name, PngFacts* facts) {
+    const auto path = test::testOutputDir() / name;
+    ASSERT_TRUE(writePng(path, image));
+    readPng(path, facts);
+    EXPECT_TRUE(facts->read) << "libpng could not read " << path;
+}
+
 TEST(Png, CarriesTheSrgbChunkWithGammaAndChromaticities) {
     Image image(3, 2);
     auto set = [&](int x, int y, float r, float g, float b, float a) {
@@ -72,12 +80,9 @@ TEST(Png, CarriesTheSrgbChunkWithGammaAndChromaticities) {
     set(1, 0, 1.0f, 0.5f, 0.0f, 1.0f);    // opaque
     set(2, 0, 0.25f, 0.25f, 0.25f, 0.5f); // half covered: 0.5 linear once un-premultiplied
     set(0, 1, 4.0f, -1.0f, 0.0031308f, 1.0f);
-    const auto path = test::testOutputDir() / "srgb.png";
-    ASSERT_TRUE(writePng(path, image));
-
     PngFacts facts;
-    readPng(path, &facts);
-    ASSERT_TRUE(facts.read) << "libpng could not read " << path;
+    writeAndRead(image, "srgb.png", &facts);
+    ASSERT_TRUE(facts.read);
     EXPECT_EQ(facts.width, 3);
     EXPECT_EQ(facts.height, 2);
     EXPECT_TRUE(facts.srgb) << "no sRGB chunk: viewers would guess the colour space";
@@ -122,11 +127,9 @@ TEST(Png, ALargePictureEncodedWhileItIsConvertedReadsBackRowForRow) {
             p[2] = float((x * 7 + y * 13) % 256) / 255.0f;
             p[3] = 1.0f;
         }
-    const auto path = test::testOutputDir() / "large.png";
-    ASSERT_TRUE(writePng(path, image));
     PngFacts facts;
-    readPng(path, &facts);
-    ASSERT_TRUE(facts.read) << "libpng could not read " << path;
+    writeAndRead(image, "large.png", &facts);
+    ASSERT_TRUE(facts.read);
     ASSERT_EQ(facts.width, 640);
     ASSERT_EQ(facts.height, 480);
     EXPECT_EQ(facts.rgba, io::pngPixels(image));
