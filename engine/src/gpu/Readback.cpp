@@ -4,6 +4,8 @@
 #include "gpu/FrameRing.h"
 #include "gpu/ReadbackPath.h"
 
+#include "core/Bands.h"
+
 #include <atomic>
 #include <cfloat>
 #include <cmath>
@@ -11,7 +13,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <optional>
-#include <thread>
 
 namespace lantern::gpu {
 namespace {
@@ -113,13 +114,10 @@ void scanRow(float* row, const float* src, std::uint32_t width, std::uint32_t y,
 template <typename Band>
 Findings inBands(std::uint32_t height, std::size_t bytes, Band&& band) {
     constexpr std::size_t kSplitBytes = std::size_t(4) << 20;
-    static const bool twoCores = std::thread::hardware_concurrency() > 1;  // read once
-    if (bytes < kSplitBytes || !twoCores) return band(0u, height);
-    Findings bottom;
-    const std::uint32_t half = height / 2;
-    std::thread other([&] { bottom = band(half, height); });
-    Findings top = band(0u, half);
-    other.join();
+    Findings top, bottom;
+    inTwoBands(int(height), bytes >= kSplitBytes, [&](int y0, int y1) {
+        (y0 == 0 ? top : bottom) = band(std::uint32_t(y0), std::uint32_t(y1));
+    });
     top.count += bottom.count;
     if (top.x < 0) top.x = bottom.x, top.y = bottom.y;
     return top;

@@ -1,5 +1,6 @@
 #include "gpu/TextureMips.h"
 
+#include "core/Bands.h"
 #include "math/Srgb.h"
 
 #include <lantern/Assert.h>
@@ -8,8 +9,6 @@
 #include <array>
 #include <bit>
 #include <cmath>
-#include <system_error>
-#include <thread>
 #include <vector>
 
 namespace lantern::gpu {
@@ -58,7 +57,7 @@ int mipExtent(int extent, std::uint32_t level) {
 namespace {
 
 // Destination rows [y0, y1) of downsampleRgba8. `colour` maps a colour channel's code to the
-// value averaged (linear light for sRGB, the code otherwise), `plain` alpha's.
+// value averaged (linear light for sRGB, the code otherwise); alpha averages its codes.
 struct Downsample {
     const std::uint8_t* src;
     int srcWidth, srcHeight;
@@ -66,7 +65,7 @@ struct Downsample {
     int dstWidth, dstHeight;
     bool srgb;
     std::vector<Taps> across, down;
-    std::array<float, 256> colour{}, plain{};
+    std::array<float, 256> colour{};
 
     const math::Srgb8Encoder& srgb8 = math::srgb8Encoder();
 
@@ -83,7 +82,7 @@ struct Downsample {
                 for (int c = 0; c < 3; ++c)
                     out[c] = store(0.25f * (colour[a[c]] + colour[a[4 + c]] + colour[b[c]] +
                                             colour[b[4 + c]]));
-                out[3] = roundUnorm(0.25f * (plain[a[3]] + plain[a[7]] + plain[b[3]] + plain[b[7]]));
+                out[3] = roundUnorm(0.25f * float(a[3] + a[7] + b[3] + b[7]));
             }
         }
     }
@@ -105,7 +104,7 @@ struct Downsample {
                         sum[0] += w * colour[p[0]];
                         sum[1] += w * colour[p[1]];
                         sum[2] += w * colour[p[2]];
-                        sum[3] += w * plain[p[3]];
+                        sum[3] += w * float(p[3]);
                     }
                 }
                 for (int c = 0; c < 3; ++c) out[c] = store(sum[c]);
@@ -133,26 +132,13 @@ void downsampleRgba8(const std::uint8_t* src, int srcWidth, int srcHeight, std::
                        dstHeight == std::max(srcHeight / 2, 1),
                    "the destination is the next mip level of the source");
     Downsample d{src, srcWidth, srcHeight, dst, dstWidth, dstHeight, srgb,
-                 tapsAlong(srcWidth, dstWidth), tapsAlong(srcHeight, dstHeight), {}, {}};
+                 tapsAlong(srcWidth, dstWidth), tapsAlong(srcHeight, dstHeight), {}};
     const float* toLinear = math::srgb8ToLinear();
-    for (int k = 0; k < 256; ++k) {
-        d.plain[std::size_t(k)] = float(k);
-        d.colour[std::size_t(k)] = srgb ? toLinear[k] : float(k);
-    }
+    for (int k = 0; k < 256; ++k) d.colour[std::size_t(k)] = srgb ? toLinear[k] : float(k);
     // The bottom half of the rows on a second thread where the level is large enough to pay
     // for it; the results do not depend on the split.
-    std::thread helper;
-    int split = dstHeight;
-    if (std::size_t(dstWidth) * std::size_t(dstHeight) >= kThreadedTexels && dstHeight > 1 &&
-        std::thread::hardware_concurrency() > 1) {
-        try {
-            helper = std::thread([&d, half = dstHeight / 2] { d.rows(half, d.dstHeight); });
-            split = dstHeight / 2;
-        } catch (const std::system_error&) {  // no thread to be had: all rows here
-        }
-    }
-    d.rows(0, split);
-    if (helper.joinable()) helper.join();
+    inTwoBands(dstHeight, std::size_t(dstWidth) * std::size_t(dstHeight) >= kThreadedTexels,
+               [&d](int y0, int y1) { d.rows(y0, y1); });
 }
 
 } // namespace lantern::gpu
