@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -91,6 +92,30 @@ LANTERN_API Result<void> writePng(const std::filesystem::path& path, const Image
 /// are made straight from the device's memory, with no float copy of the picture. Usage when
 /// the view is no longer valid.
 LANTERN_API Result<void> writePng(const std::filesystem::path& path, const FrameView& view);
+
+/// A PNG written band by band (Renderer::renderBands): each band's rows are converted and
+/// compressed as they come, so no 8-bit copy of the whole picture is held. The file is made
+/// as writePng makes it, complete at finish() or not at all: a stream that fails or is dropped
+/// unfinished leaves nothing at the path. Move-only.
+class LANTERN_API PngStream {
+public:
+    /// Checks that the folder is writable and starts the file (a temporary beside `path`).
+    static Result<PngStream> create(const std::filesystem::path& path, int width, int height);
+    PngStream();
+    PngStream(PngStream&&) noexcept;
+    PngStream& operator=(PngStream&&) noexcept;
+    ~PngStream();
+    /// Appends the rows of `band`, whose width is the picture's (Usage when it is not, when it
+    /// has more rows than are left, or when the view is no longer valid).
+    Result<void> write(const FrameView& band);
+    /// After the last row: ends the file and moves it to the path (Usage before the last row).
+    Result<void> finish();
+
+    struct Impl;
+
+private:
+    std::unique_ptr<Impl> m_impl;
+};
 
 /// Writes .exr or .png by extension (anything else is an InvalidInput error).
 LANTERN_API Result<void> writeImage(const std::filesystem::path& path, const Image& image,

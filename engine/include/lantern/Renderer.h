@@ -17,6 +17,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -265,6 +266,23 @@ public:
     /// for AOVs (render() returns those). Other failures as render().
     Result<FrameView> renderView(const PreparedScene& scene, const RenderOptions& options,
                                  double timeSeconds);
+
+    /// One band of a picture from renderBands: a view of its rows, and the picture row (0: the
+    /// top) where the band starts.
+    using BandSink = std::function<Result<void>(const FrameView& band, int top)>;
+
+    /// Renders the picture in horizontal bands of `rows` rows (the last may be shorter; 0: a
+    /// height chosen for the scene, see docs/library.md, "Rendering in bands"), top first, and
+    /// hands each band to `sink` while the next one renders. The device then holds two bands'
+    /// attachments instead of the whole picture's: `lantern render` writes PNGs this way
+    /// (PngStream). A band's view is valid during its call only and carries no metadata or
+    /// camera. It covers the pixels renderView covers; values may differ from renderView's in
+    /// their last bits (the rasteriser rounds a band's window coordinates on their own: on
+    /// lavapipe by at most 3.1e-6, tests/gpu/BandsTest.cpp). Colour only: Usage
+    /// when options ask for AOVs. A sink's error stops the render and is returned; other
+    /// failures as render().
+    Result<void> renderBands(const PreparedScene& scene, const RenderOptions& options,
+                             double timeSeconds, int rows, const BandSink& sink);
 
     /// Convenience: validates, uploads and renders `scene` in one call (the upload is not
     /// kept; prepare() once to render many frames).

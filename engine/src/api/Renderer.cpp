@@ -184,6 +184,29 @@ Result<FrameView> Renderer::renderView(const PreparedScene& prepared, const Rend
     return view;
 }
 
+Result<void> Renderer::renderBands(const PreparedScene& prepared, const RenderOptions& options,
+                                   double time, int rows, const BandSink& sink) {
+    if (!prepared) return makeError(ErrorCode::Usage, "renderBands() needs a prepared scene");
+    if (options.aovs.any() || options.aovs.anyCryptomatte())
+        return makeError(ErrorCode::Usage,
+                         "renderBands() reads the colour only: render() returns AOV planes",
+                         "options.aovs");
+    if (rows < 0) return makeError(ErrorCode::Usage, "a band has at least one row", "rows");
+    gpu::Device& device = *m_impl->device;
+    LANTERN_TRY(render::checkOptions(device, options));
+    return render::renderBands(
+        device, prepared.m_gpu, prepared.scene(), options, time, rows, m_impl->stats,
+        [&](const gpu::FrameReadback& band, int top) {
+            FrameView view;
+            view.m_header.width = band.image.width;
+            view.m_header.height = band.image.height;
+            view.m_data = band.view.data;
+            view.m_rowPitch = band.view.rowPitch;
+            view.m_live = band.view.live;
+            return sink(view, top);
+        });
+}
+
 const float* FrameView::row(int y) const {
     if (!valid() || y < 0 || y >= height()) return nullptr;
     return reinterpret_cast<const float*>(m_data + std::size_t(y) * m_rowPitch);

@@ -105,6 +105,10 @@ struct DrawList {
     /// Auto weighs the vertex stage's check against the host's (gpu/FrameRing.cpp); tests
     /// force either way.
     OutputGuard outputGuard = OutputGuard::Auto;
+    /// A band of a taller picture (render::renderBands): the target holds the picture's rows
+    /// [bandTop, bandTop + target.height), and every view keeps its place in the picture.
+    /// pictureHeight 0: the target is the whole picture.
+    std::uint32_t bandTop = 0, pictureHeight = 0;
 
     std::size_t drawCount() const {
         std::size_t n = 0;

@@ -6,6 +6,7 @@
 
 #include "gpu/ClearDraw.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace lantern::gpu {
@@ -123,14 +124,22 @@ void FrameRecorder::bindStreams(const DrawCommand& d, std::uint32_t flatJob) con
 
 // Draws every view's list with the given pipelines (one per draw, in list order).
 void FrameRecorder::drawViews(const std::vector<VkPipeline>& pipelines) const {
-    const std::uint32_t height = slot.target.height;
+    const int rows = int(slot.target.height);
+    const int pictureHeight = list.pictureHeight > 0 ? int(list.pictureHeight) : rows;
     std::size_t counter = 0;
     for (std::size_t vi = 0; vi < list.views.size(); ++vi) {
         const ViewCommands& v = list.views[vi];
         // GL's viewport origin is the bottom-left corner; Vulkan's framebuffer starts at the top.
-        const float vy = float(int(height) - v.y - v.height);
-        const VkViewport viewport{float(v.x), vy, float(v.width), float(v.height), 0.0f, 1.0f};
-        const VkRect2D scissor{{v.x, int(vy)}, {std::uint32_t(v.width), std::uint32_t(v.height)}};
+        // In a band the viewport keeps its place in the picture (above the target's first row
+        // when the view starts above the band) and the scissor keeps the band's share of it.
+        const int vy = pictureHeight - v.y - v.height - int(list.bandTop);
+        const int top = std::max(vy, 0), bottom = std::min(vy + v.height, rows);
+        if (bottom <= top) {  // the view lies outside this band
+            counter += v.draws.size();
+            continue;
+        }
+        const VkViewport viewport{float(v.x), float(vy), float(v.width), float(v.height), 0.0f, 1.0f};
+        const VkRect2D scissor{{v.x, top}, {std::uint32_t(v.width), std::uint32_t(bottom - top)}};
         vkCmdSetViewport(cmd, 0, 1, &viewport);
         vkCmdSetScissor(cmd, 0, 1, &scissor);
         const FrameSetOffsets dynamicOffsets =

@@ -13,6 +13,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <system_error>
 #include <thread>
 #include <vector>
@@ -41,6 +42,22 @@ void waitForRow(const RowSource& source, int y) {
         source.ready->wait(made, std::memory_order_acquire);
 }
 
+// The header of an 8-bit RGBA sRGB picture, and the encoding's settings. libpng longjmps on
+// error: call it inside a setjmp frame.
+void writePngHeader(const PngWriteState& state, int width, int height,
+                    const io::PngEncoding& encoding) {
+    png_set_IHDR(state.png, state.info, png_uint_32(width), png_uint_32(height), 8,
+                 PNG_COLOR_TYPE_RGB_ALPHA, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+                 PNG_FILTER_TYPE_DEFAULT);
+    // The pixels are sRGB-encoded: say so (sRGB chunk), with the gAMA and cHRM that decoders
+    // without sRGB support read instead, so no viewer has to guess the colour space.
+    png_set_sRGB_gAMA_and_cHRM(state.png, state.info, PNG_sRGB_INTENT_PERCEPTUAL);
+    png_set_compression_level(state.png, encoding.zlibLevel);
+    png_set_filter(state.png, PNG_FILTER_TYPE_BASE,
+                   encoding.everyFilter ? PNG_ALL_FILTERS : PNG_FILTER_UP);
+    png_write_info(state.png, state.info);
+}
+
 // libpng reports errors by longjmp back here: this frame holds no object with a destructor and
 // changes no local declared before setjmp; the caller owns the state, the rows and the output.
 bool encodePng(PngWriteState* state, int width, int height, const RowSource& source,
@@ -54,16 +71,7 @@ bool encodePng(PngWriteState* state, int width, int height, const RowSource& sou
             bytes->insert(bytes->end(), data, data + size);
         },
         nullptr);
-    png_set_IHDR(state->png, state->info, png_uint_32(width), png_uint_32(height), 8,
-                 PNG_COLOR_TYPE_RGB_ALPHA, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
-                 PNG_FILTER_TYPE_DEFAULT);
-    // The pixels are sRGB-encoded: say so (sRGB chunk), with the gAMA and cHRM that decoders
-    // without sRGB support read instead, so no viewer has to guess the colour space.
-    png_set_sRGB_gAMA_and_cHRM(state->png, state->info, PNG_sRGB_INTENT_PERCEPTUAL);
-    png_set_compression_level(state->png, encoding.zlibLevel);
-    png_set_filter(state->png, PNG_FILTER_TYPE_BASE,
-                   encoding.everyFilter ? PNG_ALL_FILTERS : PNG_FILTER_UP);
-    png_write_info(state->png, state->info);
+    writePngHeader(*state, width, height, encoding);
     for (int y = 0; y < height; ++y) {
         waitForRow(source, y);
         png_write_row(state->png, source.rows[y]);
@@ -142,6 +150,131 @@ Result<void> writePngRows(const std::filesystem::path& path, int width, int heig
 }
 
 } // namespace
+
+// The file, libpng's state and the compressed bytes not yet written to the file. libpng's write
+// callback appends to `pending`; past kFlushBytes they go to the file, and a failing write is
+// kept in `error` while libpng is made to longjmp out.
+struct PngStream::Impl {
+    static constexpr std::size_t kFlushBytes = std::size_t(1) << 18;
+
+    explicit Impl(const std::filesystem::path& path) : file(path) {}
+
+    io::AtomicFile file;
+    PngWriteState state;
+    int width = 0, height = 0, rowsWritten = 0;
+    bool broken = false;  ///< an earlier call failed: the stream writes nothing more
+    std::vector<unsigned char> pending, row;
+    std::optional<Error> error;
+
+    bool flush() {
+        if (pending.empty()) return true;
+        if (auto w = file.write(pending.data(), pending.size()); !w) {
+            error = std::move(w).error();
+            return false;
+        }
+        pending.clear();
+        return true;
+    }
+    Error failure(const char* what) {
+        broken = true;
+        Error e = error ? *error : makeError(ErrorCode::IoError, what);
+        e.file = file.destination().string();
+        return e;
+    }
+};
+
+namespace {
+
+void appendToStream(png_structp png, png_bytep data, png_size_t size) {
+    auto* s = static_cast<PngStream::Impl*>(png_get_io_ptr(png));
+    s->pending.insert(s->pending.end(), data, data + size);
+    if (s->pending.size() >= PngStream::Impl::kFlushBytes && !s->flush())
+        png_error(png, "the PNG file could not be written");
+}
+
+// As encodePng: libpng longjmps back to these frames, which hold nothing with a destructor.
+bool startStream(PngStream::Impl* s) {
+    if (!s->state.png || !s->state.info) return false;
+    if (setjmp(png_jmpbuf(s->state.png))) return false;
+    png_set_write_fn(s->state.png, s, appendToStream, nullptr);
+    writePngHeader(s->state, s->width, s->height, io::PngEncoding{});
+    return true;
+}
+
+bool streamRows(PngStream::Impl* s, const FrameView* band) {
+    if (setjmp(png_jmpbuf(s->state.png))) return false;
+    const math::Srgb8Encoder& srgb8 = math::srgb8Encoder();
+    for (int y = 0; y < band->height(); ++y) {
+        pngRow(srgb8, band->row(y), std::size_t(s->width), s->row.data());
+        png_write_row(s->state.png, s->row.data());
+    }
+    return true;
+}
+
+bool endStream(PngStream::Impl* s) {
+    if (setjmp(png_jmpbuf(s->state.png))) return false;
+    png_write_end(s->state.png, s->state.info);
+    return true;
+}
+
+} // namespace
+
+Result<PngStream> PngStream::create(const std::filesystem::path& path, int width, int height) {
+    if (width < 1 || height < 1)
+        return makeError(ErrorCode::InvalidInput,
+                         "a PNG of " + std::to_string(width) + "x" + std::to_string(height) +
+                             " pixels is empty",
+                         {}, path.string());
+    PngStream stream;
+    stream.m_impl = std::make_unique<Impl>(path);
+    Impl& s = *stream.m_impl;
+    LANTERN_TRY(s.file.checkWritable());
+    LANTERN_TRY(s.file.open());
+    s.width = width;
+    s.height = height;
+    s.row.resize(std::size_t(width) * 4);
+    if (!startStream(&s)) return s.failure("PNG encoding failed (libpng)");
+    return stream;
+}
+
+PngStream::PngStream() = default;
+PngStream::PngStream(PngStream&&) noexcept = default;
+PngStream& PngStream::operator=(PngStream&&) noexcept = default;
+PngStream::~PngStream() = default;
+
+Result<void> PngStream::write(const FrameView& band) {
+    if (!m_impl || m_impl->broken)
+        return makeError(ErrorCode::Usage, "the PNG stream has failed or finished");
+    Impl& s = *m_impl;
+    const std::string file = s.file.destination().string();
+    if (!band.valid())
+        return makeError(ErrorCode::Usage,
+                         "the frame view is no longer valid (its renderer rendered again)", {}, file);
+    if (band.width() != s.width || band.height() > s.height - s.rowsWritten)
+        return makeError(ErrorCode::Usage,
+                         "a band of " + std::to_string(band.width()) + "x" +
+                             std::to_string(band.height()) + " does not fit the " +
+                             std::to_string(s.height - s.rowsWritten) + " rows of " +
+                             std::to_string(s.width) + " pixels left",
+                         {}, file);
+    if (!streamRows(&s, &band)) return s.failure("PNG encoding failed (libpng)");
+    s.rowsWritten += band.height();
+    return {};
+}
+
+Result<void> PngStream::finish() {
+    if (!m_impl || m_impl->broken)
+        return makeError(ErrorCode::Usage, "the PNG stream has failed or finished");
+    Impl& s = *m_impl;
+    if (s.rowsWritten != s.height)
+        return makeError(ErrorCode::Usage,
+                         std::to_string(s.rowsWritten) + " of " + std::to_string(s.height) +
+                             " rows were written",
+                         {}, s.file.destination().string());
+    if (!endStream(&s) || !s.flush()) return s.failure("PNG encoding failed (libpng)");
+    s.broken = true;  // finished: nothing more goes in
+    return s.file.commit();
+}
 
 std::vector<unsigned char> io::pngPixels(const Image& image) {
     const std::size_t w = std::size_t(image.width);

@@ -48,6 +48,25 @@ Result<RenderedFrame> renderFrame(gpu::Device& device, const std::shared_ptr<gpu
                                   FrameStats& stats, const FrameEdits& edits = {},
                                   Image storage = {}, bool inPlace = false);
 
+/// One band of a picture rendered by renderBands: its readback (collected in place) and the
+/// picture row it starts at. The view is valid during the call only.
+using BandSink = std::function<Result<void>(const gpu::FrameReadback& band, int top)>;
+
+/// The band height renderBands picks for a width x height picture whose draws process
+/// `vertices` vertices: rows of about 4 MiB of float colour (at least 16) when the picture has
+/// at least 2^20 pixels and drawing the geometry once more per band costs at most a quarter of
+/// a vertex per pixel; otherwise the picture's height (one band).
+int autoBandRows(int width, int height, double vertices);
+
+/// Renders the picture in horizontal bands of `rows` rows (0: autoBandRows), top first, each
+/// a frame of its own in the device's ring, so band k+1 renders while `sink` reads band k.
+/// Only the ring's bands of pixels exist at a time. Colour only (no AOVs). A band holding NaN
+/// or Inf fails as nonFiniteFrame, at its pixel in the picture; a failing sink stops the loop
+/// with its error. The ring is drained before returning either way.
+Result<void> renderBands(gpu::Device& device, const std::shared_ptr<gpu::SceneBuffers>& scene,
+                         const Scene& sceneData, const RenderOptions& options, double time,
+                         int rows, FrameStats& stats, const BandSink& sink);
+
 /// The Cryptomatte layers `options.aovs` asks for, for the options.width x options.height
 /// picture at `time`: a second, synchronous render of the ids at cryptomatteSamples times the
 /// size (render/Cryptomatte.h), counted. Fails as a render would, the message prefixed with
