@@ -1,7 +1,7 @@
 // What `lantern render` writes where: missing folders of -o are created, '#' runs are the frame
 // number for one frame too (--frame N, or --time T at --fps), a sample count the device lacks is
-// refused before rendering (exit 2, naming the counts it has), the background rule, and
-// `lantern info --devices`.
+// refused before rendering (exit 2, naming the counts it has), the background rule, a large
+// PNG written in bands, and `lantern info --devices`.
 #include "TestSupport.h"
 
 #include <gtest/gtest.h>
@@ -122,6 +122,33 @@ TEST_F(CliOutput, TheBackgroundIsOpaqueBlackUnlessAsked) {
     EXPECT_EQ(opaque->pixel(0, 0)[3], 1.0f) << "the default, as in view and RenderOptions";
     EXPECT_EQ(clear->pixel(0, 0)[3], 0.0f);
     EXPECT_EQ(RenderOptions().background, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+}
+
+// A PNG-only picture of 2^20 pixels is rendered and written in bands (four of 256 rows here,
+// BandRows.TheAutomaticHeightWeighsPixelsAgainstVertices): two outputs of it are the same file,
+// and it is the picture written beside an EXR (one whole frame) but for rounding: no channel
+// more than 1 of 255 apart, and not one pixel in ten thousand that much.
+TEST_F(CliOutput, ALargePngOnlyPictureIsWrittenInBands) {
+    const auto dir = testOutputDir();
+    const std::vector<std::string> size{"--width", "1024", "--height", "1024"};
+    auto args = [&](std::vector<std::string> a) {
+        a.insert(a.end(), size.begin(), size.end());
+        return a;
+    };
+    ASSERT_EQ(runLantern(args({"render", "builtin:spheres", "-o", (dir / "bands.png").string(),
+                               "-o", (dir / "again.png").string()}))
+                  .exitCode,
+              0);
+    ASSERT_EQ(runLantern(args({"render", "builtin:spheres", "-o", (dir / "whole.png").string(),
+                               "-o", (dir / "whole.exr").string()}))
+                  .exitCode,
+              0);
+    EXPECT_GT(bytes(dir / "bands.png").size(), 1000u);
+    EXPECT_EQ(bytes(dir / "bands.png"), bytes(dir / "again.png"));
+    const auto compared = runLantern({"compare", (dir / "whole.png").string(),
+                                      (dir / "bands.png").string(), "--no-ssim", "--fail",
+                                      "0.0040", "--fail-percent", "0.01"});
+    EXPECT_EQ(compared.exitCode, 0) << compared.out << compared.err;
 }
 
 TEST_F(CliOutput, InfoDevicesNamesTheChosenDeviceAndWhy) {

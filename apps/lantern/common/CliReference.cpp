@@ -56,7 +56,11 @@ Nothing is ever written half: an output file appears complete or not at all.
   coverage.
 - **Images**: `.exr` holds linear, premultiplied float RGBA (half with `--half`) and the AOV
   channels; `.png` is 8-bit sRGB with straight alpha and says so (an sRGB chunk, with gAMA and
-  cHRM for decoders that do not know sRGB).
+  cHRM for decoders that do not know sRGB). When every output is a PNG and nothing needs the
+  float picture (no `--aov`, `--write-camera` or `--compare`), a picture of 2^20 pixels or more
+  is rendered and written in horizontal bands, so memory holds two bands of it rather than the
+  whole picture; a few pixels may then differ by rounding from the same render written as EXR
+  (docs/library.md, "Rendering in bands").
 - **Output names**: `#` runs are the zero-padded frame number (`out/frame_####.exr` writes
   `out/frame_0012.exr`), in a sequence and for one frame alike: `--frame N` gives N, `--time T`
   gives round(T x fps) (24 fps unless `--fps`), neither gives 0. Missing folders of an output

@@ -162,12 +162,25 @@ int renderFrame(const RenderArgs& a, const SingleFrame& frame, Renderer& rendere
                 const PreparedScene& prepared, const RenderOptions& options, ExrOptions exr,
                 const std::vector<std::string>& patterns) {
     if (pngFromView(a, options, patterns)) {
-        auto view = renderer.renderView(prepared, options, frame.time);
-        if (!view) return report(view.error());
+        // Band by band (Renderer::renderBands): each band's rows are compressed while the
+        // next band renders, and the device holds two bands of pixels, not the picture.
+        std::vector<PngStream> streams;
         for (const std::string& pattern : patterns) {
-            const std::string out = expandFramePattern(pattern, frame.number);
-            if (auto w = writePng(out, *view); !w) return report(w.error());
-            std::cout << out << "\n";
+            auto stream = PngStream::create(expandFramePattern(pattern, frame.number),
+                                            options.width, options.height);
+            if (!stream) return report(stream.error());
+            streams.push_back(std::move(*stream));
+        }
+        auto rendered = renderer.renderBands(prepared, options, frame.time, 0,
+                                             [&](const FrameView& band, int) -> Result<void> {
+                                                 for (PngStream& s : streams)
+                                                     LANTERN_TRY(s.write(band));
+                                                 return {};
+                                             });
+        if (!rendered) return report(rendered.error());
+        for (std::size_t i = 0; i < patterns.size(); ++i) {
+            if (auto w = streams[i].finish(); !w) return report(w.error());
+            std::cout << expandFramePattern(patterns[i], frame.number) << "\n";
         }
         return kOk;
     }
