@@ -91,6 +91,31 @@ TEST(Failure, NonFiniteFrameExits3NamingTheObjectAndWritesNothing) {
     EXPECT_EQ(files(dir).size(), 2u);
 }
 
+// A PNG written band by band (a PNG-only picture of 2^20 pixels) meets a full disk, a NaN in a
+// band, or neither: the first two exit 3 naming the file or the pixel in the picture and leave
+// nothing, not even the temporary file; the third writes both outputs.
+TEST(Failure, ABandedPngThatFailsLeavesNothing) {
+    LANTERN_SKIP_IF_MISSING(lantern::test::missingVulkanDevice());
+    if (!hookedBuild()) GTEST_SKIP() << "this build has no fault-injection hooks (LANTERN_TESTING_HOOKS=OFF)";
+    const auto dir = testOutputDir();
+    const std::vector<std::string> args{"render", "builtin:spheres", "--width", "1024", "--height",
+                                        "1024", "-o", (dir / "a.png").string(), "-o",
+                                        (dir / "b.png").string()};
+    const auto full = runLantern(args, {"LANTERN_TEST_IO_FAULT=write=ENOSPC"});
+    EXPECT_EQ(full.exitCode, 3) << full.err;
+    EXPECT_NE(full.err.find("No space left on device (the disk is full)"), std::string::npos) << full.err;
+    EXPECT_NE(full.err.find((dir / "a.png").string()), std::string::npos) << full.err;
+    EXPECT_TRUE(files(dir).empty());
+    // In the fourth band (rows 768-1023): the pixel is named in the picture's rows.
+    const auto nan = runLantern(args, {"LANTERN_TEST_NONFINITE_PIXEL=600,10@3"});
+    EXPECT_EQ(nan.exitCode, 3) << nan.err;
+    EXPECT_NE(nan.err.find("the first at pixel (600, 778)"), std::string::npos) << nan.err;
+    EXPECT_TRUE(files(dir).empty());
+    const auto ok = runLantern(args);
+    EXPECT_EQ(ok.exitCode, 0) << ok.err;
+    EXPECT_EQ(files(dir), (std::vector<std::string>{"a.png", "b.png"}));
+}
+
 // In a sequence, the frames before the bad one are kept, complete, and no later one is written.
 TEST(Failure, NonFiniteFrameMidSequenceKeepsTheFramesBefore) {
     LANTERN_SKIP_IF_MISSING(lantern::test::missingVulkanDevice());
