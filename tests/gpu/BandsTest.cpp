@@ -22,23 +22,17 @@ namespace {
 using namespace lantern;
 using lantern::test::testOutputDir;
 
-class Bands : public ::testing::Test {
+// The shared renderer (validation on: a message fails the test) with builtin:spheres prepared.
+class Bands : public lantern::test::GpuTest {
 protected:
-    static void SetUpTestSuite() {
-        RendererDesc desc;
-        desc.validation = true;
-        auto r = Renderer::create(desc);
-        ASSERT_TRUE(r) << r.error().describe();
-        renderer.emplace(std::move(*r));
+    void SetUp() override {
+        GpuTest::SetUp();
+        if (IsSkipped() || HasFatalFailure()) return;
         auto scene = builtinScene("spheres");
         ASSERT_TRUE(scene);
-        auto p = renderer->prepare(std::make_shared<const Scene>(std::move(*scene)));
+        auto p = renderer().prepare(std::make_shared<const Scene>(std::move(*scene)));
         ASSERT_TRUE(p) << p.error().describe();
         prepared.emplace(std::move(*p));
-    }
-    static void TearDownTestSuite() {
-        prepared.reset();
-        renderer.reset();
     }
     static RenderOptions sized(int w, int h) {
         RenderOptions o;
@@ -48,10 +42,10 @@ protected:
     }
 
     // The picture put together from renderBands' bands, checking each band's place and size.
-    static Result<Image> banded(const RenderOptions& o, int rows) {
+    Result<Image> banded(const RenderOptions& o, int rows) {
         Image out(o.width, o.height);
         int expectedTop = 0;
-        auto r = renderer->renderBands(*prepared, o, 0.5, rows, [&](const FrameView& band, int top) {
+        auto r = renderer().renderBands(*prepared, o, 0.5, rows, [&](const FrameView& band, int top) {
             EXPECT_EQ(top, expectedTop);
             EXPECT_EQ(band.width(), o.width);
             EXPECT_EQ(band.height(), std::min(rows, o.height - top));
@@ -71,8 +65,7 @@ protected:
         return std::string(std::istreambuf_iterator<char>(in), {});
     }
 
-    static inline std::optional<Renderer> renderer;
-    static inline std::optional<PreparedScene> prepared;
+    std::optional<PreparedScene> prepared;
 };
 
 // The largest difference of any channel between two pictures of one size, relative to the
@@ -112,7 +105,7 @@ TEST_F(Bands, TheBandsHoldTheRowsOfTheWholeFrame) {
     flat.shading = ShadingMode::Flat;
     cases.push_back({"flat", flat});
     for (const Case& c : cases) {
-        auto whole = renderer->render(*prepared, c.options, 0.5);
+        auto whole = renderer().render(*prepared, c.options, 0.5);
         ASSERT_TRUE(whole) << whole.error().describe();
         for (int rows : {1, 7, 16, c.options.height, 1000}) {
             SCOPED_TRACE(std::string(c.what) + ", bands of " + std::to_string(rows) + " rows");
@@ -147,13 +140,13 @@ TEST_F(Bands, APngWrittenBandByBandIsThePngOfTheWholeFrame) {
     RenderOptions o = sized(67, 45);
     o.msaa = 4;
     o.background = glm::vec4(0.0f);  // transparent edges: un-premultiplied on the way
-    auto whole = renderer->render(*prepared, o, 0.5);
+    auto whole = renderer().render(*prepared, o, 0.5);
     ASSERT_TRUE(whole);
     const auto dir = testOutputDir();
     ASSERT_TRUE(writePng(dir / "whole.png", *whole));
     auto stream = PngStream::create(dir / "bands.png", o.width, o.height);
     ASSERT_TRUE(stream) << stream.error().describe();
-    auto r = renderer->renderBands(*prepared, o, 0.5, 10, [&](const FrameView& band, int) {
+    auto r = renderer().renderBands(*prepared, o, 0.5, 10, [&](const FrameView& band, int) {
         EXPECT_FALSE(std::filesystem::exists(dir / "bands.png"));
         return stream->write(band);
     });
@@ -173,7 +166,7 @@ TEST_F(Bands, WhatGoesWrongWritesNothing) {
     std::filesystem::create_directories(dir);
     RenderOptions o = sized(32, 24);
     int calls = 0;
-    auto stopped = renderer->renderBands(*prepared, o, 0.0, 8, [&](const FrameView&, int) {
+    auto stopped = renderer().renderBands(*prepared, o, 0.0, 8, [&](const FrameView&, int) {
         ++calls;
         return Result<void>(makeError(ErrorCode::IoError, "disk on fire"));
     });
@@ -181,12 +174,12 @@ TEST_F(Bands, WhatGoesWrongWritesNothing) {
     EXPECT_EQ(stopped.error().message, "disk on fire");
     EXPECT_EQ(calls, 1);
     // The renderer is left ready for the next frame.
-    ASSERT_TRUE(renderer->render(*prepared, o, 0.0));
+    ASSERT_TRUE(renderer().render(*prepared, o, 0.0));
 
     {
         auto stream = PngStream::create(dir / "wide.png", 31, 24);
         ASSERT_TRUE(stream);
-        auto r = renderer->renderBands(*prepared, o, 0.0, 8,
+        auto r = renderer().renderBands(*prepared, o, 0.0, 8,
                                        [&](const FrameView& band, int) { return stream->write(band); });
         ASSERT_FALSE(r);
         EXPECT_EQ(r.error().code, ErrorCode::Usage);
@@ -195,7 +188,7 @@ TEST_F(Bands, WhatGoesWrongWritesNothing) {
     {
         auto stream = PngStream::create(dir / "short.png", 32, 20);
         ASSERT_TRUE(stream);
-        auto r = renderer->renderBands(*prepared, o, 0.0, 8,
+        auto r = renderer().renderBands(*prepared, o, 0.0, 8,
                                        [&](const FrameView& band, int) { return stream->write(band); });
         ASSERT_FALSE(r);
         EXPECT_NE(r.error().message.find("rows"), std::string::npos) << r.error().message;
@@ -203,7 +196,7 @@ TEST_F(Bands, WhatGoesWrongWritesNothing) {
     {
         auto stream = PngStream::create(dir / "unfinished.png", 32, 24);
         ASSERT_TRUE(stream);
-        auto r = renderer->renderBands(*prepared, o, 0.0, 8, [&](const FrameView& band, int top) {
+        auto r = renderer().renderBands(*prepared, o, 0.0, 8, [&](const FrameView& band, int top) {
             return top < 16 ? stream->write(band) : Result<void>{};
         });
         ASSERT_TRUE(r);
@@ -223,13 +216,13 @@ TEST_F(Bands, WhatGoesWrongWritesNothing) {
 
     RenderOptions aov = o;
     aov.aovs.depth = true;
-    auto refused = renderer->renderBands(*prepared, aov, 0.0, 8, [&](const FrameView&, int) {
+    auto refused = renderer().renderBands(*prepared, aov, 0.0, 8, [&](const FrameView&, int) {
         ADD_FAILURE() << "a band was rendered";
         return Result<void>{};
     });
     ASSERT_FALSE(refused);
     EXPECT_EQ(refused.error().code, ErrorCode::Usage);
-    EXPECT_EQ(renderer->renderBands(*prepared, o, 0.0, -1, {}).error().code, ErrorCode::Usage);
+    EXPECT_EQ(renderer().renderBands(*prepared, o, 0.0, -1, {}).error().code, ErrorCode::Usage);
 }
 
 // A band holding NaN is refused as render() refuses the frame, naming the pixel; no band after
@@ -238,11 +231,11 @@ TEST_F(Bands, ABandWithNaNIsRefused) {
     RenderOptions o = sized(48, 32);
     ::setenv("LANTERN_TEST_NONFINITE_PIXEL", "5,3", 1);
     int calls = 0;
-    auto r = renderer->renderBands(*prepared, o, 0.0, 8, [&](const FrameView&, int) {
+    auto r = renderer().renderBands(*prepared, o, 0.0, 8, [&](const FrameView&, int) {
         ++calls;
         return Result<void>{};
     });
-    auto image = renderer->render(*prepared, o, 0.0);
+    auto image = renderer().render(*prepared, o, 0.0);
     ::unsetenv("LANTERN_TEST_NONFINITE_PIXEL");
     ASSERT_FALSE(r);
     ASSERT_FALSE(image);

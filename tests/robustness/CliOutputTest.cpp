@@ -133,12 +133,13 @@ TEST_F(CliOutput, ALargePngOnlyPictureIsWrittenInBands) {
     const std::vector<std::string> size{"--width", "1024", "--height", "1024"};
     auto args = [&](std::vector<std::string> a) {
         a.insert(a.end(), size.begin(), size.end());
+        for (const std::string& flag : lantern::test::validationFlag()) a.push_back(flag);
         return a;
     };
-    ASSERT_EQ(runLantern(args({"render", "builtin:spheres", "-o", (dir / "bands.png").string(),
-                               "-o", (dir / "again.png").string()}))
-                  .exitCode,
-              0);
+    const auto banded = runLantern(args({"render", "builtin:spheres", "-o", (dir / "bands.png").string(),
+                                         "-o", (dir / "again.png").string()}));
+    ASSERT_EQ(banded.exitCode, 0) << banded.err;
+    EXPECT_EQ(banded.err.find("validation"), std::string::npos) << "validation messages: " << banded.err;
     ASSERT_EQ(runLantern(args({"render", "builtin:spheres", "-o", (dir / "whole.png").string(),
                                "-o", (dir / "whole.exr").string()}))
                   .exitCode,
