@@ -4,6 +4,8 @@
 // Context::adopt.
 #include "gpu/DeviceSelection.h"
 
+#include "core/SanitizerSupport.h"
+
 #include "gpu/DriverReport.h"
 #include "gpu/PipelineCache.h"
 
@@ -389,6 +391,11 @@ std::string vulkanLoaderVersion() {
 }
 
 Result<DeviceList> listDevices(const std::string& deviceName) {
+#if defined(LANTERN_ASAN)
+    // As Context::create: this instance loads the drivers first, and their one-off
+    // allocations must keep a library name when LeakSanitizer looks at exit.
+    core::pinVulkanLibraries();
+#endif
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     app.pApplicationName = "lantern";
     app.apiVersion = VK_API_VERSION_1_3;
