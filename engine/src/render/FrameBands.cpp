@@ -3,8 +3,6 @@
 // attachments, and a band is read while the next renders.
 #include "render/FrameRender.h"
 
-#include "render/DrawLists.h"
-
 #include <algorithm>
 #include <chrono>
 #include <deque>
@@ -40,9 +38,9 @@ Result<void> renderBands(gpu::Device& device, const std::shared_ptr<gpu::SceneBu
                          int rows, FrameStats& stats, const BandSink& sink) {
     const auto t0 = std::chrono::steady_clock::now();
     stats = FrameStats{};
-    auto f = frame::buildFrame(sceneData, options, time);
-    if (!f) return std::move(f).error();
-    gpu::DrawList list = buildDrawList(sceneData, *f, options);
+    auto planned = planFrame(sceneData, options, time);
+    if (!planned) return std::move(planned).error();
+    gpu::DrawList& list = planned->list;
     stats.cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     const int height = int(list.target.height);
     if (rows <= 0) rows = autoBandRows(int(list.target.width), height, drawnVertices(sceneData, list));
