@@ -244,6 +244,7 @@ Result<Animation> convertAnimation(const tinygltf::Model& model, const Scene& sc
         const tinygltf::AnimationChannel& ch = src.channels[c];
         const std::string cobj = obj + "." + at("channels", c);
         if (ch.target_node < 0) continue; // glTF: a channel without a node is ignored
+        if (ch.target_path == "pointer") continue; // KHR_animation_pointer: warned, not played
         AnimationPath path;
         if (ch.target_path == "translation")
             path = AnimationPath::Translation;

@@ -237,6 +237,10 @@ struct RawFacts {
     /// left out of the JSON tinygltf reads (it refuses an indices accessor without a
     /// bufferView) and put back by restoreDracoIndices.
     std::map<std::pair<int, int>, int> dracoIndices;
+    /// KHR_animation_pointer channels ("animations[0].channels[3]", and the JSON pointer they
+    /// drive): tinygltf drops a channel without a target node, so they are found here, and
+    /// skipped with a warning (Lantern does not play them).
+    std::vector<std::pair<std::string, std::string>> pointerChannels;
     /// Bytes tinygltf's model will hold in its objects' fixed size (each array at the capacity
     /// its growth reaches) and in the extras and extensions it keeps as tinygltf::Value trees;
     /// and the bytes held only while it is built (each array's block before its last growth).

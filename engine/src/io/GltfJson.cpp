@@ -3,6 +3,7 @@
 // the compression extensions, and the facts tinygltf discards (optional numbers' presence,
 // primitives it would drop); placeholder buffers and Draco's indices hidden from tinygltf.
 #include "io/GltfInternal.h"
+#include "io/GltfSchema.h"
 
 #include <algorithm>
 #include <cmath>
@@ -143,105 +144,6 @@ Result<void> checkExternalFiles(const json& doc, const Source& source, const Dia
     return {};
 }
 
-// glTF's integer properties (indices into arrays, offsets, lengths, counts, enums): tinygltf
-// reads them into int or size_t, so 4294967296 became 0, 0.5 was dropped and -4 read as 0.
-// Indices must be integers in 0..INT_MAX; offsets, lengths and counts in 0..2^53.
-enum class IntKind { None, Index, Size, IndexMap /* an object of indices: attributes */ };
-
-IntKind integerKind(std::string_view key) {
-    static const char* const indices[] = {
-        "scene", "buffer", "bufferView", "componentType", "mesh", "camera", "skin", "material",
-        "indices", "mode", "sampler", "source", "index", "texCoord", "input", "output", "node",
-        "inverseBindMatrices", "skeleton", "magFilter", "minFilter", "wrapS", "wrapT", "light",
-        "children", "nodes", "joints", "target"};
-    static const char* const sizes[] = {"byteOffset", "byteLength", "byteStride", "count"};
-    if (key == "attributes" || key == "targets") return IntKind::IndexMap;
-    for (const char* k : indices)
-        if (key == k) return IntKind::Index;
-    for (const char* k : sizes)
-        if (key == k) return IntKind::Size;
-    return IntKind::None;
-}
-
-// The largest magnitude accepted for any other number (colours, intensities, transforms,
-// camera parameters): 1e30, beyond the 1e-20..1e20 scales the image tests draw, and far below
-// where double composition overflows (1e300 in a transform put Inf into EXR headers; in a
-// light it turned the image black).
-constexpr double kMaxMagnitude = 1e30;
-
-Result<void> checkInteger(const json& v, IntKind kind, const std::string& path,
-                          const Diagnostics& diag) {
-    if (!v.is_number()) return {}; // a wrong type is reported by the structural checks
-    const double limit = kind == IntKind::Index ? 2147483647.0 : 9007199254740992.0;
-    const double d = v.get<double>();
-    const bool integral = v.is_number_integer() || (std::isfinite(d) && d == std::floor(d));
-    if (!integral)
-        return diag.error(path, "is " + printable(v.dump(), 40) + ", not an integer");
-    if (v.is_number_integer() && !v.is_number_unsigned() && v.get<std::int64_t>() < 0)
-        return diag.error(path, "is " + v.dump() + "; it must be 0 or more");
-    if (d < 0) return diag.error(path, "is " + printable(v.dump(), 40) + "; it must be 0 or more");
-    if (d > limit)
-        return diag.error(path, "is " + printable(v.dump(), 40) + ", more than the largest " +
-                                    (kind == IntKind::Index ? "index" : "size") + " (" +
-                                    std::to_string(std::uint64_t(limit)) + ")");
-    return {};
-}
-
-// Walks the document once (linear; its depth is bounded by checkJsonNesting), checking
-// integer properties and number magnitudes, skipping "extras" (the application's own data)
-// and accessors' min/max (they describe the data, which is checked when read).
-Result<void> checkNumbers(const json& v, std::string& path, IntKind kind, bool inAccessor,
-                          const Diagnostics& diag) {
-    if (v.is_object()) {
-        for (auto it = v.begin(); it != v.end(); ++it) {
-            if (it.key() == "extras") continue;
-            const std::size_t mark = path.size();
-            path += "." + printable(it.key(), 40);
-            const bool accessorBounds = inAccessor && (it.key() == "min" || it.key() == "max");
-            const IntKind child = kind == IntKind::IndexMap ? IntKind::Index : integerKind(it.key());
-            Result<void> r = accessorBounds ? Result<void>()
-                                            : checkNumbers(it.value(), path, child, inAccessor, diag);
-            path.resize(mark);
-            if (!r) return r;
-        }
-        return {};
-    }
-    if (v.is_array()) {
-        for (std::size_t i = 0; i < v.size(); ++i) {
-            const std::size_t mark = path.size();
-            path += "[" + std::to_string(i) + "]";
-            // An array passes its kind to numbers and to index maps (targets), not to objects.
-            const IntKind element =
-                v[i].is_object() && kind != IntKind::IndexMap ? IntKind::None : kind;
-            Result<void> r = checkNumbers(v[i], path, element, inAccessor, diag);
-            path.resize(mark);
-            if (!r) return r;
-        }
-        return {};
-    }
-    if (!v.is_number()) return {};
-    if (kind == IntKind::Index || kind == IntKind::Size) return checkInteger(v, kind, path, diag);
-    const double d = v.get<double>();
-    if (!std::isfinite(d) || std::abs(d) > kMaxMagnitude)
-        return diag.error(path, "is " + printable(v.dump(), 40) +
-                                    "; numbers beyond +-1e30 would become infinite on the way to "
-                                    "an image");
-    if (path.size() >= 12 && path.compare(path.size() - 12, 12, ".aspectRatio") == 0 && !(d > 0))
-        return diag.error(path, "is " + v.dump() + "; an aspect ratio must be greater than 0");
-    return {};
-}
-
-Result<void> checkAllNumbers(const json& doc, const Diagnostics& diag) {
-    for (auto it = doc.begin(); it != doc.end(); ++it) {
-        if (it.key() == "extras") continue;
-        std::string path = printable(it.key(), 40);
-        // Top-level arrays ("nodes", "scenes") hold objects; "scene" is an index.
-        LANTERN_TRY(checkNumbers(it.value(), path, integerKind(it.key()),
-                                 it.key() == "accessors", diag));
-    }
-    return {};
-}
-
 // Per camera: whether its perspective block has a zfar (tinygltf does not keep the difference
 // between an absent zfar and its default).
 std::vector<bool> perspectiveHasZfar(const json& doc) {
@@ -254,6 +156,29 @@ std::vector<bool> perspectiveHasZfar(const json& doc) {
                 if (p != c.end() && p->is_object()) hasZfar = p->contains("zfar");
             }
             out.push_back(hasZfar);
+        }
+    }
+    return out;
+}
+
+// The channels of KHR_animation_pointer (path "pointer"), with the pointers they drive.
+std::vector<std::pair<std::string, std::string>> pointerChannels(const json& doc) {
+    std::vector<std::pair<std::string, std::string>> out;
+    const json* animations = arrayOf(doc, "animations");
+    for (std::size_t a = 0; animations && a < animations->size(); ++a) {
+        const json& anim = (*animations)[a];
+        const json* channels = anim.is_object() ? arrayOf(anim, "channels") : nullptr;
+        for (std::size_t c = 0; channels && c < channels->size(); ++c) {
+            const json& ch = (*channels)[c];
+            auto target = ch.is_object() ? ch.find("target") : ch.end();
+            if (!ch.is_object() || target == ch.end() || !target->is_object() ||
+                target->value("path", json()) != "pointer")
+                continue;
+            std::string pointer = "a property";
+            const json pointerJson =
+                target->value("/extensions/KHR_animation_pointer/pointer"_json_pointer, json());
+            if (pointerJson.is_string()) pointer = pointerJson.get<std::string>();
+            out.emplace_back(at("animations", a) + "." + at("channels", c), pointer);
         }
     }
     return out;
@@ -435,6 +360,7 @@ Result<RawFacts> inspectJson(std::string_view text, const Source& source, const 
     LANTERN_TRY(checkExternalFiles(*doc, source, diag, facts));
     LANTERN_TRY(checkCompressionIntegers(*doc, diag));
     facts.perspectiveHasZfar = perspectiveHasZfar(*doc);
+    facts.pointerChannels = pointerChannels(*doc);
     auto counts = primitiveCounts(*doc, diag);
     if (!counts) return std::move(counts).error();
     facts.primitiveCounts = std::move(*counts);

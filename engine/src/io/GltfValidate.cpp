@@ -312,6 +312,12 @@ Result<void> validateSkins(const tinygltf::Model& model, const Diagnostics& diag
     return {};
 }
 
+// Whether a channel drives a node's translation, rotation or scale (one output element per key).
+bool playsTransform(const tinygltf::AnimationChannel& ch) {
+    return ch.target_path == "translation" || ch.target_path == "rotation" ||
+           ch.target_path == "scale";
+}
+
 Result<void> validateAnimations(const tinygltf::Model& model, const Diagnostics& diag) {
     const Format input{{TINYGLTF_TYPE_SCALAR}, {kFloat}};
     const Format vec3{{TINYGLTF_TYPE_VEC3}, {kFloat}};
@@ -343,15 +349,20 @@ Result<void> validateAnimations(const tinygltf::Model& model, const Diagnostics&
                 return diag.error(sobj + ".input",
                                   "CUBICSPLINE needs at least 2 keys, got " + std::to_string(keys));
             const std::size_t values = model.accessors[std::size_t(smp.output)].count;
-            // Morph-weight outputs hold several values per key; checked when a channel uses them.
-            bool weightsOnly = !anim.channels.empty();
+            // A sampler that drives a node's translation, rotation or scale holds one element
+            // per key (three for CUBICSPLINE). Any other (morph weights, checked when a channel
+            // uses them; KHR_animation_pointer's, which drive what Lantern does not play, or
+            // none) holds a whole number of elements per key: the spec's only rule for them.
+            bool oneElementPerKey = false;
             for (const auto& ch : anim.channels)
-                if (ch.sampler == int(s) && ch.target_path != "weights") weightsOnly = false;
-            if (!weightsOnly && values != keys * per)
-                return diag.error(sobj + ".output", "has " + std::to_string(values) +
-                                                        " elements for " + std::to_string(keys) +
-                                                        " keys (expected " +
-                                                        std::to_string(keys * per) + ")");
+                if (ch.sampler == int(s) && ch.target_node != -1 && playsTransform(ch))
+                    oneElementPerKey = true;
+            if (oneElementPerKey ? values != keys * per : keys > 0 && values % (keys * per) != 0)
+                return diag.error(sobj + ".output",
+                                  "has " + std::to_string(values) + " elements for " +
+                                      std::to_string(keys) + " keys (expected " +
+                                      (oneElementPerKey ? "" : "a multiple of ") +
+                                      std::to_string(keys * per) + ")");
         }
         std::set<std::pair<int, std::string>> targets;
         for (std::size_t c = 0; c < anim.channels.size(); ++c) {
@@ -364,6 +375,7 @@ Result<void> validateAnimations(const tinygltf::Model& model, const Diagnostics&
                                        "node", diag));
             const int output = anim.samplers[std::size_t(ch.sampler)].output;
             const std::string pobj = cobj + ".target.path";
+            if (ch.target_path == "pointer") continue;  // warned from RawFacts::pointerChannels
             if (ch.target_path == "translation" || ch.target_path == "scale")
                 LANTERN_TRY(checkFormat(model, output, vec3, pobj, diag));
             else if (ch.target_path == "rotation")
@@ -431,6 +443,12 @@ Result<void> validateModel(const tinygltf::Model& model, const RawFacts& raw,
     LANTERN_TRY(validateNodes(model, diag));
     LANTERN_TRY(validateSkins(model, diag));
     LANTERN_TRY(validateAnimations(model, diag));
+    // KHR_animation_pointer (materials, lights, cameras, node properties by JSON pointer) is
+    // not played; required, the file was refused above with the extension.
+    for (const auto& [object, pointer] : raw.pointerChannels)
+        diag.warn(object, "animates " + printable(pointer, 80) +
+                              " through KHR_animation_pointer, which Lantern does not play; "
+                              "channel skipped");
     return {};
 }
 
