@@ -3,7 +3,7 @@
 // host-made mip chain of a texture. Compare rows of one run (ratios), never absolute numbers
 // across runs (docs/performance.md).
 #include "gpu/TextureMips.h"
-#include "io/ImageEncode.h"
+#include "io/image/ImageEncode.h"
 #include "math/Srgb.h"
 
 #include <lantern/Lantern.h>

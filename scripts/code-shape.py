@@ -62,6 +62,9 @@ def functions(path):
             head = text[max(0, i - 400):i]
             head = head[head.rfind(";") + 1:] if ";" in head else head
             head = head[head.rfind("}") + 1:] if "}" in head else head
+            # The head starts after the last brace of either kind: the first function after
+            # `namespace {` (or a class's opening brace) was read as part of the namespace.
+            head = head[head.rfind("{") + 1:] if "{" in head else head
             flat = " ".join(head.split())
             is_fn = (")" in flat and not CONTROL.search(flat.split("(")[0] if "(" in flat else flat)
                      and not re.search(r"\]\s*\([^)]*\)\s*(mutable\s*)?(->[^{]*)?$", flat)

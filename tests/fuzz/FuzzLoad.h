@@ -5,7 +5,7 @@
 // reports and uncaught exceptions are findings; refusals are the expected outcome.
 #pragma once
 
-#include "io/GltfLoad.h"
+#include "io/gltf/GltfLoad.h"
 #include "frame/Frame.h"
 
 #include <lantern/Scene.h>

@@ -8,7 +8,7 @@
 // - a metallic-roughness map draws, texel by texel, what the factors it scales draw.
 #include "LightingCompare.h"
 
-#include "io/GltfInternal.h"
+#include "io/gltf/GltfInternal.h"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 // roughness 1) is a matte light surface.
 #include "LightingCompare.h"
 
-#include "io/GltfInternal.h"
+#include "io/gltf/GltfInternal.h"
 #include "lantern_shared.h"
 
 #include <gtest/gtest.h>

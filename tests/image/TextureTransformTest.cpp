@@ -6,7 +6,7 @@
 // the mip levels the host made (gpu/TextureMips.h), each copied to its own level.
 #include "LightingCompare.h"
 
-#include "io/GltfInternal.h"
+#include "io/gltf/GltfInternal.h"
 
 #include <gtest/gtest.h>
 

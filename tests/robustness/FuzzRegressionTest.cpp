@@ -4,7 +4,7 @@
 // report (this runs under the asan preset too), and a refusal that names the file.
 #include "TestSupport.h"
 
-#include "io/GltfLoad.h"
+#include "io/gltf/GltfLoad.h"
 #include "render/FrameRender.h"
 
 #include <gtest/gtest.h>

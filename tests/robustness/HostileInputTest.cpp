@@ -8,7 +8,7 @@
 #include "../unit/GltfTestSupport.h"
 
 #include "io/AtomicFile.h"
-#include "io/GltfInternal.h"
+#include "io/gltf/GltfInternal.h"
 
 #include <lantern/Io.h>
 #include <lantern/Scene.h>
@@ -332,19 +332,19 @@ TEST(HostileFolder, AFolderSwappedForALinkBetweenTheCheckAndTheReadIsNotFollowed
     fs::create_directories(root / "outside");
     writeText(root / "scene" / "sub" / "data.bin", "inside");
     writeText(root / "outside" / "data.bin", "SECRET");
-    auto checked = gltf::resolveConfined(root / "scene", "sub/data.bin", 1 << 20);
+    auto checked = io::resolveConfined(root / "scene", "sub/data.bin", 1 << 20);
     ASSERT_TRUE(checked) << checked.error().describe();
-    auto before = gltf::readConfinedFile(*checked, 1 << 20);
+    auto before = io::readConfinedFile(*checked, 1 << 20);
     ASSERT_TRUE(before) << before.error().describe();
     EXPECT_EQ(std::string(before->begin(), before->end()), "inside");
 
     fs::rename(root / "scene" / "sub", root / "scene" / "old");
     fs::create_directory_symlink(root / "outside", root / "scene" / "sub");
     // What the previous code did: the checked real path, O_NOFOLLOW on its last component.
-    auto naive = gltf::readRegularFile(checked->real(), 1 << 20, true);
+    auto naive = io::readRegularFile(checked->real(), 1 << 20, true);
     ASSERT_TRUE(naive) << "the swap must make the naive read reach the secret";
     EXPECT_EQ(std::string(naive->begin(), naive->end()), "SECRET");
-    auto after = gltf::readConfinedFile(*checked, 1 << 20);
+    auto after = io::readConfinedFile(*checked, 1 << 20);
     ASSERT_FALSE(after) << "read " << std::string(after->begin(), after->end());
     EXPECT_NE(after.error().message.find("a symbolic link appeared in its path"), std::string::npos)
         << after.error().describe();
@@ -353,7 +353,7 @@ TEST(HostileFolder, AFolderSwappedForALinkBetweenTheCheckAndTheReadIsNotFollowed
     fs::rename(root / "scene" / "old", root / "scene" / "sub");
     fs::remove(root / "scene" / "sub" / "data.bin");
     fs::create_symlink(root / "outside" / "data.bin", root / "scene" / "sub" / "data.bin");
-    EXPECT_FALSE(gltf::readConfinedFile(*checked, 1 << 20));
+    EXPECT_FALSE(io::readConfinedFile(*checked, 1 << 20));
 }
 
 TEST(HostileFolder, FoldersFifosAndDevicesAreRefusedWithoutWaiting) {

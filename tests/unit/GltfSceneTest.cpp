@@ -4,7 +4,7 @@
 // nodes and scenes; each bad value refused with its object path and reason.
 #include "GltfTestSupport.h"
 
-#include "io/GltfInternal.h"
+#include "io/gltf/GltfInternal.h"
 
 #include <lantern/Renderer.h>
 

@@ -3,7 +3,7 @@
 // Lantern's and the supported KHR extensions takes its legal fractional, negative and large
 // values, and integers keep their checks where the schema puts them.
 #include "GltfTestSupport.h"
-#include "io/GltfSchema.h"
+#include "io/gltf/GltfSchema.h"
 
 #include <gtest/gtest.h>
 

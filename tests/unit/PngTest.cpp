@@ -3,7 +3,7 @@
 // of the un-premultiplied linear colour.
 #include "TestSupport.h"
 
-#include "io/ImageEncode.h"
+#include "io/image/ImageEncode.h"
 #include "math/Srgb.h"
 
 #include <lantern/Io.h>

@@ -42,7 +42,7 @@ using lantern::test::sourceDir;
 const fs::path kIncludeDir = sourceDir() / "engine" / "include";
 
 /// The headers that take the host's own Vulkan objects, and so include vulkan.h.
-const std::set<std::string> kVulkanHeaders = {"lantern/ExternalDevice.h", "lantern/Window.h",
+const std::set<std::string> kVulkanHeaders = {"lantern/ExternalDevice.h", "lantern/Window.h", "lantern/WindowTypes.h",
                                               "lantern/glfw/GlfwWindow.h"};
 
 /// Public headers as `lantern/...` names (Version.h is generated from Version.h.in).

@@ -45,14 +45,9 @@ struct CompareImage {
     }
 };
 
-/// Reads an .exr (every channel, as 32-bit float) or a .png (8 or 16 bits, values / max, sRGB
-/// encoded). Errors name the file and the problem.
-LANTERN_API Result<CompareImage> readCompareImage(const std::filesystem::path& path);
+// Reading images from files for comparison (readCompareImage, toCompareImage, compareFiles)
+// is in lantern/Io.h.
 
-/// A rendered Image as `lantern render` would have written it: Linear (R, G, B, A and the AOV
-/// planes, as in an EXR) or Srgb (R, G, B, A quantised to 8 bits exactly as writePng does).
-LANTERN_API CompareImage toCompareImage(const Image& image, PixelEncoding encoding,
-                                        std::string source = "render");
 
 /// The value the thresholds judge.
 enum class CompareMetric {
@@ -160,10 +155,6 @@ LANTERN_API Result<CompareReport> compareImages(const CompareImage& reference,
                                                 const CompareImage& test,
                                                 const CompareOptions& options = {});
 
-/// readCompareImage both, then compareImages.
-LANTERN_API Result<CompareReport> compareFiles(const std::filesystem::path& reference,
-                                               const std::filesystem::path& test,
-                                               const CompareOptions& options = {});
 
 /// A heat map of the judged metric (needs keepMaps): FLIP values, or for the other metrics
 /// the per-pixel absolute error divided by the largest one, through a black-red-yellow-white

@@ -45,7 +45,7 @@
 #pragma once
 
 #include <lantern/Export.h>
-#include <lantern/Renderer.h>
+#include <lantern/RenderTypes.h>
 
 #include <vulkan/vulkan.h>
 

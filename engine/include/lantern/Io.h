@@ -3,7 +3,9 @@
 // is renamed into place, so a file is either complete or absent.
 #pragma once
 
+#include <lantern/Compare.h>
 #include <lantern/Export.h>
+#include <lantern/FileOptions.h>
 #include <lantern/Image.h>
 #include <lantern/Log.h>
 #include <lantern/Result.h>
@@ -23,23 +25,6 @@ class FrameView;  // lantern/Renderer.h
 
 // --- Scenes ---------------------------------------------------------------------------------
 
-/// The default of LoadOptions::maxBytes (--max-size): 2 GiB. A load's parsed JSON counts against
-/// it, and a 1,000,000-node chain holds about 1 GB while tinygltf builds its model.
-inline constexpr std::uint64_t kDefaultMaxBytes = std::uint64_t(2) << 30;
-
-struct LoadOptions {
-    /// Largest accepted file, buffer or image, in bytes (--max-size), and the most memory one
-    /// load may hold for what the file decides: the parsed JSON and the models built from it,
-    /// buffers, decoded accessors and images. Each is charged before it is allocated; a file
-    /// that would go beyond is refused with the object named.
-    std::uint64_t maxBytes = kDefaultMaxBytes;
-    LogSink log;  ///< warnings about things skipped or repaired
-    /// Folders besides the scene's own that external buffers and images may come from
-    /// (--allow-folder): a URI may then contain ".." and a symbolic link may lead there. Each
-    /// file is still resolved to its real path and refused unless that lies inside one of them.
-    std::vector<std::filesystem::path> allowedFolders;
-};
-
 /// Loads a .gltf or .glb file (external buffers and images may not leave the file's folder),
 /// validates it completely and returns the scene. Errors name the file, object and problem.
 LANTERN_API Result<Scene> loadGltf(const std::filesystem::path& path,
@@ -56,25 +41,6 @@ LANTERN_API Result<Scene> loadScene(std::string_view pathOrBuiltin,
                                     const LoadOptions& options = {});
 
 // --- Images ---------------------------------------------------------------------------------
-
-enum class ExrCompression { None, Rle, Zips, Zip, Piz, Pxr24, B44, B44a, Dwaa, Dwab };
-
-LANTERN_API const char* toString(ExrCompression compression) noexcept;  ///< "none", "zip", ...
-LANTERN_API std::optional<ExrCompression> parseExrCompression(std::string_view text) noexcept;
-
-struct ExrOptions {
-    bool half = false;  ///< 16-bit half RGBA (values beyond +-65504 clamp to +-65504)
-    ExrCompression compression = ExrCompression::Zip;
-    /// zlib level of the zip and zips compressions, 1 (fastest) to 9 (smallest). Lantern's 2
-    /// writes a 1080p frame about 1.8x as fast as OpenEXR's default 4, for a file about 7%
-    /// larger (docs/performance.md); every reader decodes any level.
-    int zipLevel = 2;
-    /// Threads that compress one file's blocks of lines at once (OpenEXR's thread pool, shared
-    /// by the process): 0, one per core; 1, this thread alone.
-    int threads = 0;
-    /// Set to the number of values clamped to the half range, when `half` is on.
-    std::uint64_t* clampedCount = nullptr;
-};
 
 /// Writes R, G, B, A (and Z, N.X, N.Y, N.Z when the image has those AOVs; Z and N always as
 /// 32-bit float) plus the image's metadata as string attributes.
@@ -120,5 +86,21 @@ private:
 /// Writes .exr or .png by extension (anything else is an InvalidInput error).
 LANTERN_API Result<void> writeImage(const std::filesystem::path& path, const Image& image,
                                     const ExrOptions& exrOptions = {});
+
+// --- Images compared (lantern/Compare.h) ------------------------------------------------------
+
+/// Reads an .exr (every channel, as 32-bit float) or a .png (8 or 16 bits, values / max, sRGB
+/// encoded). Errors name the file and the problem.
+LANTERN_API Result<CompareImage> readCompareImage(const std::filesystem::path& path);
+
+/// A rendered Image as `lantern render` would have written it: Linear (R, G, B, A and the AOV
+/// planes, as in an EXR) or Srgb (R, G, B, A quantised to 8 bits exactly as writePng does).
+LANTERN_API CompareImage toCompareImage(const Image& image, PixelEncoding encoding,
+                                        std::string source = "render");
+
+/// readCompareImage both, then compareImages.
+LANTERN_API Result<CompareReport> compareFiles(const std::filesystem::path& reference,
+                                               const std::filesystem::path& test,
+                                               const CompareOptions& options = {});
 
 } // namespace lantern

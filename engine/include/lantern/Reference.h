@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <lantern/Export.h>
 #include <lantern/Image.h>
-#include <lantern/Renderer.h>
+#include <lantern/Options.h>
 #include <lantern/Result.h>
 #include <lantern/Scene.h>
 #include <vector>

@@ -4,7 +4,7 @@
 #pragma once
 
 #include <lantern/Export.h>
-#include <lantern/Io.h>
+#include <lantern/FileOptions.h>
 #include <lantern/Result.h>
 
 #include <cstdint>

@@ -21,22 +21,6 @@ double msSince(Clock::time_point t0) {
 
 } // namespace
 
-const char* toString(PresentMode mode) noexcept {
-    switch (mode) {
-    case PresentMode::Fifo: return "fifo";
-    case PresentMode::Mailbox: return "mailbox";
-    case PresentMode::Immediate: return "immediate";
-    }
-    return "?";
-}
-
-std::optional<PresentMode> parsePresentMode(std::string_view text) noexcept {
-    if (text == "fifo") return PresentMode::Fifo;
-    if (text == "mailbox") return PresentMode::Mailbox;
-    if (text == "immediate") return PresentMode::Immediate;
-    return std::nullopt;
-}
-
 struct WindowTarget::Impl {
     Renderer::Impl* renderer = nullptr;
     std::unique_ptr<gpu::Presenter> presenter;

@@ -394,15 +394,6 @@ Result<CompareReport> compareImages(const CompareImage& ref, const CompareImage&
     return rep;
 }
 
-Result<CompareReport> compareFiles(const std::filesystem::path& reference,
-                                   const std::filesystem::path& test, const CompareOptions& options) {
-    auto ref = readCompareImage(reference);
-    if (!ref) return std::move(ref).error();
-    auto tst = readCompareImage(test);
-    if (!tst) return std::move(tst).error();
-    return compareImages(*ref, *tst, options);
-}
-
 Image compareHeatMap(const CompareReport& report) {
     const bool flip = report.thresholds.metric == CompareMetric::Flip ||
                       report.thresholds.metric == CompareMetric::FlipMean;

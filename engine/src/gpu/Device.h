@@ -9,7 +9,7 @@
 
 #include <lantern/Image.h>
 #include <lantern/Log.h>
-#include <lantern/Renderer.h>
+#include <lantern/RenderTypes.h>
 #include <lantern/Result.h>
 #include <lantern/Scene.h>
 
@@ -135,5 +135,10 @@ private:
     explicit Device(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> m_impl;
 };
+
+/// The Vulkan devices of this machine, on an instance of its own (lantern::listDevices).
+Result<DeviceList> listDevices(const std::string& deviceName);
+/// The Vulkan loader's version ("1.3.239"), or empty (lantern::vulkanLoaderVersion).
+std::string vulkanLoaderVersion();
 
 } // namespace lantern::gpu

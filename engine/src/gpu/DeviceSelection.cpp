@@ -9,7 +9,9 @@
 #include "gpu/DriverReport.h"
 #include "gpu/PipelineCache.h"
 
-#include <lantern/Renderer.h>
+#include "gpu/Device.h"
+
+#include <lantern/RenderTypes.h>
 
 #include <algorithm>
 #include <cctype>
@@ -384,13 +386,13 @@ DeviceListing describe(const gpu::Candidate& c) {
 
 } // namespace
 
-std::string vulkanLoaderVersion() {
+std::string gpu::vulkanLoaderVersion() {
     std::uint32_t version = 0;
     if (vkEnumerateInstanceVersion(&version) != VK_SUCCESS) return {};
     return fullVersionText(version);
 }
 
-Result<DeviceList> listDevices(const std::string& deviceName) {
+Result<DeviceList> gpu::listDevices(const std::string& deviceName) {
 #if defined(LANTERN_ASAN)
     // As Context::create: this instance loads the drivers first, and their one-off
     // allocations must keep a library name when LeakSanitizer looks at exit.

@@ -347,3 +347,23 @@ std::uint32_t Presenter::framesInFlight() const { return m_device.slotCount(); }
 VkFormat Presenter::format() const { return m_swapchain->format(); }
 
 } // namespace lantern::gpu
+
+namespace lantern {
+
+const char* toString(PresentMode mode) noexcept {
+    switch (mode) {
+    case PresentMode::Fifo: return "fifo";
+    case PresentMode::Mailbox: return "mailbox";
+    case PresentMode::Immediate: return "immediate";
+    }
+    return "?";
+}
+
+std::optional<PresentMode> parsePresentMode(std::string_view text) noexcept {
+    if (text == "fifo") return PresentMode::Fifo;
+    if (text == "mailbox") return PresentMode::Mailbox;
+    if (text == "immediate") return PresentMode::Immediate;
+    return std::nullopt;
+}
+
+} // namespace lantern

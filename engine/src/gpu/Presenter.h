@@ -8,7 +8,9 @@
 #include "gpu/Device.h"
 #include "gpu/Swapchain.h"
 
-#include <lantern/Window.h>
+#include <lantern/Image.h>
+#include <lantern/RenderTypes.h>
+#include <lantern/WindowTypes.h>
 
 #include <memory>
 #include <optional>

@@ -1,5 +1,6 @@
 // Worker threads writing EXR/PNG frames from a bounded queue.
 #include "io/EncodePool.h"
+#include "io/image/ImageIo.h"
 
 #include <lantern/CameraConventions.h>
 
@@ -58,7 +59,7 @@ void EncodePool::work() {
                 error = r.error();
                 break;
             }
-            if (auto r = writeImage(path, job.image, options); !r) {
+            if (auto r = io::writeImage(path, job.image, options); !r) {
                 error = r.error();
                 break;
             }

@@ -4,7 +4,9 @@
 #pragma once
 
 #include <lantern/Image.h>
-#include <lantern/Io.h>
+#include <lantern/FileOptions.h>
+#include <lantern/Image.h>
+#include <lantern/Result.h>
 
 #include <condition_variable>
 #include <cstdint>

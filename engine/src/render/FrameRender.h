@@ -10,7 +10,7 @@
 
 #include <lantern/Options.h>
 #include <lantern/Probe.h>
-#include <lantern/Renderer.h>
+#include <lantern/RenderTypes.h>
 
 #include <functional>
 #include <memory>

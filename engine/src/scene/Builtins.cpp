@@ -3,7 +3,6 @@
 
 #include "scene/Teapot.h"
 
-#include <lantern/Io.h>
 
 #include <glm/gtc/quaternion.hpp>
 
@@ -15,6 +14,8 @@
 
 namespace lantern {
 namespace scene {
+
+void addSpheresLightsAndCamera(Scene& s);
 
 Scene makeSpheresScene() {
     Scene s;
@@ -56,7 +57,20 @@ Scene makeSpheresScene() {
     floor.translation = {0.0, -1.0, 0.0};
     floor.rotation = glm::angleAxis(-glm::pi<double>() / 2.0, glm::dvec3(1, 0, 0));
     s.nodes.push_back(floor);
+    addSpheresLightsAndCamera(s);
 
+    SceneRoot root;
+    root.name = "spheres";
+    for (int i = 0; i < int(s.nodes.size()); ++i) root.nodes.push_back(i);
+    LightingModel lm;
+    lm.globalAmbient = {0.2, 0.2, 0.2};
+    root.lighting = lm;
+    s.roots = {root};
+    return s;
+}
+
+// The spheres' sun (from the upper left, in front), warm lamp and camera, with their nodes.
+void addSpheresLightsAndCamera(Scene& s) {
     Light sun;
     sun.name = "sun";
     sun.type = LightType::Directional;
@@ -91,15 +105,6 @@ Scene makeSpheresScene() {
     camNode.translation = {0.0, 2.2, 9.0};
     camNode.rotation = glm::quatLookAtRH(glm::normalize(glm::dvec3(0.0, -2.2, -9.0)), glm::dvec3(0, 1, 0));
     s.nodes.push_back(camNode);
-
-    SceneRoot root;
-    root.name = "spheres";
-    for (int i = 0; i < int(s.nodes.size()); ++i) root.nodes.push_back(i);
-    LightingModel lm;
-    lm.globalAmbient = {0.2, 0.2, 0.2};
-    root.lighting = lm;
-    s.roots = {root};
-    return s;
 }
 
 Scene makeAnimatedSpheresScene() {
@@ -265,13 +270,13 @@ const std::vector<Builtin>& registry() {
 }
 } // namespace
 
-std::vector<std::string> builtinSceneNames() {
+std::vector<std::string> scene::builtinSceneNames() {
     std::vector<std::string> names;
     for (const Builtin& b : registry()) names.push_back(b.name);
     return names;
 }
 
-Result<Scene> builtinScene(std::string_view name) {
+Result<Scene> scene::builtinScene(std::string_view name) {
     for (const Builtin& b : registry())
         if (name == b.name) return b.make();
     std::string known;
@@ -279,13 +284,6 @@ Result<Scene> builtinScene(std::string_view name) {
     return makeError(ErrorCode::InvalidInput,
                      "unknown built-in scene \"" + std::string(name) + "\" (built-ins: " + known + ")",
                      {}, "builtin:" + std::string(name));
-}
-
-Result<Scene> loadScene(std::string_view pathOrBuiltin, const LoadOptions& options) {
-    constexpr std::string_view prefix = "builtin:";
-    if (pathOrBuiltin.substr(0, prefix.size()) == prefix)
-        return builtinScene(pathOrBuiltin.substr(prefix.size()));
-    return loadGltf(std::filesystem::path(std::string(pathOrBuiltin)), options);
 }
 
 } // namespace lantern

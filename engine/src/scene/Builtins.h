@@ -1,11 +1,18 @@
 // Builtins.h: the registry of built-in scenes ("builtin:NAME").
 #pragma once
 
+#include <lantern/Result.h>
 #include <lantern/Scene.h>
 
+#include <string>
 #include <string_view>
+#include <vector>
 
 namespace lantern::scene {
+
+/// The names of the built-in scenes, and one by name (without the "builtin:" prefix).
+std::vector<std::string> builtinSceneNames();
+Result<Scene> builtinScene(std::string_view name);
 
 /// Three spheres of different materials on a plane, lit by a directional and a point light.
 Scene makeSpheresScene();

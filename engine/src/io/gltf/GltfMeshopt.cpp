@@ -3,7 +3,7 @@
 // before meshoptimizer sees it (its preconditions are asserts, not errors), the decoded total is
 // charged to the load's budget before allocating, views into placeholder (fallback) buffers must
 // all be compressed, and filtered data must be read as the type the filter writes.
-#include "io/GltfInternal.h"
+#include "io/gltf/GltfInternal.h"
 
 #include <meshoptimizer.h>
 

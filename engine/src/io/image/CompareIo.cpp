@@ -1,7 +1,8 @@
 // Images read for comparison: every channel of an EXR, or a PNG's stored values, by name.
-#include <lantern/Compare.h>
+#include "io/image/ImageIo.h"
 
-#include "io/ImageEncode.h"
+#include "io/image/ExrRead.h"
+#include "io/image/ImageEncode.h"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -18,13 +19,8 @@ namespace lantern {
 namespace {
 
 Result<CompareImage> readExrChannels(const std::filesystem::path& path) {
-    try {
-        Imf::InputFile in(path.c_str());
-        const Imath::Box2i dw = in.header().dataWindow();
-        const io::ExrWindow window{dw.min.x, dw.min.y, dw.max.x, dw.max.y};
-        auto size = io::exrWindowSize(window, path);
-        if (!size) return std::move(size).error();
-        const auto [w, h] = *size;
+    return io::withExrFile<CompareImage>(path, [&](Imf::InputFile& in, const io::ExrWindow& window,
+                                                   int w, int h) -> Result<CompareImage> {
         CompareImage img;
         img.width = int(w);
         img.height = int(h);
@@ -58,12 +54,9 @@ Result<CompareImage> readExrChannels(const std::filesystem::path& path) {
                       Imf::Slice(Imf::FLOAT, io::exrSliceBase(img.values.data() + c, window, xs, ys), xs, ys));
         }
         in.setFrameBuffer(fb);
-        in.readPixels(dw.min.y, dw.max.y);
+        in.readPixels(window.minY, window.maxY);
         return img;
-    } catch (const std::exception& e) {
-        return makeError(ErrorCode::InvalidInput, std::string("not a readable OpenEXR file: ") + e.what(),
-                         {}, path.string());
-    }
+    });
 }
 
 Result<CompareImage> readPngChannels(const std::filesystem::path& path) {
@@ -109,7 +102,7 @@ Result<CompareImage> readPngChannels(const std::filesystem::path& path) {
 
 } // namespace
 
-Result<CompareImage> readCompareImage(const std::filesystem::path& path) {
+Result<CompareImage> io::readCompareImage(const std::filesystem::path& path) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
         return makeError(ErrorCode::InvalidInput, "no such file", {}, path.string());
@@ -121,7 +114,7 @@ Result<CompareImage> readCompareImage(const std::filesystem::path& path) {
                      {}, path.string());
 }
 
-CompareImage toCompareImage(const Image& image, PixelEncoding encoding, std::string source) {
+CompareImage io::toCompareImage(const Image& image, PixelEncoding encoding, std::string source) {
     CompareImage out;
     out.width = image.width;
     out.height = image.height;

@@ -1,7 +1,7 @@
 // glTF accessors: layout checks (component types, alignment, strides, bounds within the buffer
 // view, sparse parts) and bounds-checked reading with glTF's normalisation rules. Every read
 // re-derives and re-checks the layout, so no path reads outside a buffer.
-#include "io/GltfInternal.h"
+#include "io/gltf/GltfInternal.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 // glTF materials -> Lantern's: LANTERN_materials_phong, the PBR fallback mapping,
 // KHR_materials_unlit, alpha modes, and the base-colour textures they use, decoded to RGBA8.
-#include "io/GltfInternal.h"
+#include "io/gltf/GltfInternal.h"
 
 #include <algorithm>
 #include <climits>

@@ -3,7 +3,7 @@
 // (the decoder trusts a stream's face count enough to allocate a corner table for it). The
 // layout follows draco 1.5's decoders for bitstream 2.0-2.2: header, optional metadata, then the
 // sequential or edgebreaker connectivity header.
-#include "io/GltfInternal.h"
+#include "io/gltf/GltfInternal.h"
 
 #include <cstring>
 

@@ -1,7 +1,7 @@
 // The JSON pass's number checks by schema position (GltfSchema.h). The schema is a tree of the
 // places glTF 2.0 and the extensions Lantern reads put numbers: a member by name, any member
 // ("*"), an array's elements ("[]"). A number is an integer only where the schema says so.
-#include "io/GltfSchema.h"
+#include "io/gltf/GltfSchema.h"
 
 #include <cmath>
 #include <cstdint>

@@ -1,10 +1,12 @@
 // The OpenEXR writer (atomic) and reader, and writing by extension (the PNG writer: PngIo.cpp).
-#include <lantern/Io.h>
+#include "io/image/ImageIo.h"
 
-#include "io/AovChannels.h"
-#include "io/CryptomatteExr.h"
+#include "io/image/AovChannels.h"
+#include "io/image/CryptomatteExr.h"
 #include "io/AtomicFile.h"
-#include "io/ImageEncode.h"
+#include "io/image/ExrRead.h"
+#include "io/image/ImageEncode.h"
+#include "io/image/PngIo.h"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -235,8 +237,8 @@ void addCameraAttributes(Imf::Header& header, const CameraMetadata& camera) {
 
 } // namespace
 
-Result<void> writeExr(const std::filesystem::path& path, const Image& image,
-                      const ExrOptions& options) {
+Result<void> io::writeExr(const std::filesystem::path& path, const Image& image,
+                          const ExrOptions& options) {
     LANTERN_TRY(io::checkImage(image, path));
     if (options.zipLevel < 1 || options.zipLevel > 9 || options.threads < 0)
         return makeError(ErrorCode::InvalidInput, "zip level outside 1..9 or negative threads", {}, path.string());
@@ -281,22 +283,11 @@ Result<void> writeExr(const std::filesystem::path& path, const Image& image,
     return file.commit();
 }
 
-Result<std::pair<int, int>> io::exrWindowSize(const ExrWindow& dw, const std::filesystem::path& path) {
-    const long long w = (long long)dw.maxX - dw.minX + 1, h = (long long)dw.maxY - dw.minY + 1;
-    if (w <= 0 || h <= 0 || w * h > (1LL << 31))
-        return makeError(ErrorCode::InvalidInput, "unsupported data window", {}, path.string());
-    return std::pair<int, int>(int(w), int(h));
-}
 
-Result<Image> readExr(const std::filesystem::path& path) {
-    try {
-        Imf::InputFile in(path.c_str());
-        const Imath::Box2i dw = in.header().dataWindow();
-        const io::ExrWindow window{dw.min.x, dw.min.y, dw.max.x, dw.max.y};
-        auto size = io::exrWindowSize(window, path);
-        if (!size) return std::move(size).error();
-        const int w = size->first;
-        Image img{w, size->second};
+Result<Image> io::readExr(const std::filesystem::path& path) {
+    return withExrFile<Image>(path, [&](Imf::InputFile& in, const ExrWindow& window, int w,
+                                        int h) -> Result<Image> {
+        Image img{w, h};
         Imf::FrameBuffer fb;
         const char* names[4] = {"R", "G", "B", "A"};
         auto base = [&](float* p, std::size_t comps) {
@@ -322,20 +313,17 @@ Result<Image> readExr(const std::filesystem::path& path) {
                                          c.xStride * std::size_t(w)));
         }
         in.setFrameBuffer(fb);
-        in.readPixels(dw.min.y, dw.max.y);
+        in.readPixels(window.minY, window.maxY);
         return img;
-    } catch (const std::exception& e) {
-        return makeError(ErrorCode::InvalidInput, std::string("not a readable OpenEXR file: ") + e.what(),
-                         {}, path.string());
-    }
+    });
 }
 
-Result<void> writeImage(const std::filesystem::path& path, const Image& image,
-                        const ExrOptions& exrOptions) {
+Result<void> io::writeImage(const std::filesystem::path& path, const Image& image,
+                            const ExrOptions& exrOptions) {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
     if (ext == ".exr") return writeExr(path, image, exrOptions);
-    if (ext == ".png") return writePng(path, image);
+    if (ext == ".png") return io::writePng(path, image);
     return makeError(ErrorCode::InvalidInput,
                      "unknown image type \"" + ext + "\" (use .exr or .png)", "--output", path.string());
 }

@@ -4,7 +4,7 @@
 // writes and reads them with the AOV channels (io/AovChannels.h).
 #pragma once
 
-#include "io/AovChannels.h"
+#include "io/image/AovChannels.h"
 
 #include <lantern/Image.h>
 #include <lantern/Result.h>

@@ -1,6 +1,6 @@
 // glTF lights and cameras -> Lantern's: KHR_lights_punctual lights (with
 // LANTERN_lights_phong), and glTF perspective and orthographic cameras (with LANTERN_camera).
-#include "io/GltfInternal.h"
+#include "io/gltf/GltfInternal.h"
 
 #include <cmath>
 

@@ -2,8 +2,8 @@
 // (finite, integers in range), external URIs confined to the scene's folder, the integers of
 // the compression extensions, and the facts tinygltf discards (optional numbers' presence,
 // primitives it would drop); placeholder buffers and Draco's indices hidden from tinygltf.
-#include "io/GltfInternal.h"
-#include "io/GltfSchema.h"
+#include "io/gltf/GltfInternal.h"
+#include "io/gltf/GltfSchema.h"
 
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,7 @@
 // buffer view and three numbers in LANTERN_camera's lookAt.
 #pragma once
 
-#include "io/GltfInternal.h"
+#include "io/gltf/GltfInternal.h"
 
 #include <nlohmann/json.hpp>
 

@@ -1,5 +1,5 @@
 // The EXR channels of the AOV planes: one table of names, used to write and to read.
-#include "io/AovChannels.h"
+#include "io/image/AovChannels.h"
 
 #include <string>
 

@@ -1,5 +1,5 @@
 // Cryptomatte layers as EXR channels and header attributes (io/CryptomatteExr.h).
-#include "io/CryptomatteExr.h"
+#include "io/image/CryptomatteExr.h"
 
 #include <lantern/Cryptomatte.h>
 

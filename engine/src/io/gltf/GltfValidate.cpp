@@ -1,7 +1,7 @@
 // The glTF loader's structural pass: the asset version, required extensions, every reference
 // between objects, every buffer view and accessor (bounds, alignment, formats per use), index
 // and count rules, enums. Runs before any data is read; messages carry glTF object paths.
-#include "io/GltfInternal.h"
+#include "io/gltf/GltfInternal.h"
 
 #include <algorithm>
 #include <cstring>

@@ -2,7 +2,7 @@
 // strips, fans and loops converted to lists (glTF's vertex order, so windings are kept), and
 // missing normals of triangles computed as angle-weighted averages of the faces sharing each
 // vertex (lines and points without normals are drawn unlit).
-#include "io/GltfInternal.h"
+#include "io/gltf/GltfInternal.h"
 
 #include <cmath>
 

@@ -37,9 +37,6 @@ struct ExrWindow {
     int minX = 0, minY = 0, maxX = -1, maxY = -1;
 };
 
-/// The width and height of an EXR's data window; refused, naming the file, when it is empty or
-/// holds more than 2^31 pixels.
-Result<std::pair<int, int>> exrWindowSize(const ExrWindow& window, const std::filesystem::path& path);
 
 /// The base pointer OpenEXR wants for a slice whose pixel at the window's minimum corner is
 /// `first`: OpenEXR addresses pixel (x, y) at base + x * xStride + y * yStride.

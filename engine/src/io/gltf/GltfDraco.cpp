@@ -4,7 +4,7 @@
 // against the accessors twice: from the stream's header before decoding (GltfDracoHeader.cpp),
 // so that a lying stream cannot make the decoder allocate beyond what the accessors declare (and
 // the budget allows), and from the decoded mesh after.
-#include "io/GltfInternal.h"
+#include "io/gltf/GltfInternal.h"
 
 #include <draco/compression/decode.h>
 #include <draco/mesh/mesh.h>

@@ -1,10 +1,9 @@
 // The PNG writer (atomic): 8-bit sRGB with straight alpha through libpng, from an Image or
-// from a frame left where the renderer put it (FrameView).
-#include <lantern/Io.h>
-#include <lantern/Renderer.h>
+// from rows wherever they are (a frame left where the renderer put it), whole or band by band.
+#include "io/image/PngIo.h"
 
 #include "io/AtomicFile.h"
-#include "io/ImageEncode.h"
+#include "io/image/ImageEncode.h"
 #include "math/Srgb.h"
 
 #include <png.h>
@@ -101,8 +100,7 @@ void pngRow(const math::Srgb8Encoder& srgb8, const float* src, std::size_t width
 constexpr std::size_t kPipelinedPixels = std::size_t(1) << 18;
 
 // The PNG bytes of a picture given row by row (row(y): width RGBA floats, y = 0 the top).
-template <typename Row>
-Result<std::vector<unsigned char>> encodePngRows(int width, int height, Row&& row,
+Result<std::vector<unsigned char>> encodePngRows(int width, int height, const io::PngRowFn& row,
                                                  const io::PngEncoding& encoding) {
     const std::size_t w = std::size_t(width);
     std::vector<unsigned char> pixels(w * std::size_t(height) * 4);
@@ -135,8 +133,10 @@ Result<std::vector<unsigned char>> encodePngRows(int width, int height, Row&& ro
     return encoded;
 }
 
-template <typename Row>
-Result<void> writePngRows(const std::filesystem::path& path, int width, int height, Row&& row) {
+} // namespace
+
+Result<void> io::writePngRows(const std::filesystem::path& path, int width, int height,
+                              const PngRowFn& row) {
     io::AtomicFile file(path);
     LANTERN_TRY(file.checkWritable());
     auto encoded = encodePngRows(width, height, row, io::PngEncoding{});
@@ -149,12 +149,10 @@ Result<void> writePngRows(const std::filesystem::path& path, int width, int heig
     return file.commit();
 }
 
-} // namespace
-
 // The file, libpng's state and the compressed bytes not yet written to the file. libpng's write
 // callback appends to `pending`; past kFlushBytes they go to the file, and a failing write is
 // kept in `error` while libpng is made to longjmp out.
-struct PngStream::Impl {
+struct io::PngBandWriter::Impl {
     static constexpr std::size_t kFlushBytes = std::size_t(1) << 18;
 
     explicit Impl(const std::filesystem::path& path) : file(path) {}
@@ -186,14 +184,14 @@ struct PngStream::Impl {
 namespace {
 
 void appendToStream(png_structp png, png_bytep data, png_size_t size) {
-    auto* s = static_cast<PngStream::Impl*>(png_get_io_ptr(png));
+    auto* s = static_cast<io::PngBandWriter::Impl*>(png_get_io_ptr(png));
     s->pending.insert(s->pending.end(), data, data + size);
-    if (s->pending.size() >= PngStream::Impl::kFlushBytes && !s->flush())
+    if (s->pending.size() >= io::PngBandWriter::Impl::kFlushBytes && !s->flush())
         png_error(png, "the PNG file could not be written");
 }
 
 // As encodePng: libpng longjmps back to these frames, which hold nothing with a destructor.
-bool startStream(PngStream::Impl* s) {
+bool startStream(io::PngBandWriter::Impl* s) {
     if (!s->state.png || !s->state.info) return false;
     if (setjmp(png_jmpbuf(s->state.png))) return false;
     png_set_write_fn(s->state.png, s, appendToStream, nullptr);
@@ -201,17 +199,17 @@ bool startStream(PngStream::Impl* s) {
     return true;
 }
 
-bool streamRows(PngStream::Impl* s, const FrameView* band) {
+bool streamRows(io::PngBandWriter::Impl* s, int rows, const io::PngRowFn* row) {
     if (setjmp(png_jmpbuf(s->state.png))) return false;
     const math::Srgb8Encoder& srgb8 = math::srgb8Encoder();
-    for (int y = 0; y < band->height(); ++y) {
-        pngRow(srgb8, band->row(y), std::size_t(s->width), s->row.data());
+    for (int y = 0; y < rows; ++y) {
+        pngRow(srgb8, (*row)(y), std::size_t(s->width), s->row.data());
         png_write_row(s->state.png, s->row.data());
     }
     return true;
 }
 
-bool endStream(PngStream::Impl* s) {
+bool endStream(io::PngBandWriter::Impl* s) {
     if (setjmp(png_jmpbuf(s->state.png))) return false;
     png_write_end(s->state.png, s->state.info);
     return true;
@@ -219,50 +217,50 @@ bool endStream(PngStream::Impl* s) {
 
 } // namespace
 
-Result<PngStream> PngStream::create(const std::filesystem::path& path, int width, int height) {
+Result<io::PngBandWriter> io::PngBandWriter::create(const std::filesystem::path& path, int width,
+                                                   int height) {
     if (width < 1 || height < 1)
         return makeError(ErrorCode::InvalidInput,
                          "a PNG of " + std::to_string(width) + "x" + std::to_string(height) +
                              " pixels is empty",
                          {}, path.string());
-    PngStream stream;
-    stream.m_impl = std::make_unique<Impl>(path);
-    Impl& s = *stream.m_impl;
+    PngBandWriter writer;
+    writer.m_impl = std::make_unique<Impl>(path);
+    Impl& s = *writer.m_impl;
     LANTERN_TRY(s.file.checkWritable());
     LANTERN_TRY(s.file.open());
     s.width = width;
     s.height = height;
     s.row.resize(std::size_t(width) * 4);
     if (!startStream(&s)) return s.failure("PNG encoding failed (libpng)");
-    return stream;
+    return writer;
 }
 
-PngStream::PngStream() = default;
-PngStream::PngStream(PngStream&&) noexcept = default;
-PngStream& PngStream::operator=(PngStream&&) noexcept = default;
-PngStream::~PngStream() = default;
+io::PngBandWriter::PngBandWriter() = default;
+io::PngBandWriter::PngBandWriter(PngBandWriter&&) noexcept = default;
+io::PngBandWriter& io::PngBandWriter::operator=(PngBandWriter&&) noexcept = default;
+io::PngBandWriter::~PngBandWriter() = default;
 
-Result<void> PngStream::write(const FrameView& band) {
+std::string io::PngBandWriter::file() const {
+    return m_impl ? m_impl->file.destination().string() : std::string();
+}
+
+Result<void> io::PngBandWriter::write(int width, int rows, const PngRowFn& row) {
     if (!m_impl || m_impl->broken)
         return makeError(ErrorCode::Usage, "the PNG stream has failed or finished");
     Impl& s = *m_impl;
-    const std::string file = s.file.destination().string();
-    if (!band.valid())
+    if (width != s.width || rows > s.height - s.rowsWritten)
         return makeError(ErrorCode::Usage,
-                         "the frame view is no longer valid (its renderer rendered again)", {}, file);
-    if (band.width() != s.width || band.height() > s.height - s.rowsWritten)
-        return makeError(ErrorCode::Usage,
-                         "a band of " + std::to_string(band.width()) + "x" +
-                             std::to_string(band.height()) + " does not fit the " +
-                             std::to_string(s.height - s.rowsWritten) + " rows of " +
-                             std::to_string(s.width) + " pixels left",
-                         {}, file);
-    if (!streamRows(&s, &band)) return s.failure("PNG encoding failed (libpng)");
-    s.rowsWritten += band.height();
+                         "a band of " + std::to_string(width) + "x" + std::to_string(rows) +
+                             " does not fit the " + std::to_string(s.height - s.rowsWritten) +
+                             " rows of " + std::to_string(s.width) + " pixels left",
+                         {}, file());
+    if (!streamRows(&s, rows, &row)) return s.failure("PNG encoding failed (libpng)");
+    s.rowsWritten += rows;
     return {};
 }
 
-Result<void> PngStream::finish() {
+Result<void> io::PngBandWriter::finish() {
     if (!m_impl || m_impl->broken)
         return makeError(ErrorCode::Usage, "the PNG stream has failed or finished");
     Impl& s = *m_impl;
@@ -270,7 +268,7 @@ Result<void> PngStream::finish() {
         return makeError(ErrorCode::Usage,
                          std::to_string(s.rowsWritten) + " of " + std::to_string(s.height) +
                              " rows were written",
-                         {}, s.file.destination().string());
+                         {}, file());
     if (!endStream(&s) || !s.flush()) return s.failure("PNG encoding failed (libpng)");
     s.broken = true;  // finished: nothing more goes in
     return s.file.commit();
@@ -290,17 +288,9 @@ Result<std::vector<unsigned char>> io::encodePng(const Image& image, const PngEn
                          encoding);
 }
 
-Result<void> writePng(const std::filesystem::path& path, const Image& image) {
+Result<void> io::writePng(const std::filesystem::path& path, const Image& image) {
     LANTERN_TRY(io::checkImage(image, path));
     return writePngRows(path, image.width, image.height, [&](int y) { return image.pixel(0, y); });
-}
-
-Result<void> writePng(const std::filesystem::path& path, const FrameView& view) {
-    if (!view.valid())
-        return makeError(ErrorCode::Usage,
-                         "the frame view is no longer valid (its renderer rendered again)", {},
-                         path.string());
-    return writePngRows(path, view.width(), view.height(), [&](int y) { return view.row(y); });
 }
 
 } // namespace lantern

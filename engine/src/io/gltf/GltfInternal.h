@@ -1,6 +1,6 @@
 // GltfInternal.h: the glTF loader's internal interfaces, shared by its passes:
 // container checks (GLB, JSON nesting, URIs), structural validation, bounds-checked accessor
-// reading, geometry and scene conversion. Only engine/src/io/Gltf*.cpp include this.
+// reading, geometry and scene conversion. Only engine/src/io/gltf/ includes this.
 //
 // The passes, in order (GltfImport.cpp runs them):
 //   1. GltfContainer.cpp  the bytes: size bound, GLB chunks, JSON nesting depth, external URIs
@@ -19,10 +19,13 @@
 //   5. Scene::validate()  the scene model's own checks, as a final net.
 #pragma once
 
+#include "io/FileAccess.h"
+
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
-#include <lantern/Io.h>
+#include <lantern/FileOptions.h>
+#include <lantern/Result.h>
 #include <lantern/Scene.h>
 #include <map>
 #include <memory>
@@ -178,49 +181,21 @@ struct JsonShape {
 /// A scan that respects strings and allocates nothing.
 Result<JsonShape> scanJson(std::string_view json, const Diagnostics& diag);
 
-/// Decodes %XX escapes (as tinygltf does before opening a file).
-std::string percentDecode(std::string_view text);
+// Files are read and URIs resolved by io/FileAccess.h, for every format; the loader's passes
+// use its functions by their short names.
+using io::checkRelativeUri;
+using io::ConfinedPath;
+using io::percentDecode;
+using io::printable;
+using io::readConfinedFile;
+using io::readRegularFile;
+using io::resolveConfined;
 
-/// Checks an external (non-data) URI: it must be a relative path (no scheme, no absolute path)
-/// inside the scene's folder: no ".." component, unless `allowParent` (the user allowed other
-/// folders; resolveConfined then decides). Returns the decoded relative path, or the reason it
-/// is refused as the error message.
-Result<std::string> checkRelativeUri(std::string_view uri, const std::string& object,
-                                     const Diagnostics& diag, bool allowParent = false);
-
-/// Text from a file made safe to quote in a message: control and non-ASCII bytes as \xNN, and
-/// cut after `limit` bytes ("..."). A message never carries a file's raw bytes.
-std::string printable(std::string_view text, std::size_t limit = 80);
-
-/// A file resolved inside a confining folder: `root` is the folder's real path, `relative` the
-/// file's real path below it (no symbolic link, no "..").
-struct ConfinedPath {
-    std::filesystem::path root, relative;
-    std::filesystem::path real() const;
-};
-
-/// An external file a URI names, resolved and confined: `relative` (a checked relative path)
-/// is resolved to its real path (every symlink followed) and refused unless that lies inside
-/// the scene's real folder or one of the `allowed` folders' and is a regular file (not a
-/// folder, FIFO, socket or device) of at most `maxBytes`. The error message names the URI and
-/// the reason, never the file's bytes. Read it with readConfinedFile.
-Result<ConfinedPath> resolveConfined(const std::filesystem::path& folder,
-                                              const std::string& relative,
-                                              std::uint64_t maxBytes,
-                                              const std::vector<std::filesystem::path>& allowed = {});
-
-/// Reads a regular file of at most `maxBytes`: opened with O_NONBLOCK (a FIFO or device never
-/// blocks) and, when `noFollow`, O_NOFOLLOW (the last component may not be a symlink); the
-/// opened file is checked with fstat before a byte is read. The error message names the reason.
-Result<std::vector<unsigned char>> readRegularFile(const std::filesystem::path& path,
-                                                   std::uint64_t maxBytes, bool noFollow);
-
-/// Reads a file resolveConfined found, without the window between its check and the open: the
-/// path is opened one component at a time from the confining folder, each with O_NOFOLLOW
-/// (openat), so a folder swapped for a symbolic link after the check is refused, not
-/// followed. Then as readRegularFile.
-Result<std::vector<unsigned char>> readConfinedFile(const ConfinedPath& file,
-                                                    std::uint64_t maxBytes);
+/// checkRelativeUri with the loader's file named.
+inline Result<std::string> checkRelativeUri(std::string_view uri, const std::string& object,
+                                            const Diagnostics& diag, bool allowParent = false) {
+    return io::checkRelativeUri(uri, object, diag.file(), allowParent);
+}
 
 /// What the JSON says that tinygltf does not keep: presence of optional numbers, the number
 /// of primitives written (tinygltf silently drops malformed ones), and why an external image

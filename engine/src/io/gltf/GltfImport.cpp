@@ -2,8 +2,8 @@
 // tinygltf through file-system callbacks confined to the scene's folder, decodes compressed
 // data, then validates and converts it (GltfInternal.h lists the passes). Nothing escapes as an
 // exception.
-#include "io/GltfInternal.h"
-#include "io/GltfLoad.h"
+#include "io/gltf/GltfInternal.h"
+#include "io/gltf/GltfLoad.h"
 
 #include <cctype>
 #include <fstream>
@@ -301,22 +301,9 @@ Result<Scene> loadGltfBytes(std::vector<unsigned char> bytes, const std::filesys
     }
 }
 
-} // namespace gltf
-
 Result<Scene> loadGltf(const std::filesystem::path& path, const LoadOptions& options) {
-    // tinygltf and the standard library may throw (allocation failures, JSON type errors in
-    // paths the checks do not reach); the API promises Result, never an exception.
-    try {
-        return gltf::load(path, options);
-    } catch (const std::bad_alloc&) {
-        return makeError(ErrorCode::OutOfMemory, "out of memory while loading", {}, path.string());
-    } catch (const std::exception& e) {
-        return makeError(ErrorCode::InvalidInput, std::string("cannot be loaded: ") + e.what(), {},
-                         path.string());
-    } catch (...) {
-        return makeError(ErrorCode::InvalidInput, "cannot be loaded (unknown failure)", {},
-                         path.string());
-    }
+    return load(path, options);
 }
 
+} // namespace gltf
 } // namespace lantern

@@ -2,7 +2,7 @@
 // (LANTERN_lighting) and animations here, materials in GltfMaterials.cpp, lights and cameras in
 // GltfLightsCameras.cpp, meshes in GltfGeometry.cpp; and the checked reading of extensions
 // (ExtensionReader). Every value is checked where it is read; messages carry the glTF object path.
-#include "io/GltfInternal.h"
+#include "io/gltf/GltfInternal.h"
 
 #include <lantern/Image.h>
 
