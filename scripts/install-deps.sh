@@ -17,7 +17,7 @@ build_pkgs=(
     libvulkan-dev vulkan-validationlayers mesa-vulkan-drivers glslang-tools
     libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenexr-dev
     libcli11-dev libfmt-dev libglfw3-dev libimgui-dev libx11-dev
-    libpng-dev libyaml-cpp-dev
+    libpng-dev libyaml-cpp-dev libwebp-dev
     libgtest-dev libgmock-dev libbenchmark-dev
     libmeshoptimizer-dev libdraco-dev
     python3-dev pybind11-dev python3-numpy

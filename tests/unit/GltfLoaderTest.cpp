@@ -141,14 +141,14 @@ TEST(GltfLoader, UnsupportedRequiredExtensionsAreRefused) {
     const auto dir = testOutputDir();
     GltfBuilder b;
     b.addTriangle();
-    b.doc["extensionsUsed"] = {"EXT_texture_webp", "KHR_materials_unlit"};
-    b.doc["extensionsRequired"] = {"EXT_texture_webp"};
+    b.doc["extensionsUsed"] = {"EXT_lights_image_based", "KHR_materials_unlit"};
+    b.doc["extensionsRequired"] = {"EXT_lights_image_based"};
     EXPECT_TRUE(refusedWith(loadCapturing(b.write(dir, "webp")), "extensionsRequired[0]",
-                            "EXT_texture_webp"));
+                            "EXT_lights_image_based"));
     b.doc.erase("extensionsRequired");
     auto o = loadCapturing(b.write(dir, "used"));
     ASSERT_TRUE(o.scene);
-    EXPECT_TRUE(o.warned("ignored (not supported): EXT_texture_webp")) << o.allWarnings();
+    EXPECT_TRUE(o.warned("ignored (not supported): EXT_lights_image_based")) << o.allWarnings();
 }
 
 // --- Accessors ------------------------------------------------------------------------------

@@ -209,7 +209,7 @@ TEST(GltfScene, BaseColourTexturesDecodeToRgba8WithSamplerFlags) {
     // uses it; unused, it costs nothing and only tinygltf's warning remains.
     GltfBuilder bad = b;
     bad.doc["images"] = json::array({{{"uri", "data:image/png;base64," + GltfBuilder::base64({1, 2, 3, 4, 5, 6})}}});
-    EXPECT_TRUE(refusedWith(loadCapturing(bad.write(dir, "bad")), "images[0]", "cannot be decoded"));
+    EXPECT_TRUE(refusedWith(loadCapturing(bad.write(dir, "bad")), "images[0]", "is not an image Lantern reads"));
     bad.doc["images"] = json::array({{{"uri", "missing.png"}}});
     EXPECT_TRUE(refusedWith(loadCapturing(bad.write(dir, "missing")), "images[0].uri", "does not exist"));
     bad.doc["materials"] = json::array({json::object()});

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <mutex>
 #include <sstream>
 
@@ -72,10 +73,27 @@ Result<void> checkImagePaths(const std::vector<std::string>& paths, const std::s
     return {};
 }
 
+namespace {
+
+std::string shortNumber(double v) {
+    std::ostringstream os;
+    os << v;
+    return os.str();
+}
+
+} // namespace
+
 Result<glm::vec4> parseBackground(const std::string& text) {
     const bool rgba = std::count(text.begin(), text.end(), ',') == 3;
     auto v = parseNumbers(text, rgba ? 4 : 3, "--background");
     if (!v) return std::move(v).error();
+    // The picture is float: 1e39 is finite as a double and infinite as a float.
+    for (std::size_t i = 0; i < v->size(); ++i)
+        if (std::abs((*v)[i]) > double(std::numeric_limits<float>::max()))
+            return makeError(ErrorCode::InvalidInput,
+                             "value " + std::to_string(i + 1) + " (" + shortNumber((*v)[i]) +
+                                 ") is beyond the float range (+-3.4e38)",
+                             "--background");
     // Premultiplied: an opaque background is (r, g, b, 1); a translucent one scales rgb.
     const double alpha = rgba ? (*v)[3] : 1.0;
     if (alpha < 0.0 || alpha > 1.0)
@@ -136,6 +154,15 @@ Result<void> CameraOptions::applyOverrides(CameraSpec& spec) const {
         auto v = parseNumbers(lookAt, 9, "--look-at");
         if (!v) return std::move(v).error();
         const auto& n = *v;
+        // As in scene files: beyond 1e30 the camera's matrices (the EXR header's worldToCamera,
+        // worldToNDC) would overflow float on the way to an image.
+        for (std::size_t i = 0; i < n.size(); ++i)
+            if (std::abs(n[i]) > 1e30)
+                return makeError(ErrorCode::InvalidInput,
+                                 "value " + std::to_string(i + 1) + " (" + shortNumber(n[i]) +
+                                     ") is beyond +-1e30, where the camera's matrices would "
+                                     "overflow",
+                                 "--look-at");
         LookAt la{{n[0], n[1], n[2]}, {n[3], n[4], n[5]}, {n[6], n[7], n[8]}};
         LANTERN_TRY(checkLookAt(la, "--look-at"));
         spec.lookAt = la;

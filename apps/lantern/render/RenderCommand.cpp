@@ -186,6 +186,8 @@ int renderFrame(const RenderArgs& a, const SingleFrame& frame, Renderer& rendere
     }
     auto image = renderer.render(prepared, options, frame.time);
     if (!image) return report(image.error());
+    for (const auto& [key, value] : image->metadata)
+        if (key == "lantern:warning") std::cerr << "lantern: warning: " << value << "\n";
     for (const std::string& pattern : patterns) {
         const std::string out = expandFramePattern(pattern, frame.number);
         std::uint64_t clamped = 0;
@@ -486,6 +488,14 @@ Runner addRenderCommand(CLI::App& app) {
         args->frameGiven = cmd->count("--frame") > 0;
         if (args->scenes.empty() && args->batch.lists.empty())
             return report(makeError(ErrorCode::Usage, "give a scene (or --list FILE)", "scene"));
+        // An empty value is a forgotten one, not "no sequence": `--frames ""` rendered frame 0.
+        for (const char* option : {"--frames", "--frame-list"})
+            if (cmd->count(option) > 0 && cmd->get_option(option)->as<std::string>().empty())
+                return report(makeError(ErrorCode::Usage,
+                                        std::string("needs a value (") +
+                                            (option[7] == '-' ? "N,A-B,..." : "A-B") +
+                                            "); it was given an empty one",
+                                        option));
         args->widthGiven = cmd->count("--width") > 0;
         args->heightGiven = cmd->count("--height") > 0;
         const RenderArgs& a = *args;

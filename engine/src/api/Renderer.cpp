@@ -4,6 +4,7 @@
 #include <lantern/Version.h>
 
 #include "api/RendererImpl.h"
+#include "io/image/ImageEncode.h"
 #include "render/Cryptomatte.h"
 #include "render/FrameRender.h"
 
@@ -49,10 +50,19 @@ void attachMetadata(Image& image, const frame::Frame& p, const DeviceInfo& devic
         md.emplace_back("lantern:viewFromWorld", matrixText(p.views[0].camera.viewFromWorld));
         md.emplace_back("lantern:clipFromView", matrixText(p.views[0].camera.clipFromView));
         const frame::View& v = p.views[0];
-        image.camera = CameraMetadata{v.camera.viewFromWorld, v.camera.clipFromView,
-                                      v.camera.depth == DepthMode::ReversedZ,
-                                      p.views.size() == 1 && v.x == 0 && v.y == 0 &&
-                                          v.width == image.width && v.height == image.height};
+        const CameraMetadata camera{v.camera.viewFromWorld, v.camera.clipFromView,
+                                    v.camera.depth == DepthMode::ReversedZ,
+                                    p.views.size() == 1 && v.x == 0 && v.y == 0 &&
+                                        v.width == image.width && v.height == image.height};
+        // A camera whose standard EXR matrices overflow float (a scene at 1e38, a camera at
+        // 1e300) keeps its double-precision text above; the matrices are left out, and the
+        // picture says why.
+        if (io::exrCameraMatrices(camera))
+            image.camera = camera;
+        else
+            md.emplace_back("lantern:warning",
+                            "the camera's worldToCamera and worldToNDC are not finite in float; "
+                            "they are left out of the picture's header");
     }
 }
 

@@ -34,6 +34,14 @@ const tinygltf::Value* extension(const tinygltf::ExtensionMap& map, const char* 
     return it == map.end() ? nullptr : &it->second;
 }
 
+int extensionSource(const tinygltf::Texture& texture, const char* name) {
+    const tinygltf::Value* ext = extension(texture.extensions, name);
+    if (!ext || !ext->IsObject() || !ext->Has("source")) return -1;
+    const tinygltf::Value& source = ext->Get("source");
+    // The JSON pass (GltfSchema) made it an integer in 0..2^31-1, read as int or real.
+    return source.IsInt() ? source.Get<int>() : source.IsNumber() ? int(source.GetNumberAsDouble()) : -1;
+}
+
 namespace {
 
 // --- Nodes and scenes ----------------------------------------------------------------------

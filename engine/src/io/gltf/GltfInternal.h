@@ -90,7 +90,12 @@ inline constexpr const char* kSupportedExtensions[] = {
     "LANTERN_materials_phong", "LANTERN_lights_phong",    "LANTERN_lighting",
     "LANTERN_camera",          "KHR_mesh_quantization",   "EXT_meshopt_compression",
     "KHR_meshopt_compression", "KHR_draco_mesh_compression", "KHR_texture_transform",
+    "EXT_texture_webp",
 };
+
+/// The image a texture's extension names (EXT_texture_webp, KHR_texture_basisu: `source`), or
+/// -1 when the texture has no such extension or it names none.
+int extensionSource(const tinygltf::Texture& texture, const char* extension);
 
 /// The two names of the meshopt codec's extension: EXT_ (ratified) and KHR_ (its successor, the
 /// same JSON; its newer bitstream versions are refused by the decoder with a message).

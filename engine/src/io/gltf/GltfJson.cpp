@@ -119,7 +119,13 @@ Result<void> checkExternalItem(const json& item, const char* kind, std::size_t i
     auto relative = checkRelativeUri(value, object + ".uri", diag, !source.allowed.empty());
     if (!relative) return std::move(relative).error();
     const std::string problem = externalFileProblem(*relative, source);
-    if (problem.empty()) return {};
+    if (problem.empty()) {
+        // tinygltf keeps no bytes of an empty image file: say so if a material uses it.
+        std::error_code ec;
+        if (!buffers && std::filesystem::file_size(source.folder / *relative, ec) == 0 && !ec)
+            facts.imageProblems[int(i)] = "\"" + printable(value) + "\" is empty (0 bytes)";
+        return {};
+    }
     // A missing image is an error only when a material uses it; a file that escapes the
     // folder, is not a regular file or is too large is refused whatever uses it.
     if (buffers || problem.find("does not exist") == std::string::npos)

@@ -1,11 +1,11 @@
 // glTF materials -> Lantern's: LANTERN_materials_phong, the PBR fallback mapping,
 // KHR_materials_unlit, alpha modes, and the base-colour textures they use, decoded to RGBA8.
 #include "io/gltf/GltfInternal.h"
+#include "io/image/ImageDecode.h"
 
 #include <algorithm>
 #include <climits>
 #include <cmath>
-#include <stb_image.h>
 
 namespace lantern::gltf {
 namespace {
@@ -43,13 +43,20 @@ public:
         const auto key = std::pair{index, srgb};
         if (auto it = m_done.find(key); it != m_done.end()) return it->second;
         const tinygltf::Texture& t = m_model.textures[std::size_t(index)];
-        if (t.source < 0) {
+        // EXT_texture_webp's image when there is one (`source` is then its fallback).
+        const int webp = extensionSource(t, "EXT_texture_webp");
+        const int source = webp != -1 ? webp : t.source;
+        if (source < 0) {
             m_diag.warn(at("textures", std::size_t(index)),
-                        "no source image (an extension's image format?); " + usedBy +
-                            " is drawn without it");
+                        extensionSource(t, "KHR_texture_basisu") != -1
+                            ? "has only a KHR_texture_basisu (KTX2) image, which Lantern cannot "
+                              "decode, and no PNG or JPEG fallback; " + usedBy +
+                                  " is drawn without it"
+                            : "no source image (an extension's image format?); " + usedBy +
+                                  " is drawn without it");
             return m_done[key] = -1;
         }
-        auto decoded = decode(t.source);
+        auto decoded = decode(source);
         if (!decoded) return std::move(decoded).error();
         Texture tex = std::move(*decoded);
         tex.srgb = srgb;
@@ -101,11 +108,10 @@ private:
                                                   ? problem->second
                                                   : "\"" + image.uri + "\" could not be read");
         }
-        if (size > std::size_t(INT_MAX)) return m_diag.error(obj, "encoded image is too large");
-        int w = 0, h = 0, channels = 0;
-        if (!stbi_info_from_memory(bytes, int(size), &w, &h, &channels))
-            return m_diag.error(obj, std::string("cannot be decoded: ") + stbi_failure_reason());
-        if (w <= 0 || h <= 0 || w > kMaxTextureSide || h > kMaxTextureSide)
+        auto info = io::inspectImage(bytes, size);
+        if (!info) return m_diag.error(obj, info.error().message);
+        const int w = info->width, h = info->height;
+        if (w > kMaxTextureSide || h > kMaxTextureSide)
             return m_diag.error(obj, std::to_string(w) + "x" + std::to_string(h) +
                                          " is outside the supported texture size (1 to " +
                                          std::to_string(kMaxTextureSide) + " per side)");
@@ -114,23 +120,21 @@ private:
             return m_diag.error(obj, "decoded image (" + std::to_string(rgbaBytes) +
                                          " bytes) exceeds --max-size (" +
                                          std::to_string(m_options.maxBytes) + " bytes)");
-        // The header's declared size is charged before a pixel is decoded: stb's working
+        // The header's declared size is charged before a pixel is decoded: the decoder's working
         // memory (the inflated rows at the file's channels and depth, the conversion to
         // 4 channels at that depth) and the result, then Lantern's copy.
-        const std::uint64_t depth = stbi_is_16_bit_from_memory(bytes, int(size)) ? 2 : 1;
-        const std::uint64_t perPixel = std::uint64_t(channels) * depth + 4 * depth + 4 + 4;
+        const std::uint64_t depth = info->sixteenBit ? 2 : 1;
+        const std::uint64_t perPixel = std::uint64_t(info->channels) * depth + 4 * depth + 4 + 4;
         LANTERN_TRY(m_diag.charge(std::uint64_t(w) * std::uint64_t(h), perPixel, obj,
                                   "decoding the " + std::to_string(w) + "x" + std::to_string(h) +
                                       " image"));
-        stbi_uc* pixels = stbi_load_from_memory(bytes, int(size), &w, &h, &channels, 4);
-        if (!pixels)
-            return m_diag.error(obj, std::string("cannot be decoded: ") + stbi_failure_reason());
+        auto pixels = io::decodeRgba8(bytes, size, *info);
+        if (!pixels) return m_diag.error(obj, pixels.error().message);
         Texture t;
         t.name = !image.name.empty() ? image.name : image.uri.size() < 200 ? image.uri : obj;
         t.width = w;
         t.height = h;
-        t.rgba8.assign(pixels, pixels + rgbaBytes);
-        stbi_image_free(pixels);
+        t.rgba8 = std::move(*pixels);
         return t;
     }
 

@@ -16,6 +16,14 @@ bool supported(const std::string& extension) {
                        [&](const char* e) { return extension == e; });
 }
 
+// Whether every KHR_texture_basisu texture also names a PNG or JPEG image (`source`): then the
+// file can be drawn, though it requires the extension (KTX2 has no decoder in Debian).
+bool basisuHasFallbacks(const tinygltf::Model& model) {
+    return std::all_of(model.textures.begin(), model.textures.end(), [](const auto& t) {
+        return extensionSource(t, "KHR_texture_basisu") == -1 || t.source != -1;
+    });
+}
+
 /// "2.0" -> {2, 0}; nothing for anything that is not MAJOR.MINOR.
 std::optional<std::pair<int, int>> parseVersion(const std::string& v) {
     const std::size_t dot = v.find('.');
@@ -231,6 +239,11 @@ Result<void> validateMaterialsAndTextures(const tinygltf::Model& model, const Di
         if (t.source != -1)
             LANTERN_TRY(checkIndex(t.source, model.images.size(), at("textures", i) + ".source",
                                    "image", diag));
+        for (const char* ext : {"EXT_texture_webp", "KHR_texture_basisu"})
+            if (const int source = extensionSource(t, ext); source != -1)
+                LANTERN_TRY(checkIndex(source, model.images.size(),
+                                       at("textures", i) + ".extensions." + ext + ".source",
+                                       "image", diag));
         if (t.sampler != -1)
             LANTERN_TRY(checkIndex(t.sampler, model.samplers.size(), at("textures", i) + ".sampler",
                                    "sampler", diag));
@@ -418,7 +431,8 @@ Result<void> validateModel(const tinygltf::Model& model, const RawFacts& raw,
                                                       "; this loader reads 2.0");
     }
     for (std::size_t i = 0; i < model.extensionsRequired.size(); ++i)
-        if (!supported(model.extensionsRequired[i]))
+        if (!supported(model.extensionsRequired[i]) &&
+            !(model.extensionsRequired[i] == "KHR_texture_basisu" && basisuHasFallbacks(model)))
             return diag.error(at("extensionsRequired", i),
                               "extension " + model.extensionsRequired[i] +
                                   " is required by the file but not supported");

@@ -1,7 +1,9 @@
 // Images read for comparison: every channel of an EXR, or a PNG's stored values, by name.
 #include "io/image/ImageIo.h"
 
+#include "io/FileAccess.h"
 #include "io/image/ExrRead.h"
+#include "io/image/ImageDecode.h"
 #include "io/image/ImageEncode.h"
 
 #include <ImfChannelList.h>
@@ -60,34 +62,46 @@ Result<CompareImage> readExrChannels(const std::filesystem::path& path) {
 }
 
 Result<CompareImage> readPngChannels(const std::filesystem::path& path) {
-    std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
-    if (!f) return makeError(ErrorCode::InvalidInput, "cannot open the file", {}, path.string());
-    int w = 0, h = 0, comp = 0;
-    if (!stbi_info_from_file(f.get(), &w, &h, &comp))
-        return makeError(ErrorCode::InvalidInput,
-                         std::string("not a readable PNG file: ") + stbi_failure_reason(), {}, path.string());
-    if (w <= 0 || h <= 0 || (long long)w * h > (1LL << 31))
-        return makeError(ErrorCode::InvalidInput, "unsupported image size", {}, path.string());
-    const bool sixteen = stbi_is_16_bit_from_file(f.get()) != 0;
+    auto bytes = io::readRegularFile(path, std::uint64_t(1) << 32, false);
+    if (!bytes) {
+        Error e = std::move(bytes).error();
+        e.message = "the file " + e.message;
+        e.file = path.string();
+        return e;
+    }
+    const auto refuse = [&](const std::string& why) {
+        return makeError(ErrorCode::InvalidInput, "not a readable PNG file: it " + why, {},
+                         path.string());
+    };
+    // Why stb_image could not decode what was inspected (truncated, corrupt).
+    const auto undecoded = [&](const io::ImageInfo& info) {
+        auto again = io::decodeRgba8(bytes->data(), bytes->size(), info);
+        return refuse(again ? std::string("could not be decoded") : again.error().message);
+    };
+    auto info = io::inspectImage(bytes->data(), bytes->size());
+    if (!info) return refuse(info.error().message);
+    if ((long long)info->width * info->height > (1LL << 31))
+        return refuse("is " + std::to_string(info->width) + "x" + std::to_string(info->height) +
+                      " pixels, more than 2^31 to compare");
+    const int size = int(bytes->size());
+    int w = 0, h = 0;
     CompareImage img;
-    img.width = w;
-    img.height = h;
+    img.width = info->width;
+    img.height = info->height;
     img.encoding = PixelEncoding::Srgb;
     img.source = path.string();
-    const std::size_t n = std::size_t(w) * std::size_t(h);
+    const std::size_t n = std::size_t(info->width) * std::size_t(info->height);
     int got = 0;
-    if (sixteen) {
-        std::unique_ptr<stbi_us, void (*)(void*)> p(stbi_load_from_file_16(f.get(), &w, &h, &got, 0), &stbi_image_free);
-        if (!p)
-            return makeError(ErrorCode::InvalidInput,
-                             std::string("not a readable PNG file: ") + stbi_failure_reason(), {}, path.string());
+    if (info->sixteenBit) {
+        std::unique_ptr<stbi_us, void (*)(void*)> p(
+            stbi_load_16_from_memory(bytes->data(), size, &w, &h, &got, 0), &stbi_image_free);
+        if (!p) return undecoded(*info);
         img.values.resize(n * std::size_t(got));
         for (std::size_t i = 0; i < img.values.size(); ++i) img.values[i] = float(p.get()[i]) / 65535.0f;
     } else {
-        std::unique_ptr<stbi_uc, void (*)(void*)> p(stbi_load_from_file(f.get(), &w, &h, &got, 0), &stbi_image_free);
-        if (!p)
-            return makeError(ErrorCode::InvalidInput,
-                             std::string("not a readable PNG file: ") + stbi_failure_reason(), {}, path.string());
+        std::unique_ptr<stbi_uc, void (*)(void*)> p(
+            stbi_load_from_memory(bytes->data(), size, &w, &h, &got, 0), &stbi_image_free);
+        if (!p) return undecoded(*info);
         img.values.resize(n * std::size_t(got));
         for (std::size_t i = 0; i < img.values.size(); ++i) img.values[i] = float(p.get()[i]) / 255.0f;
     }

@@ -6,7 +6,10 @@
 #include <lantern/Image.h>
 #include <lantern/Result.h>
 
+#include <glm/mat4x4.hpp>
+
 #include <cstddef>
+#include <optional>
 #include <filesystem>
 #include <utility>
 #include <vector>
@@ -31,6 +34,16 @@ struct PngEncoding {
 
 /// The PNG file's bytes for `image` (pngPixels, then libpng).
 Result<std::vector<unsigned char>> encodePng(const Image& image, const PngEncoding& encoding);
+
+/// The standard EXR camera attributes of a picture: worldToCamera (OpenEXR's left-handed camera
+/// space, looking down +Z) and worldToNDC ((0,0) top-left to (1,1) bottom-right), as the file
+/// stores them, in float. Nothing when either would hold a value that is not finite in float
+/// (a camera 1e300 from the origin): such a matrix is left out of the header, never written
+/// as Inf or NaN.
+struct ExrCameraMatrices {
+    glm::mat4 worldToCamera{1.0f}, worldToNdc{1.0f};
+};
+std::optional<ExrCameraMatrices> exrCameraMatrices(const CameraMetadata& camera);
 
 /// An EXR data window, corners inclusive (Imath::Box2i's min and max, without OpenEXR's headers).
 struct ExrWindow {

@@ -141,6 +141,28 @@ private:
 
 } // namespace
 
+std::optional<io::ExrCameraMatrices> io::exrCameraMatrices(const CameraMetadata& camera) {
+    // OpenEXR's camera space is left-handed, looking down +Z: flip z.
+    glm::dmat4 flipZ(1.0);
+    flipZ[2][2] = -1.0;
+    // NDC: (0,0) top-left to (1,1) bottom-right of the display window; Vulkan's clip
+    // space already has y down.
+    glm::dmat4 ndcFromClip(1.0);
+    ndcFromClip[0][0] = 0.5, ndcFromClip[1][1] = 0.5;
+    ndcFromClip[3][0] = 0.5, ndcFromClip[3][1] = 0.5;
+    const glm::dmat4 worldToCamera = flipZ * camera.viewFromWorld;
+    const glm::dmat4 worldToNdc = ndcFromClip * camera.clipFromView * camera.viewFromWorld;
+    ExrCameraMatrices out;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) {
+            out.worldToCamera[i][j] = float(worldToCamera[i][j]);
+            out.worldToNdc[i][j] = float(worldToNdc[i][j]);
+            if (!std::isfinite(out.worldToCamera[i][j]) || !std::isfinite(out.worldToNdc[i][j]))
+                return std::nullopt;
+        }
+    return out;
+}
+
 const char* toString(ExrCompression c) noexcept {
     switch (c) {
     case ExrCompression::None: return "none";
@@ -211,28 +233,20 @@ void addColorChannels(Imf::Header& header, Imf::FrameBuffer& fb, const Image& im
     }
 }
 
-// The standard worldToCamera and worldToNDC attributes.
+// The standard worldToCamera and worldToNDC attributes, when they are finite in float.
 void addCameraAttributes(Imf::Header& header, const CameraMetadata& camera) {
-    // OpenEXR's camera space is left-handed, looking down +Z: flip z. Imath's matrices
-    // transform row vectors, which makes their element [i][j] GLM's [i][j].
-    glm::dmat4 flipZ(1.0);
-    flipZ[2][2] = -1.0;
-    const glm::dmat4 worldToCamera = flipZ * camera.viewFromWorld;
-    // NDC: (0,0) top-left to (1,1) bottom-right of the display window; Vulkan's clip
-    // space already has y down.
-    glm::dmat4 ndcFromClip(1.0);
-    ndcFromClip[0][0] = 0.5, ndcFromClip[1][1] = 0.5;
-    ndcFromClip[3][0] = 0.5, ndcFromClip[3][1] = 0.5;
-    const glm::dmat4 worldToNdc = ndcFromClip * camera.clipFromView * camera.viewFromWorld;
-    auto toImath = [](const glm::dmat4& m) {
+    const auto m = io::exrCameraMatrices(camera);
+    if (!m) return;
+    // Imath's matrices transform row vectors, which makes their element [i][j] GLM's [i][j].
+    auto toImath = [](const glm::mat4& f) {
         Imath::M44f r;
         for (int i = 0; i < 4; ++i)
             for (int j = 0; j < 4; ++j)
-                r[i][j] = float(m[i][j]);
+                r[i][j] = f[i][j];
         return r;
     };
-    Imf::addWorldToCamera(header, toImath(worldToCamera));
-    Imf::addWorldToNDC(header, toImath(worldToNdc));
+    Imf::addWorldToCamera(header, toImath(m->worldToCamera));
+    Imf::addWorldToNDC(header, toImath(m->worldToNdc));
 }
 
 } // namespace
