@@ -11,8 +11,10 @@ using namespace lantern::python;
 
 namespace {
 
-std::shared_ptr<PyScene> loadPyScene(const std::string& pathOrBuiltin) {
-    auto loaded = lantern::loadScene(pathOrBuiltin);
+std::shared_ptr<PyScene> loadPyScene(const std::string& pathOrBuiltin, const std::string& variant) {
+    LoadOptions options;
+    options.variant = variant;
+    auto loaded = lantern::loadScene(pathOrBuiltin, options);
     if (!loaded) raise(loaded.error());
     auto s = std::make_shared<PyScene>();
     s->scene = std::make_shared<Scene>(std::move(*loaded));
@@ -89,6 +91,10 @@ void defineScene(py::module_& m) {
             },
             "(start, end) in seconds of all its animations; (0, 0) without any")
         .def_property_readonly("summary", &summaryOf, "Counts of nodes, meshes, triangles...")
+        .def_property_readonly(
+            "variants", [](const PyScene& s) { return s.scene->variants; },
+            "The material variants' names (glTF KHR_materials_variants); load(path, variant=NAME) "
+            "draws one")
         .def_property_readonly("lights", &PyScene::lights, "The lights: name, type, colours")
         .def("add_light", &PyScene::addLight, py::arg("type"), py::kw_only(),
              py::arg("position") = py::none(), py::arg("direction") = py::none(),
@@ -208,7 +214,9 @@ PYBIND11_MODULE(_lantern, m) {
     m.attr("__version__") = versionString();
     defineScene(m);
     defineRenderer(m);
-    m.def("load", &loadPyScene, py::arg("path"), "Loads a .gltf/.glb file or builtin:NAME");
+    m.def("load", &loadPyScene, py::arg("path"), py::arg("variant") = "",
+          "Loads a scene file (glTF/GLB) or builtin:NAME; variant: a KHR_materials_variants "
+          "variant to draw (the scene's `variants` lists them)");
     m.def("builtin_scenes", &builtinSceneNames, "The names builtin:NAME accepts");
     m.def("write_image", &writeImageFile, py::arg("path"), py::arg("rgba"), py::kw_only(),
           py::arg("depth") = py::none(), py::arg("normal") = py::none(), py::arg("half") = false,

@@ -7,11 +7,11 @@
 #include "lighting.glsl"
 
 // The classic side of a metallic-roughness material at metallic m and roughness r:
-// f0 = mix(0.04, b, m), w = r^2; diffuse = ambient = b (1 - m) + f0 w m;
+// f0 = mix(d, b, m) with d the dielectric F0 (0.04 unless KHR_materials_ior or _specular), w = r^2; diffuse = ambient = b (1 - m) + f0 w m;
 // shininess = clamp(2 / w^2 - 2, 1, 1e4); specular = f0 (1 - w m) (s + 8) / 8.
-MaterialSideData pbrSide(MaterialSideData side, vec4 base, float m, float r) {
+MaterialSideData pbrSide(MaterialSideData side, vec4 base, float m, float r, float dielectricF0) {
     float w = r * r;
-    vec3 f0 = mix(vec3(0.04), base.rgb, m);
+    vec3 f0 = mix(vec3(dielectricF0), base.rgb, m);
     vec3 diffuse = base.rgb * (1.0 - m) + f0 * (w * m);
     float r4 = w * w;
     float s = r4 > 0.0 ? clamp(2.0 / r4 - 2.0, LANTERN_PBR_MIN_SHININESS, LANTERN_PBR_MAX_SHININESS)
@@ -27,7 +27,7 @@ MaterialSideData pbrSide(MaterialSideData side, vec4 base, float m, float r) {
 MaterialSideData mappedPbrSide(MaterialSideData side, MaterialData material, SurfaceUv u) {
     vec4 texel = mapTexel(metallicRoughnessTexture, u, draw.materialIndex, 0);
     return pbrSide(side, material.pbrBase, material.pbrParams.x * texel.b,
-                   material.pbrParams.y * texel.g);
+                   material.pbrParams.y * texel.g, material.params.z);
 }
 
 // The normal map applied to the unit normal n, with dp1, dp2 the screen derivatives of the

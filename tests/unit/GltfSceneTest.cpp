@@ -619,3 +619,103 @@ TEST(GltfScene, ExplainSceneNeedsNoDevice) {
 }
 
 } // namespace
+
+// KHR_materials_variants: the variants are listed, the file's own materials are drawn unless a
+// variant is asked for (LoadOptions::variant, --variant), a variant that does not list a
+// primitive leaves it its own material, and bad names and indices are refused with the object.
+TEST(GltfScene, MaterialVariantsAreSelectedByName) {
+    const auto dir = testOutputDir();
+    GltfBuilder b;
+    b.addTriangle();
+    b.addTriangle();
+    b.doc["materials"] = json::array({json{{"name", "plain"}}, json{{"name", "red"}}, json{{"name", "blue"}}});
+    b.doc["extensionsUsed"] = {"KHR_materials_variants"};
+    b.doc["extensions"]["KHR_materials_variants"]["variants"] =
+        json::array({json{{"name", "Red"}}, json{{"name", "Blue"}}, json{{"name", "Plain"}}});
+    json& p0 = b.doc["meshes"][0]["primitives"][0];
+    p0["material"] = 0;
+    p0["extensions"]["KHR_materials_variants"]["mappings"] =
+        json::array({json{{"material", 1}, {"variants", {0}}}, json{{"material", 2}, {"variants", {1}}}});
+    b.doc["meshes"][1]["primitives"][0]["material"] = 0;  // listed in no variant
+    const auto path = b.write(dir, "variants");
+
+    auto plain = loadCapturing(path);
+    ASSERT_TRUE(plain.scene) << plain.scene.error().describe();
+    EXPECT_EQ(plain.scene->variants, (std::vector<std::string>{"Red", "Blue", "Plain"}));
+    EXPECT_EQ(plain.scene->meshes[0].primitives[0].material, 0);
+    EXPECT_EQ(plain.scene->activeVariant, -1);
+
+    LoadOptions options;
+    options.variant = "Blue";
+    auto blue = loadScene(path.string(), options);
+    ASSERT_TRUE(blue) << blue.error().describe();
+    EXPECT_EQ(blue->meshes[0].primitives[0].material, 2);
+    EXPECT_EQ(blue->meshes[1].primitives[0].material, 0);
+    EXPECT_EQ(blue->activeVariant, 1);
+    ASSERT_TRUE(selectMaterialVariant(*blue, "Red"));
+    EXPECT_EQ(blue->meshes[0].primitives[0].material, 1);
+    ASSERT_TRUE(selectMaterialVariant(*blue, "Plain"));  // lists no primitive: their own
+    EXPECT_EQ(blue->meshes[0].primitives[0].material, 0);
+    ASSERT_TRUE(selectMaterialVariant(*blue, ""));
+    EXPECT_EQ(blue->meshes[0].primitives[0].material, 0);
+
+    options.variant = "Green";
+    auto green = loadScene(path.string(), options);
+    ASSERT_FALSE(green);
+    EXPECT_EQ(green.error().object, "--variant");
+    EXPECT_NE(green.error().message.find("\"Red\", \"Blue\", \"Plain\""), std::string::npos)
+        << green.error().describe();
+
+    p0["extensions"]["KHR_materials_variants"]["mappings"][1]["variants"] = {3};
+    EXPECT_TRUE(refusedWith(loadCapturing(b.write(dir, "bad-variant")),
+                            "meshes[0].primitives[0].extensions.KHR_materials_variants.mappings[1].variants[0]",
+                            "variant 3 does not exist"));
+    p0["extensions"]["KHR_materials_variants"]["mappings"][1] = {{"material", 7}, {"variants", {1}}};
+    EXPECT_TRUE(refusedWith(loadCapturing(b.write(dir, "bad-material")),
+                            "meshes[0].primitives[0].extensions.KHR_materials_variants.mappings[1].material",
+                            "material 7 does not exist"));
+}
+
+// EXT_mesh_gpu_instancing (gltfpack -mi marks it required): the node's mesh is drawn at each
+// instance, in the node's space; quantized rotations read as KHR_mesh_quantization allows;
+// attributes of different counts are refused with their path.
+TEST(GltfScene, GpuInstancesAreDrawnAtEveryInstanceInTheNodesSpace) {
+    GltfBuilder b;
+    b.addTriangle();
+    b.doc["nodes"][0]["translation"] = {0, 10, 0};
+    const int t = b.addFloats({1, 0, 0, 2, 0, 0, 3, 0, 0}, "VEC3");
+    // 0 and 90 degrees about Z, as normalized shorts (32767 = 1, 23170 = 0.7071).
+    const int r = b.addAccessor(std::vector<std::int16_t>{0, 0, 0, 32767, 0, 0, 23170, 23170, 0, 0, 0, 32767},
+                                "VEC4", 5122, true);
+    const int s = b.addFloats({1, 1, 1, 2, 2, 2, 1, 1, 1}, "VEC3");
+    b.doc["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"] = {
+        {"TRANSLATION", t}, {"ROTATION", r}, {"SCALE", s}, {"_ID", t}};
+    b.doc["extensionsUsed"] = {"EXT_mesh_gpu_instancing", "KHR_mesh_quantization"};
+    b.doc["extensionsRequired"] = {"EXT_mesh_gpu_instancing", "KHR_mesh_quantization"};
+    const auto dir = testOutputDir();
+    auto o = loadCapturing(b.write(dir, "instances"));
+    ASSERT_TRUE(o.scene) << o.scene.error().describe();
+    const Scene& sc = *o.scene;
+    ASSERT_EQ(sc.nodes.size(), 4u);
+    EXPECT_EQ(sc.nodes[0].mesh, -1);
+    EXPECT_EQ(sc.nodes[0].children, (std::vector<int>{1, 2, 3}));
+    const Pose pose = evaluatePose(sc, -1, 0.0);
+    for (int k = 1; k <= 3; ++k) {
+        EXPECT_EQ(sc.nodes[std::size_t(k)].mesh, 0);
+        EXPECT_NEAR(pose.worldFromNode[std::size_t(k)][3][0], double(k), 1e-9);
+        EXPECT_NEAR(pose.worldFromNode[std::size_t(k)][3][1], 10.0, 1e-9);
+    }
+    // Instance 1: scale 2 and 90 degrees about Z (+X turned to +Y); instance 2 neither.
+    EXPECT_NEAR(pose.worldFromNode[2][0][0], 0.0, 1e-4);
+    EXPECT_NEAR(pose.worldFromNode[2][0][1], 2.0, 1e-4);
+    EXPECT_NEAR(pose.worldFromNode[3][0][0], 1.0, 1e-4);
+    bool noted = false;
+    for (const FeatureUse& f : sc.features) noted |= f.key == "EXT_mesh_gpu_instancing";
+    EXPECT_TRUE(noted);
+
+    b.doc["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"]["SCALE"] =
+        b.addFloats({1, 1, 1, 2, 2, 2}, "VEC3");
+    EXPECT_TRUE(refusedWith(loadCapturing(b.write(dir, "bad")),
+                            "nodes[0].extensions.EXT_mesh_gpu_instancing.attributes.SCALE",
+                            "has 2 instances where the other attributes have 3"));
+}

@@ -195,22 +195,5 @@ std::string num(double value, const char* format) {
     return b;
 }
 
-Result<void> writeTextFile(const std::string& path, const std::string& text) {
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        out << text;
-        out.flush();
-        if (!out) return makeError(ErrorCode::IoError, "cannot write the file", "", path);
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::filesystem::remove(tmp, ec);
-        return makeError(ErrorCode::IoError, "cannot rename the temporary file into place", "",
-                         path);
-    }
-    return {};
-}
 
 } // namespace lantern::cli

@@ -5,6 +5,7 @@
 
 #include "bench/Bench.h"
 #include "common/CliSupport.h"
+#include "common/TextFile.h"
 
 #include <cstdint>
 #include <functional>
@@ -110,7 +111,6 @@ Result<std::vector<ShadingMode>> parseShadingList(const std::vector<std::string>
 /// A number for CSV and markdown: %.4g, "inf" and "nan" spelled out.
 std::string num(double value, const char* format = "%.4g");
 
-/// Writes `text` to `path` atomically enough for a report (temporary file, then rename).
-Result<void> writeTextFile(const std::string& path, const std::string& text);
+// Reports are written whole or not at all by cli::writeTextFile (common/TextFile.h).
 
 } // namespace lantern::cli

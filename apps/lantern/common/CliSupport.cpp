@@ -428,6 +428,12 @@ void addAllowFolderOption(CLI::App& app, std::vector<std::string>& folders) {
         ->check(CLI::ExistingDirectory);
 }
 
+void addVariantOption(CLI::App& app, std::string& variant) {
+    app.add_option("--variant", variant,
+                   "Draw the scene's material variant NAME (glTF KHR_materials_variants; "
+                   "`lantern info` lists them); default: the file's own materials");
+}
+
 void addMaxSizeOption(CLI::App& app, std::uint64_t& maxSize) {
     app.add_option("--max-size", maxSize,
                    "Largest file, buffer or image accepted, and the most memory one scene's load "

@@ -75,6 +75,8 @@ inline constexpr std::uint64_t kMaxMaxSize = std::uint64_t(1) << 36;
 /// --max-size BYTES (1 to kMaxMaxSize): the largest file, buffer or image accepted and the most
 /// one scene may make Lantern decode (accessors, images) in all.
 void addMaxSizeOption(CLI::App& app, std::uint64_t& maxSize);
+/// --variant NAME: the KHR_materials_variants variant whose materials the scene is drawn with.
+void addVariantOption(CLI::App& app, std::string& variant);
 /// --allow-folder DIR (repeatable): LoadOptions::allowedFolders.
 void addAllowFolderOption(CLI::App& app, std::vector<std::string>& folders);
 

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "common/TextFile.h"
+
 namespace lantern::cli::farm {
 
 /// One submission, as `farm submit` was asked for it: enough to write its job again, to check
@@ -51,8 +53,8 @@ std::filesystem::path logFolder(const std::string& pattern);
 Result<void> writeRecord(const Submission& s);
 Result<Submission> readRecord(const std::filesystem::path& path);
 
-/// Writes `text` to `path` through a temporary file and a rename (never half-written).
-Result<void> writeTextFile(const std::filesystem::path& path, const std::string& text);
+// Text files are written whole or not at all by cli::writeTextFile (common/TextFile.h).
+using cli::writeTextFile;
 
 /// Quotes a word for a POSIX shell (single quotes; safe for any byte but NUL).
 std::string shellQuote(const std::string& word);

@@ -2,6 +2,7 @@
 // cameras, animations, bounds) and the renderer features it needs; no GPU needed.
 // `lantern info --devices`: the Vulkan devices, the one Lantern would choose and why, where
 // pipelines are cached, and whether `lantern view` has a display.
+#include "common/FidelityReport.h"
 #include "common/CliSupport.h"
 #include "common/Commands.h"
 
@@ -24,7 +25,9 @@ struct InfoArgs {
     int sceneIndex = -1;
     double time = 0.0;
     std::uint64_t maxSize = kDefaultMaxBytes;
+    std::string variant;  ///< --variant
     std::vector<std::string> allowFolders;
+    bool json = false;  ///< --json
 };
 
 /// "3 (a 2, b 1)": a total and its non-zero parts in a fixed order.
@@ -137,6 +140,46 @@ void printCounts(const SceneSummary& s, const Kinds& k) {
     std::cout << "\n";
 }
 
+// What the file uses and how each is drawn (the fidelity report, `--json` has the objects).
+void printFileFeatures(const Scene& scene) {
+    if (scene.features.empty()) return;
+    std::cout << "file features (docs/scene-format-support.md):\n";
+    for (const FeatureUse& f : scene.features)
+        std::cout << "  " << f.key << ": " << toString(f.fidelity)
+                  << (f.rule.empty() ? "" : " (" + f.rule + ")") << ", " << f.count
+                  << (f.count == 1 ? " use" : " uses") << "\n";
+}
+
+// The whole of `info` as one JSON document: the fidelity report, the counts, the renderer's
+// features and pipeline variants.
+int printJson(const InfoArgs& a, const Scene& scene, int root) {
+    nlohmann::ordered_json j = sceneReport(a.scene, scene, std::nullopt);
+    const SceneSummary s = summarize(scene);
+    j["counts"] = {{"nodes", s.nodes},           {"meshes", s.meshes},
+                   {"primitives", s.primitives}, {"triangles", s.triangles},
+                   {"lines", s.lines},           {"points", s.points},
+                   {"vertices", s.vertices},     {"materials", s.materials},
+                   {"textures", s.textures},     {"lights", s.lights},
+                   {"cameras", s.cameras},       {"animations", s.animations}};
+    RenderOptions options;
+    options.root = root;
+    auto features = explainScene(scene, options, a.time);
+    if (!features) return report(features.error());
+    j["renderFeatures"] = features->features;
+    j["pipelineVariants"] = features->variants;
+    std::cout << j.dump(2) << "\n";
+    return kOk;
+}
+
+// KHR_materials_variants: the names, and the one drawn (--variant).
+void printVariants(const Scene& scene) {
+    if (scene.variants.empty()) return;
+    std::cout << "material variants: " << scene.variants.size() << "\n";
+    for (std::size_t i = 0; i < scene.variants.size(); ++i)
+        std::cout << "  " << i << " \"" << scene.variants[i] << "\""
+                  << (int(i) == scene.activeVariant ? "  <- drawn (--variant)" : "") << "\n";
+}
+
 // The bounds at --time, the renderer features the scene needs and their pipeline variants.
 int printBoundsAndFeatures(const InfoArgs& a, const Scene& scene, int root) {
     const Bounds b = computeBounds(scene, evaluatePose(scene, root, a.time));
@@ -223,6 +266,7 @@ int run(const InfoArgs& a) {
         if (int code = runDevices(a); code != kOk) return code;
     LoadOptions load;
     load.maxBytes = a.maxSize;
+    load.variant = a.variant;
     load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
     load.log = stderrSink(false);
     auto loaded = loadScene(a.scene, load);
@@ -237,10 +281,13 @@ int run(const InfoArgs& a) {
     if (!std::isfinite(a.time))
         return report(makeError(ErrorCode::InvalidInput, "time must be a finite number", "--time"));
     const int root = a.sceneIndex < 0 ? scene.defaultRoot : a.sceneIndex;
+    if (a.json) return printJson(a, scene, root);
     const SceneSummary s = summarize(scene);
     const Kinds kinds = countKinds(scene);
     printRoots(a, scene, s, root);
     printCounts(s, kinds);
+    printVariants(scene);
+    printFileFeatures(scene);
     return printBoundsAndFeatures(a, scene, root);
 }
 
@@ -260,6 +307,10 @@ Runner addInfoCommand(CLI::App& app) {
     cmd->add_option("--time", args->time, "Animation time in seconds for bounds and features")
         ->capture_default_str();
     addMaxSizeOption(*cmd, args->maxSize);
+    addVariantOption(*cmd, args->variant);
+    cmd->add_flag("--json", args->json,
+                  "Print everything as JSON, with the fidelity report: every feature the file "
+                  "uses, supported, approximated (the rule) or skipped, and its objects");
     addAllowFolderOption(*cmd, args->allowFolders);
     return [args, cmd]() { return cmd->parsed() ? run(*args) : -1; };
 }

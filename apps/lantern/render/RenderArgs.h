@@ -41,6 +41,8 @@ struct RenderArgs {
     std::string compression = "zip";
     int zipLevel = ExrOptions{}.zipLevel;
     std::uint64_t maxSize = kDefaultMaxBytes;
+    std::string variant;  ///< --variant
+    std::string report;   ///< --report FILE: the fidelity report
     std::vector<std::string> allowFolders;
     std::string background;
     std::string frames;

@@ -1,4 +1,6 @@
 // `lantern render SCENE`: headless rendering to EXR/PNG (docs/cli.md).
+#include "common/FidelityReport.h"
+#include "common/TextFile.h"
 #include "common/CliSupport.h"
 #include "common/Commands.h"
 #include "common/CompareCli.h"
@@ -295,12 +297,29 @@ int runBatchArgs(RenderArgs a) {
     r.options = *options;
     r.exr = *exr;
     r.load.maxBytes = a.maxSize;
+    r.load.variant = a.variant;
     r.load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
     r.load.log = stderrSink(a.device.verbose);
     r.device = a.device.desc();
     r.verbose = a.device.verbose;
     r.checkDevice = [&a](const DeviceInfo& d) { return a.shading.checkDevice(d); };
     return runBatch(r);
+}
+
+// --report FILE: what the file uses and how this render draws each (the shading it is
+// drawn with decides what gouraud and flat approximate).
+Result<void> writeFidelityReport(const RenderArgs& a, const Scene& scene, const RenderOptions& o) {
+    // The shading the frame resolves (options over the scene's LANTERN_lighting, --gl-compat).
+    auto explained = explainScene(scene, o, 0.0);
+    if (!explained) return std::move(explained).error();
+    ShadingMode shading = ShadingMode::Phong;
+    for (const std::string& f : explained->features)
+        if (f.rfind("shading:", 0) == 0)
+            if (auto m = parseShadingMode(std::string_view(f).substr(8))) shading = *m;
+    const auto parent = std::filesystem::path(a.report).parent_path();
+    std::error_code ec;
+    if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+    return writeTextFile(a.report, sceneReport(a.scenes.front(), scene, shading).dump(2) + "\n");
 }
 
 // The renderer, made on a thread of its own while the scene loads (the two take about as long
@@ -367,6 +386,7 @@ int run(RenderArgs a) {
 
     LoadOptions load;
     load.maxBytes = a.maxSize;
+    load.variant = a.variant;
     load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
     load.log = stderrSink(a.device.verbose);
     std::future<Result<Renderer>> pendingRenderer = startRenderer(a);
@@ -378,6 +398,8 @@ int run(RenderArgs a) {
         std::cerr << "lantern: warning: " << a.scenes.front() << ": nothing to draw (" << *why
                   << "); the image is the background\n";
 
+    if (!a.report.empty())
+        if (auto r = writeFidelityReport(a, *shared, *options); !r) return report(r.error());
     if (a.dryRun) return reportDryRun(a, *shared, seq, frame, outputs);
 
     auto renderer = pendingRenderer.get();
@@ -473,6 +495,10 @@ Runner addRenderCommand(CLI::App& app) {
                     "X,Y: print the lighting equation term by term at pixel X,Y (x from the left, "
                     "y from the top)");
     addMaxSizeOption(*cmd, args->maxSize);
+    addVariantOption(*cmd, args->variant);
+    cmd->add_option("--report", args->report,
+                    "Write the fidelity report as JSON to FILE: every feature the file uses, "
+                    "supported, approximated (the rule) or skipped, and its objects");
     addAllowFolderOption(*cmd, args->allowFolders);
     args->camera.add(*cmd);
     args->shading.add(*cmd);

@@ -27,6 +27,7 @@ struct ViewArgs {
     bool headlight = false, wireframe = false, normals = false;
     std::string background;
     std::uint64_t maxSize = kDefaultMaxBytes;
+    std::string variant;  ///< --variant
     std::vector<std::string> allowFolders;  ///< --allow-folder
     CameraOptions camera;
     ShadingOptions shading;

@@ -36,6 +36,7 @@ int runView(const ViewArgs& a) {
 
     LoadOptions load;
     load.maxBytes = a.maxSize;
+    load.variant = a.variant;
     load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
     load.log = stderrSink(a.device.verbose);
     auto scene = loadScene(a.scene, load);
@@ -137,6 +138,7 @@ Runner addViewCommand(CLI::App& app) {
     cmd->add_flag("--normals", args->normals, "Start with the normals displayed (N)");
     cmd->add_flag("--stats", args->stats, "Print frame-time statistics when the viewer exits");
     addMaxSizeOption(*cmd, args->maxSize);
+    addVariantOption(*cmd, args->variant);
     addAllowFolderOption(*cmd, args->allowFolders);
     args->camera.add(*cmd);
     args->shading.add(*cmd);

@@ -120,6 +120,7 @@ void Viewer::checkWatch() {
     m_loadedSize = size;
     LoadOptions load;
     load.maxBytes = m_args.maxSize;
+    load.variant = m_args.variant;
     load.allowedFolders.assign(m_args.allowFolders.begin(), m_args.allowFolders.end());
     load.log = stderrSink(m_args.device.verbose);
     auto scene = loadScene(m_st.source, load);

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -30,6 +31,9 @@ struct LoadOptions {
     /// (--allow-folder): a URI may then contain ".." and a symbolic link may lead there. Each
     /// file is still resolved to its real path and refused unless that lies inside one of them.
     std::vector<std::filesystem::path> allowedFolders;
+    /// KHR_materials_variants: the variant whose materials the primitives take (--variant);
+    /// empty: the file's own. A name the file does not have is refused, listing its variants.
+    std::string variant;
 };
 
 // --- Images ---------------------------------------------------------------------------------

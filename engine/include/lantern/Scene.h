@@ -80,6 +80,9 @@ struct PbrFactors {
     glm::dvec4 baseColor{1.0};
     double metallic = 1.0;
     double roughness = 1.0;
+    /// The F0 of the dielectric share (0.04; KHR_materials_ior and _specular change it; the
+    /// per-texel mapping takes the mean of a coloured one).
+    double dielectricF0 = 0.04;
 };
 
 struct Material {
@@ -177,6 +180,15 @@ struct Primitive {
     /// taken in order.
     std::vector<std::uint32_t> indices;
     int material = -1;  ///< index into Scene::materials; -1: the default material
+    /// KHR_materials_variants: the material this primitive takes in each variant that lists it
+    /// (variant index into Scene::variants, material), and the material it has in none of them
+    /// (the file's own). selectMaterialVariant() sets `material` from these.
+    struct VariantMaterial {
+        int variant = -1;
+        int material = -1;
+    };
+    std::vector<VariantMaterial> variantMaterials;
+    int materialWithoutVariant = -1;
 
     /// Vertices per element: 3, 2 or 1.
     std::size_t verticesPerElement() const {
@@ -300,6 +312,29 @@ struct SceneRoot {
     std::optional<LightingModel> lighting;  ///< absent: GL's defaults
 };
 
+// --- Fidelity: how the features a file uses are drawn ------------------------------------------
+
+/// How Lantern draws a feature of a file (docs/scene-format-support.md, "At a glance").
+enum class Fidelity {
+    Supported,     ///< as the format says
+    Approximated,  ///< drawn, by a documented rule (`rule` names it)
+    Skipped,       ///< left out, with a warning (`rule` says why)
+};
+LANTERN_API const char* toString(Fidelity fidelity) noexcept;  ///< "supported", ...
+
+/// One feature a file uses, where, and how it is drawn (`lantern info --json`, `render --report`).
+struct FeatureUse {
+    std::string key;  ///< the row's key in docs/scene-format-support.md ("skins", "KHR_materials_ior")
+    Fidelity fidelity = Fidelity::Supported;
+    std::string rule;  ///< Approximated: the rule's name; Skipped: why
+    std::vector<std::string> objects;  ///< the file's objects that use it (at most 64 listed)
+    std::size_t count = 0;             ///< how many objects use it (may exceed objects.size())
+};
+
+/// Every key a fidelity report may hold, with the status and rule it is reported with when no
+/// render option changes it (the rows of docs/scene-format-support.md's table).
+LANTERN_API const std::vector<FeatureUse>& fidelityKeys();
+
 // --- The scene ------------------------------------------------------------------------------
 
 /// Everything a file (or a host) describes. Indices refer into the vectors of the same Scene.
@@ -314,6 +349,13 @@ struct LANTERN_API Scene {
     std::vector<Skin> skins;
     std::vector<Animation> animations;
     std::vector<SceneRoot> roots;  ///< glTF scenes; may be empty (nothing is drawn)
+    /// KHR_materials_variants: the variants' names, and the one the primitives' materials are
+    /// set for (-1: none, the file's own materials).
+    std::vector<std::string> variants;
+    int activeVariant = -1;
+    /// The features the file uses and how they are drawn, in fidelityKeys() order (loaders fill
+    /// it; a scene built in code has none).
+    std::vector<FeatureUse> features;
     int defaultRoot = 0;           ///< the root drawn unless another is chosen (0 when none)
 
     /// Checks every index, count and number (spec section 6); the error names the object.
@@ -347,6 +389,11 @@ struct Pose {
 /// Evaluates every animation of the scene at `time` (seconds) and composes node transforms.
 /// `root` -1 means scene.defaultRoot. Assumes scene.validate() succeeded.
 LANTERN_API Pose evaluatePose(const Scene& scene, int root, double time);
+
+/// Gives every primitive the material variant `name` maps it to (KHR_materials_variants), or
+/// its own where the variant does not list it; an empty name restores the file's materials.
+/// InvalidInput, listing the variants, when the scene has no variant of that name.
+LANTERN_API Result<void> selectMaterialVariant(Scene& scene, std::string_view name);
 
 /// A span of animation time, in seconds.
 struct TimeRange {

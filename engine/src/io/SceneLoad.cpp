@@ -79,7 +79,10 @@ Result<Scene> loadScene(std::string_view pathOrBuiltin, const LoadOptions& optio
     try {
         auto format = sceneFormatOf(path);
         if (!format) return std::move(format).error();
-        return (*format)->load(path, options);
+        auto scene = (*format)->load(path, options);
+        if (scene && !options.variant.empty())
+            LANTERN_TRY(selectMaterialVariant(*scene, options.variant));
+        return scene;
     } catch (const std::bad_alloc&) {
         return makeError(ErrorCode::OutOfMemory, "out of memory while loading", {}, path.string());
     } catch (const std::exception& e) {

@@ -152,6 +152,7 @@ gpu::MaterialData packMaterial(const Material& m) {
     if (m.pbr) {
         d.pbrBase = vec4(m.pbr->baseColor);
         d.pbrParams = {float(m.pbr->metallic), float(m.pbr->roughness), 0.0f, 0.0f};
+        d.params.z = float(m.pbr->dielectricF0);
     }
     d.pbrParams.z = float(m.normalScale);
     d.pbrParams.w = float(m.occlusionStrength);

@@ -270,4 +270,31 @@ std::optional<std::string> nothingToDraw(const Scene& scene, int root) {
     return "no node of " + name + " draws a mesh with anything in it";
 }
 
+Result<void> selectMaterialVariant(Scene& scene, std::string_view name) {
+    int variant = -1;
+    if (!name.empty()) {
+        for (std::size_t i = 0; i < scene.variants.size(); ++i)
+            if (scene.variants[i] == name) variant = int(i);
+        if (variant < 0) {
+            std::string known;
+            for (const std::string& v : scene.variants) known += (known.empty() ? "\"" : ", \"") + v + "\"";
+            return makeError(ErrorCode::InvalidInput,
+                             "no material variant \"" + std::string(name) + "\" (" +
+                                 (known.empty() ? std::string("the scene has none")
+                                                : "the scene's variants: " + known) +
+                                 ")",
+                             "--variant", scene.sourcePath);
+        }
+    }
+    for (Mesh& mesh : scene.meshes)
+        for (Primitive& p : mesh.primitives) {
+            if (p.variantMaterials.empty()) continue;
+            p.material = p.materialWithoutVariant;
+            for (const Primitive::VariantMaterial& m : p.variantMaterials)
+                if (m.variant == variant) p.material = m.material;
+        }
+    scene.activeVariant = variant;
+    return {};
+}
+
 } // namespace lantern

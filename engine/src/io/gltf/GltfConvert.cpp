@@ -397,6 +397,9 @@ Result<Scene> convertModel(const tinygltf::Model& model, const RawFacts& raw,
     scene.sourcePath = diag.file();
 
     LANTERN_TRY(convertMaterials(model, raw, images, options, diag, scene));
+    auto variants = variantNames(model, diag);
+    if (!variants) return std::move(variants).error();
+    scene.variants = std::move(*variants);
     // Exactly as many as the model has (loadBytes charged these sizes to the budget).
     scene.meshes.reserve(model.meshes.size());
     scene.lights.reserve(model.lights.size());
@@ -430,6 +433,7 @@ Result<Scene> convertModel(const tinygltf::Model& model, const RawFacts& raw,
         scene.skins.push_back(std::move(*skin));
     }
     checkSkinUse(scene, diag);
+    LANTERN_TRY(expandInstances(model, diag, scene));
     for (std::size_t i = 0; i < model.scenes.size(); ++i) {
         SceneRoot root;
         root.name = model.scenes[i].name;

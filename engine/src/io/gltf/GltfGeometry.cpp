@@ -99,14 +99,6 @@ Result<std::vector<Vec>> toVectors(std::vector<float>& flat, std::size_t compone
     return out;
 }
 
-// Assigns a conversion's vectors to `to`, or returns its error from the enclosing function.
-#define LANTERN_TAKE(to, conversion)                       \
-    do {                                                   \
-        auto taken_ = (conversion);                        \
-        if (!taken_) return std::move(taken_).error();     \
-        (to) = std::move(*taken_);                         \
-    } while (false)
-
 /// Which TEXCOORD set the primitive's material's textures read (0 without any).
 int texcoordSet(const tinygltf::Model& model, int material) {
     return material < 0 ? 0 : materialTexcoordSet(model.materials[std::size_t(material)]);
@@ -260,6 +252,12 @@ Result<std::optional<Primitive>> convertPrimitive(const tinygltf::Model& model,
     Primitive out;
     out.topology = topologyOf(prim.mode);
     out.material = prim.material;
+    out.materialWithoutVariant = prim.material;
+    auto names = variantNames(model, diag);
+    if (!names) return std::move(names).error();
+    auto variants = primitiveVariants(model, prim, names->size(), obj, diag);
+    if (!variants) return std::move(variants).error();
+    out.variantMaterials = std::move(*variants);
     LANTERN_TRY(readAttributes(model, prim, positionAccessor, obj, diag, out));
     LANTERN_TRY(readSkinAttributes(model, prim, obj, diag, out));
     LANTERN_TRY(readTargets(model, prim, obj, diag, out));

@@ -272,6 +272,7 @@ Result<Scene> loadBytes(std::vector<unsigned char> bytes, const std::filesystem:
                             "converting the model into the scene"));
     auto scene = convertModel(*model, *raw, images, options, diag);
     if (!scene) return std::move(scene).error();
+    noteFeatures(*model, *raw, in->glb.has_value(), *scene);
     if (auto valid = scene->validate(); !valid) {
         Error e = std::move(valid).error();
         e.file = diag.file();

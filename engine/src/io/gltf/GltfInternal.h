@@ -35,6 +35,14 @@
 #include <tiny_gltf.h>
 #include <vector>
 
+/// Assigns a conversion's result to `to`, or returns its error from the enclosing function.
+#define LANTERN_TAKE(to, conversion)                       \
+    do {                                                   \
+        auto taken_ = (conversion);                        \
+        if (!taken_) return std::move(taken_).error();     \
+        (to) = std::move(*taken_);                         \
+    } while (false)
+
 namespace lantern::gltf {
 
 /// glTF accessor component types by name (INT and DOUBLE are not glTF 2.0 accessor types).
@@ -68,7 +76,19 @@ struct PhongFromPbr {
     glm::dvec3 diffuse{0.0}, specular{0.0};
     double shininess = 1.0;
 };
-PhongFromPbr phongFromPbr(const glm::dvec3& base, double metallic, double roughness);
+PhongFromPbr phongFromPbr(const glm::dvec3& base, double metallic, double roughness,
+                          const glm::dvec3& dielectricF0 = glm::dvec3(0.04));
+
+/// The KHR_materials_* extensions approximated in the classic equation (GltfPbrExtensions.cpp).
+struct PbrExtensions {
+    glm::dvec3 dielectricF0{0.04};  ///< ior and specular
+    double clearcoat = 0.0, clearcoatRoughness = 0.0;
+    glm::dvec3 sheenColor{0.0};
+    double transmission = 0.0;
+    double thickness = 0.0;
+    glm::dvec3 attenuationColor{1.0};
+    double attenuationDistance = kInfinity;
+};
 
 /// The TEXCOORD set a texture reference reads: KHR_texture_transform's `texCoord` when the
 /// reference has one, else its own `texCoord`.
@@ -90,7 +110,9 @@ inline constexpr const char* kSupportedExtensions[] = {
     "LANTERN_materials_phong", "LANTERN_lights_phong",    "LANTERN_lighting",
     "LANTERN_camera",          "KHR_mesh_quantization",   "EXT_meshopt_compression",
     "KHR_meshopt_compression", "KHR_draco_mesh_compression", "KHR_texture_transform",
-    "EXT_texture_webp",
+    "EXT_texture_webp",        "KHR_materials_variants",  "KHR_materials_specular",
+    "KHR_materials_ior",       "KHR_materials_clearcoat", "KHR_materials_sheen",
+    "KHR_materials_transmission", "KHR_materials_volume", "EXT_mesh_gpu_instancing",
 };
 
 /// The image a texture's extension names (EXT_texture_webp, KHR_texture_basisu: `source`), or
@@ -363,6 +385,28 @@ Result<Light> convertLight(const tinygltf::Light& src, std::size_t index, const 
 /// A camera, with LANTERN_camera; `hasZfar`: the perspective block has a zfar (RawFacts).
 Result<Camera> convertCamera(const tinygltf::Camera& src, std::size_t index, bool hasZfar,
                              const Diagnostics& diag);
+
+/// KHR_materials_variants (GltfVariants.cpp): the variants' names, and a primitive's
+/// mappings (its material in each variant that lists it), every index checked.
+Result<std::vector<std::string>> variantNames(const tinygltf::Model& model, const Diagnostics& diag);
+Result<std::vector<Primitive::VariantMaterial>> primitiveVariants(const tinygltf::Model& model,
+                                                                  const tinygltf::Primitive& prim,
+                                                                  std::size_t variantCount,
+                                                                  const std::string& obj,
+                                                                  const Diagnostics& diag);
+
+/// The KHR_materials_* extensions (PbrExtensions): reads them (each value checked, the path named); defaults where the material has none.
+Result<PbrExtensions> readPbrExtensions(const tinygltf::Material& src, const std::string& obj,
+                                        const Diagnostics& diag);
+/// Applies the rules to a material the PBR mapping made (its front side, blending).
+void applyPbrExtensions(const PbrExtensions& x, double metallic, Material& m);
+
+/// EXT_mesh_gpu_instancing (GltfInstancing.cpp): each instancing node's mesh moved to one
+/// child node per instance (TRANSLATION, ROTATION, SCALE), charged to the load's budget.
+Result<void> expandInstances(const tinygltf::Model& model, const Diagnostics& diag, Scene& scene);
+
+/// The fidelity report (Scene::features) of the model (GltfFidelity.cpp).
+void noteFeatures(const tinygltf::Model& model, const RawFacts& raw, bool glb, Scene& scene);
 
 /// The whole scene (GltfConvert.cpp), with the converters above and convertMesh.
 Result<Scene> convertModel(const tinygltf::Model& model, const RawFacts& raw,

@@ -2,6 +2,7 @@
 // KHR_materials_unlit, alpha modes, and the base-colour textures they use, decoded to RGBA8.
 #include "io/gltf/GltfInternal.h"
 #include "io/image/ImageDecode.h"
+#include "scene/Fidelity.h"
 
 #include <algorithm>
 #include <climits>
@@ -87,6 +88,29 @@ public:
         const double scale = 1.0 / (255.0 * double(std::max<std::size_t>(pixels, 1)));
         return std::optional<glm::dvec2>(glm::dvec2(metallic * scale, roughness * scale));
     }
+
+    /// The mean colour of a texture (linear; sRGB colour decoded first), or nothing when it
+    /// has no image Lantern reads: what a map that cannot be applied leaves in its factor.
+    Result<std::optional<glm::dvec4>> meanColour(int index, const std::string& usedBy, bool srgb) {
+        auto t = get(index, usedBy, srgb);
+        if (!t) return std::move(t).error();
+        if (*t < 0) return std::optional<glm::dvec4>{};
+        const std::vector<std::uint8_t>& rgba = m_out[std::size_t(*t)].rgba8;
+        const std::size_t pixels = std::max<std::size_t>(rgba.size() / 4, 1);
+        glm::dvec4 sum(0.0);
+        for (std::size_t i = 0; i + 3 < rgba.size(); i += 4)
+            for (int c = 0; c < 4; ++c) {
+                const double v = rgba[i + std::size_t(c)] / 255.0;
+                sum[c] += srgb && c < 3 ? (v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4)) : v;
+            }
+        return std::optional<glm::dvec4>(sum / double(pixels));
+    }
+
+    const Diagnostics& diagnostics() const { return m_diag; }
+
+    /// Maps drawn with their texture's mean because they read a TEXCOORD set the primitive's
+    /// one set is not (the fidelity report's texcoord-sets).
+    std::vector<std::string> meanMaps;
 
 private:
     Result<Texture> decode(int source) {
@@ -215,15 +239,28 @@ tinygltf::TextureInfo infoOf(int index, int texCoord, const tinygltf::ExtensionM
 Result<void> readMaps(const tinygltf::Material& src, const std::string& obj,
                       TextureTable& textures, const Diagnostics& diag, Material& m) {
     const int set = materialTexcoordSet(src);
+    auto meanInstead = [&](const tinygltf::TextureInfo& info, const std::string& name,
+                           const std::string& where, bool srgb) -> Result<void> {
+        auto mean = textures.meanColour(info.index, where, srgb);
+        if (!mean) return std::move(mean).error();
+        if (!*mean) return {};
+        textures.meanMaps.push_back(where);
+        if (name == "emissiveTexture") m.front.emission *= glm::dvec3(**mean);
+        if (name == "occlusionTexture")
+            m.front.ambient *= 1.0 + src.occlusionTexture.strength * ((**mean).r - 1.0);
+        return {};  // metallic-roughness: the classic colours are the means' already; normal: none
+    };
     auto read = [&](const tinygltf::TextureInfo& info, const std::string& name, bool srgb,
                     TextureMap& out) -> Result<void> {
         if (info.index < 0) return {};
         const std::string where = obj + "." + name;
         if (texCoordOf(info) != set) {
+            // Left out, its texture's mean stays in the factor it scales: an emissive map on
+            // TEXCOORD_1 with an emissive factor of 1 (Khronos' MultiUVTest) drew white.
             diag.warn(where, "reads TEXCOORD_" + std::to_string(texCoordOf(info)) +
                                  " where the material's other textures read TEXCOORD_" +
-                                 std::to_string(set) + "; not applied");
-            return {};
+                                 std::to_string(set) + "; drawn with its texture's mean");
+            return meanInstead(info, name, where, srgb);
         }
         auto t = textures.get(info.index, where, srgb);
         if (!t) return std::move(t).error();
@@ -290,14 +327,19 @@ Result<void> mapPbr(const tinygltf::Material& src, const std::string& obj,
             roughness *= (*mean)->y;
         }
     }
-    const PhongFromPbr p = phongFromPbr(glm::dvec3(baseColor), metallic, roughness);
+    auto extensions = readPbrExtensions(src, obj, textures.diagnostics());
+    if (!extensions) return std::move(extensions).error();
+    const PhongFromPbr p =
+        phongFromPbr(glm::dvec3(baseColor), metallic, roughness, extensions->dielectricF0);
     m.front.diffuse = glm::dvec4(p.diffuse, baseColor.a);
     m.front.specular = p.specular;
     m.front.shininess = p.shininess;
     m.front.ambient = p.diffuse;
     m.front.emission = vec3(src.emissiveFactor) * emissiveStrength;
     m.ambientFollowsDiffuse = true;
-    m.pbr = PbrFactors{baseColor, pbr.metallicFactor, pbr.roughnessFactor};
+    const glm::dvec3& f0 = extensions->dielectricF0;
+    m.pbr = PbrFactors{baseColor, pbr.metallicFactor, pbr.roughnessFactor, (f0.x + f0.y + f0.z) / 3.0};
+    applyPbrExtensions(*extensions, metallic, m);
     return {};
 }
 
@@ -348,6 +390,7 @@ Result<void> convertMaterials(const tinygltf::Model& model, const RawFacts& raw,
         if (!m) return inFile(std::move(m).error(), diag);
         scene.materials.push_back(std::move(*m));
     }
+    for (const std::string& where : textures.meanMaps) scene::noteFeature(scene, "texcoord-sets", where);
     return {};
 }
 
@@ -375,9 +418,10 @@ glm::dmat3 textureTransform(const glm::dvec2& offset, double rotation, const glm
     return glm::dmat3(c * scale.x, -s * scale.x, 0.0, s * scale.y, c * scale.y, 0.0, offset.x, offset.y, 1.0);
 }
 
-PhongFromPbr phongFromPbr(const glm::dvec3& base, double metallic, double roughness) {
+PhongFromPbr phongFromPbr(const glm::dvec3& base, double metallic, double roughness,
+                          const glm::dvec3& dielectricF0) {
     const double w = roughness * roughness;
-    const glm::dvec3 f0 = glm::mix(glm::dvec3(0.04), base, metallic);
+    const glm::dvec3 f0 = glm::mix(dielectricF0, base, metallic);
     PhongFromPbr p;
     p.diffuse = base * (1.0 - metallic) + f0 * (w * metallic);
     const double r4 = w * w;
