@@ -16,6 +16,15 @@ FeatureUse row(const char* key, Fidelity f = Fidelity::Supported, const char* ru
     return FeatureUse{key, f, rule, {}, 0};
 }
 
+// The place of `key` in fidelityKeys(); a key it does not list is a programming error.
+std::size_t rankOf(std::string_view key) {
+    const auto& keys = fidelityKeys();
+    const auto known = std::find_if(keys.begin(), keys.end(),
+                                    [&](const FeatureUse& k) { return k.key == key; });
+    LANTERN_ASSERT(known != keys.end(), "a fidelity key that fidelityKeys() does not list");
+    return std::size_t(known - keys.begin());
+}
+
 } // namespace
 
 const char* toString(Fidelity fidelity) noexcept {
@@ -76,20 +85,13 @@ namespace scene {
 
 void noteFeature(Scene& scene, std::string_view key, std::string object, Fidelity fidelity,
                  std::string rule) {
-    const auto& keys = fidelityKeys();
-    const auto known = std::find_if(keys.begin(), keys.end(),
-                                    [&](const FeatureUse& k) { return k.key == key; });
-    LANTERN_ASSERT(known != keys.end(), "a fidelity key that fidelityKeys() does not list");
+    rankOf(key);
     // Kept in the table's order; one entry per (key, status, rule).
     auto it = std::find_if(scene.features.begin(), scene.features.end(), [&](const FeatureUse& f) {
         return f.key == key && f.fidelity == fidelity && f.rule == rule;
     });
     if (it == scene.features.end()) {
-        const auto rank = [&](const FeatureUse& f) {
-            return std::find_if(keys.begin(), keys.end(),
-                                [&](const FeatureUse& k) { return k.key == f.key; }) -
-                   keys.begin();
-        };
+        const auto rank = [](const FeatureUse& f) { return rankOf(f.key); };
         FeatureUse use{std::string(key), fidelity, std::move(rule), {}, 0};
         it = scene.features.insert(
             std::upper_bound(scene.features.begin(), scene.features.end(), use,
@@ -103,11 +105,8 @@ void noteFeature(Scene& scene, std::string_view key, std::string object, Fidelit
 }
 
 void noteFeature(Scene& scene, std::string_view key, std::string object) {
-    const auto& keys = fidelityKeys();
-    const auto known = std::find_if(keys.begin(), keys.end(),
-                                    [&](const FeatureUse& k) { return k.key == key; });
-    LANTERN_ASSERT(known != keys.end(), "a fidelity key that fidelityKeys() does not list");
-    noteFeature(scene, key, std::move(object), known->fidelity, known->rule);
+    const FeatureUse& row = fidelityKeys()[rankOf(key)];
+    noteFeature(scene, key, std::move(object), row.fidelity, row.rule);
 }
 
 } // namespace scene
