@@ -1,11 +1,10 @@
 // glTF materials -> Lantern's: LANTERN_materials_phong, the PBR fallback mapping,
 // KHR_materials_unlit, alpha modes, and the base-colour textures they use, decoded to RGBA8.
 #include "io/gltf/GltfInternal.h"
+#include "io/image/TextureDecode.h"
 
 #include <algorithm>
-#include <climits>
 #include <cmath>
-#include <stb_image.h>
 
 namespace lantern::gltf {
 namespace {
@@ -101,36 +100,10 @@ private:
                                                   ? problem->second
                                                   : "\"" + image.uri + "\" could not be read");
         }
-        if (size > std::size_t(INT_MAX)) return m_diag.error(obj, "encoded image is too large");
-        int w = 0, h = 0, channels = 0;
-        if (!stbi_info_from_memory(bytes, int(size), &w, &h, &channels))
-            return m_diag.error(obj, std::string("cannot be decoded: ") + stbi_failure_reason());
-        if (w <= 0 || h <= 0 || w > kMaxTextureSide || h > kMaxTextureSide)
-            return m_diag.error(obj, std::to_string(w) + "x" + std::to_string(h) +
-                                         " is outside the supported texture size (1 to " +
-                                         std::to_string(kMaxTextureSide) + " per side)");
-        const std::uint64_t rgbaBytes = std::uint64_t(w) * std::uint64_t(h) * 4;
-        if (rgbaBytes > m_options.maxBytes)
-            return m_diag.error(obj, "decoded image (" + std::to_string(rgbaBytes) +
-                                         " bytes) exceeds --max-size (" +
-                                         std::to_string(m_options.maxBytes) + " bytes)");
-        // The header's declared size is charged before a pixel is decoded: stb's working
-        // memory (the inflated rows at the file's channels and depth, the conversion to
-        // 4 channels at that depth) and the result, then Lantern's copy.
-        const std::uint64_t depth = stbi_is_16_bit_from_memory(bytes, int(size)) ? 2 : 1;
-        const std::uint64_t perPixel = std::uint64_t(channels) * depth + 4 * depth + 4 + 4;
-        LANTERN_TRY(m_diag.charge(std::uint64_t(w) * std::uint64_t(h), perPixel, obj,
-                                  "decoding the " + std::to_string(w) + "x" + std::to_string(h) +
-                                      " image"));
-        stbi_uc* pixels = stbi_load_from_memory(bytes, int(size), &w, &h, &channels, 4);
-        if (!pixels)
-            return m_diag.error(obj, std::string("cannot be decoded: ") + stbi_failure_reason());
-        Texture t;
+        auto decoded = io::decodeTexture(bytes, size, obj, m_options.maxBytes, m_diag);
+        if (!decoded) return decoded;
+        Texture t = std::move(*decoded);
         t.name = !image.name.empty() ? image.name : image.uri.size() < 200 ? image.uri : obj;
-        t.width = w;
-        t.height = h;
-        t.rgba8.assign(pixels, pixels + rgbaBytes);
-        stbi_image_free(pixels);
         return t;
     }
 
