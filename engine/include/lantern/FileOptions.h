@@ -19,6 +19,15 @@ namespace lantern {
 /// it, and a 1,000,000-node chain holds about 1 GB while tinygltf builds its model.
 inline constexpr std::uint64_t kDefaultMaxBytes = std::uint64_t(2) << 30;
 
+/// Which of the file's axes points up (--up). Lantern's world is +Y up, as glTF's and OBJ's
+/// usually are; CAD files, most STL and many PLY scans are +Z up. Z: the loaded scene is
+/// turned -90 degrees about X (its +Z becomes +Y, its +Y becomes -Z) by a node above each of
+/// its root nodes, whatever the format.
+enum class UpAxis { Y, Z };
+
+LANTERN_API const char* toString(UpAxis up) noexcept;  ///< "y", "z"
+LANTERN_API std::optional<UpAxis> parseUpAxis(std::string_view text) noexcept;
+
 struct LoadOptions {
     /// Largest accepted file, buffer or image, in bytes (--max-size), and the most memory one
     /// load may hold for what the file decides: the parsed JSON and the models built from it,
@@ -30,6 +39,7 @@ struct LoadOptions {
     /// (--allow-folder): a URI may then contain ".." and a symbolic link may lead there. Each
     /// file is still resolved to its real path and refused unless that lies inside one of them.
     std::vector<std::filesystem::path> allowedFolders;
+    UpAxis up = UpAxis::Y;  ///< the file's up axis (--up)
 };
 
 // --- Images ---------------------------------------------------------------------------------
