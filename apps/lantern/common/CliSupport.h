@@ -77,6 +77,10 @@ inline constexpr std::uint64_t kMaxMaxSize = std::uint64_t(1) << 36;
 void addMaxSizeOption(CLI::App& app, std::uint64_t& maxSize);
 /// --allow-folder DIR (repeatable): LoadOptions::allowedFolders.
 void addAllowFolderOption(CLI::App& app, std::vector<std::string>& folders);
+/// --up y|z: LoadOptions::up, the file's up axis (z: +Z becomes +Y).
+void addUpOption(CLI::App& app, std::string& up);
+/// The --up value as LoadOptions::up (the option's check admits only y and z).
+UpAxis upAxisOf(const std::string& up);
 
 /// The camera and view options shared by render and view.
 struct CameraOptions {

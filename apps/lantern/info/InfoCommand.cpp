@@ -25,6 +25,7 @@ struct InfoArgs {
     double time = 0.0;
     std::uint64_t maxSize = kDefaultMaxBytes;
     std::vector<std::string> allowFolders;
+    std::string up = "y";
 };
 
 /// "3 (a 2, b 1)": a total and its non-zero parts in a fixed order.
@@ -224,6 +225,7 @@ int run(const InfoArgs& a) {
     LoadOptions load;
     load.maxBytes = a.maxSize;
     load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
+    load.up = upAxisOf(a.up);
     load.log = stderrSink(false);
     auto loaded = loadScene(a.scene, load);
     if (!loaded) return report(loaded.error());
@@ -250,7 +252,7 @@ Runner addInfoCommand(CLI::App& app) {
     auto args = std::make_shared<InfoArgs>();
     CLI::App* cmd = app.add_subcommand(
         "info", "Print what a scene holds and the features it needs, or the Vulkan devices");
-    cmd->add_option("scene", args->scene, "glTF/GLB file, or builtin:NAME");
+    cmd->add_option("scene", args->scene, "Scene file (glTF, GLB, OBJ, PLY, STL, OFF), or builtin:NAME");
     cmd->add_flag("--devices", args->devices,
                   "List the Vulkan devices, the one Lantern would choose and why, the sample "
                   "counts each supports, the pipeline cache and whether a display is available");
@@ -261,6 +263,7 @@ Runner addInfoCommand(CLI::App& app) {
         ->capture_default_str();
     addMaxSizeOption(*cmd, args->maxSize);
     addAllowFolderOption(*cmd, args->allowFolders);
+    addUpOption(*cmd, args->up);
     return [args, cmd]() { return cmd->parsed() ? run(*args) : -1; };
 }
 

@@ -42,6 +42,7 @@ struct RenderArgs {
     int zipLevel = ExrOptions{}.zipLevel;
     std::uint64_t maxSize = kDefaultMaxBytes;
     std::vector<std::string> allowFolders;
+    std::string up = "y";                   ///< --up
     std::string background;
     std::string frames;
     std::string frameList; // --frame-list: explicit frames, e.g. those a farm job is missing

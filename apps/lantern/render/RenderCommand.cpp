@@ -294,6 +294,7 @@ int runBatchArgs(RenderArgs a) {
     r.exr = *exr;
     r.load.maxBytes = a.maxSize;
     r.load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
+    r.load.up = upAxisOf(a.up);
     r.load.log = stderrSink(a.device.verbose);
     r.device = a.device.desc();
     r.verbose = a.device.verbose;
@@ -366,6 +367,7 @@ int run(RenderArgs a) {
     LoadOptions load;
     load.maxBytes = a.maxSize;
     load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
+    load.up = upAxisOf(a.up);
     load.log = stderrSink(a.device.verbose);
     std::future<Result<Renderer>> pendingRenderer = startRenderer(a);
     auto scene = loadScene(a.scenes.front(), load);
@@ -413,7 +415,7 @@ Runner addRenderCommand(CLI::App& app) {
     auto args = std::make_shared<RenderArgs>();
     CLI::App* cmd = app.add_subcommand("render", "Render a scene headless to EXR/PNG");
     cmd->add_option("scene", args->scenes,
-                    "glTF/GLB file, or builtin:NAME; several, a quoted glob or @LIST render a "
+                    "Scene file (glTF, GLB, OBJ, PLY, STL, OFF), or builtin:NAME; several, a quoted glob or @LIST render a "
                     "batch (docs/sequences.md); required unless --list is given");
     cmd->add_option("-o,--output", args->outputs,
                     "Output file(s): .exr or .png, repeat to write several; '#' runs are the "
@@ -472,6 +474,7 @@ Runner addRenderCommand(CLI::App& app) {
                     "y from the top)");
     addMaxSizeOption(*cmd, args->maxSize);
     addAllowFolderOption(*cmd, args->allowFolders);
+    addUpOption(*cmd, args->up);
     args->camera.add(*cmd);
     args->shading.add(*cmd);
     args->device.add(*cmd);

@@ -28,6 +28,7 @@ struct ViewArgs {
     std::string background;
     std::uint64_t maxSize = kDefaultMaxBytes;
     std::vector<std::string> allowFolders;  ///< --allow-folder
+    std::string up = "y";                   ///< --up
     CameraOptions camera;
     ShadingOptions shading;
     DeviceOptions device;

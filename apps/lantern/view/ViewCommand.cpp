@@ -37,6 +37,7 @@ int runView(const ViewArgs& a) {
     LoadOptions load;
     load.maxBytes = a.maxSize;
     load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
+    load.up = upAxisOf(a.up);
     load.log = stderrSink(a.device.verbose);
     auto scene = loadScene(a.scene, load);
     if (!scene) return report(scene.error());
@@ -100,7 +101,7 @@ Runner addViewCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "view", "Open a window and play the scene: orbit/pan/zoom/fly, shading keys, a side panel "
                 "editing lights and materials (F1 lists the keys)");
-    cmd->add_option("scene", args->scene, "glTF/GLB file, or builtin:NAME")->required();
+    cmd->add_option("scene", args->scene, "Scene file (glTF, GLB, OBJ, PLY, STL, OFF), or builtin:NAME")->required();
     const auto [width, height] = addSizeOptions(*cmd, args->width, args->height);
     width->check(CLI::Range(1, 16384));
     height->check(CLI::Range(1, 16384));
@@ -138,6 +139,7 @@ Runner addViewCommand(CLI::App& app) {
     cmd->add_flag("--stats", args->stats, "Print frame-time statistics when the viewer exits");
     addMaxSizeOption(*cmd, args->maxSize);
     addAllowFolderOption(*cmd, args->allowFolders);
+    addUpOption(*cmd, args->up);
     args->camera.add(*cmd);
     args->shading.add(*cmd);
     args->device.add(*cmd);

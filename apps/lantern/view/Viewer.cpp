@@ -121,6 +121,7 @@ void Viewer::checkWatch() {
     LoadOptions load;
     load.maxBytes = m_args.maxSize;
     load.allowedFolders.assign(m_args.allowFolders.begin(), m_args.allowFolders.end());
+    load.up = upAxisOf(m_args.up);
     load.log = stderrSink(m_args.device.verbose);
     auto scene = loadScene(m_st.source, load);
     if (!scene) {
