@@ -36,9 +36,13 @@ double cross2(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
     return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
 }
 
-bool insideTriangle(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2& b,
-                    const glm::dvec2& c) {
-    return cross2(a, b, p) > 0.0 && cross2(b, c, p) > 0.0 && cross2(c, a, p) > 0.0;
+// Inside or on the boundary of the counter-clockwise triangle (a, b, c): a corner on the edge
+// of a candidate ear blocks it (else the ear could cut across the outline there). A corner at
+// the same place as one of the three (a repeated vertex) does not.
+bool blocksEar(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2& b,
+               const glm::dvec2& c) {
+    if (p == a || p == b || p == c) return false;
+    return cross2(a, b, p) >= 0.0 && cross2(b, c, p) >= 0.0 && cross2(c, a, p) >= 0.0;
 }
 
 } // namespace
@@ -118,7 +122,7 @@ std::size_t Triangulator::earClip(const std::uint32_t* corners, std::size_t n,
         const std::size_t a = prev[i], c = next[i];
         bool ear = cross2(q[a], q[i], q[c]) > 0.0;
         for (std::size_t j = next[c]; ear && j != a; j = next[j], ++steps)
-            ear = !insideTriangle(q[j], q[a], q[i], q[c]);
+            ear = !blocksEar(q[j], q[a], q[i], q[c]);
         if (!ear) {
             i = c;
             ++misses;

@@ -48,7 +48,8 @@ struct ObjScan {
     std::vector<std::pair<std::string, std::string>> groups;
 };
 
-/// Pass 1 (ObjScan.cpp). Refuses, naming the line: a NUL byte, a number token on a v/vt/vn
+/// Pass 1 (ObjScan.cpp). OBJ elements are numbered from 1 in messages, as the file's own indices
+/// count them ("vertex 57", "face 12", with the line). Refuses, naming the line: a NUL byte, a number token on a v/vt/vn
 /// line that is no number (nan, inf included), an index token that is not one (0, beyond
 /// 2^31 - 1); turns `l`, `p`, `t` and `vw` lines into comments in `bytes`.
 Result<ObjScan> scanObj(std::vector<unsigned char>& bytes, const Diagnostics& diag);

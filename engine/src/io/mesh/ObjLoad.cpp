@@ -63,7 +63,7 @@ Result<void> checkFinite(const tinyobj::attrib_t& a, const Diagnostics& diag) {
     for (const auto& [values, what] : arrays)
         for (std::size_t i = 0; i < values->size(); ++i)
             if (!std::isfinite((*values)[i]))
-                return diag.error(at(what.first, i / what.second), "is not finite (beyond float's range?)");
+                return diag.error(at(what.first, i / what.second + 1), "a number is beyond float's range (not finite)");
     return {};
 }
 
@@ -105,8 +105,8 @@ private:
                         (c.texcoord_index == -1 || (c.texcoord_index >= 0 && std::size_t(c.texcoord_index) < nt)) &&
                         (c.normal_index == -1 || (c.normal_index >= 0 && std::size_t(c.normal_index) < nn));
         if (ok) return {};
-        return m_diag.error(at("face", m_face),
-                            "corner " + std::to_string(corner) + " names vertex " +
+        return m_diag.error(at("face", m_face + 1),
+                            "corner " + std::to_string(corner + 1) + " names vertex " +
                                 std::to_string(c.vertex_index + 1) + "/" + std::to_string(c.texcoord_index + 1) +
                                 "/" + std::to_string(c.normal_index + 1) + " (1-based; relative indices resolved), "
                                 "outside the file's " + std::to_string(nv) + " vertices, " + std::to_string(nt) +
@@ -149,7 +149,7 @@ Result<void> ObjAssembly::shape(const tinyobj::shape_t& s) {
         if (degree == 0 || (degree & 0xFF) != mesh.num_face_vertices[k] ||
             offset + degree > mesh.indices.size() || k >= mesh.material_ids.size() ||
             k >= mesh.smoothing_group_ids.size())
-            return mismatch(at("face", m_face) + " of shape \"" + io::printable(s.name) + "\"");
+            return mismatch(at("face", m_face + 1) + " of shape \"" + io::printable(s.name) + "\"");
         for (std::size_t c = 0; c < degree; ++c) LANTERN_TRY(checkCorner(mesh.indices[offset + c], c));
         int material = mesh.material_ids[k];
         if (material < -1 || material >= int(m_model.materials.size())) material = -1;

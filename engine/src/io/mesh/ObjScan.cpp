@@ -100,12 +100,12 @@ private:
             while (i < n && !blank(static_cast<unsigned char>(s[i]))) ++i;
             if (i == start) break;
             if (!faceCorner(std::string_view(s + start, i - start)))
-                return refuse(at("face", m_scan.degrees.size()),
-                              "corner " + std::to_string(degree) + " \"" +
+                return refuse(at("face", m_scan.degrees.size() + 1),
+                              "corner " + std::to_string(degree + 1) + " \"" +
                                   std::string(s + start, std::min<std::size_t>(i - start, 40)) +
                                   "\" is not v, v/vt, v//vn or v/vt/vn with indices from 1 to "
                                   "2^31 - 1 or negative (relative)");
-            if (++degree > INT_MAX) return refuse(at("face", m_scan.degrees.size()), "too many corners");
+            if (++degree > INT_MAX) return refuse(at("face", m_scan.degrees.size() + 1), "too many corners");
         }
         LANTERN_TRY(reserveCharged(m_scan.degrees, 1, m_diag, "faces"));
         LANTERN_TRY(reserveCharged(m_scan.faceLines, 1, m_diag, "faces"));
@@ -157,14 +157,14 @@ Result<void> Scanner::polyline(char* s, std::size_t n, bool points) {
         const bool ok = readIndex(t.substr(0, slash), v) &&
                         (slash == std::string_view::npos || readIndex(t.substr(slash + 1), vt));
         if (!ok)
-            return refuse(at(what, m_scan.polylines.size()),
+            return refuse(at(what, m_scan.polylines.size() + 1),
                           "\"" + std::string(t.substr(0, 40)) + "\" is not v or v/vt with indices from "
                           "1 to 2^31 - 1 or negative (relative)");
         ObjCorner c;
         c.v = v > 0 ? v - 1 : std::int64_t(m_scan.v) + v;
         if (slash != std::string_view::npos) c.vt = vt > 0 ? vt - 1 : std::int64_t(m_scan.vt) + vt;
         if (c.v < 0 || (slash != std::string_view::npos && c.vt < 0))
-            return refuse(at(what, m_scan.polylines.size()),
+            return refuse(at(what, m_scan.polylines.size() + 1),
                           "\"" + std::string(t.substr(0, 40)) + "\" reaches before the first vertex");
         m_scan.corners.push_back(c);
     }
@@ -180,8 +180,8 @@ Result<void> Scanner::checkPolylines() const {
         for (std::size_t k = p.first; k < p.first + p.count; ++k) {
             const ObjCorner& c = m_scan.corners[k];
             if (std::uint64_t(c.v) >= m_scan.v || (c.vt >= 0 && std::uint64_t(c.vt) >= m_scan.vt))
-                return m_diag.error(at(p.points ? "point element" : "line element", i),
-                                    "corner " + std::to_string(k - p.first) + " names vertex " +
+                return m_diag.error(at(p.points ? "point element" : "line element", i + 1),
+                                    "corner " + std::to_string(k - p.first + 1) + " names vertex " +
                                         std::to_string(c.v + 1) + (c.vt >= 0 ? "/" + std::to_string(c.vt + 1) : "") +
                                         "; the file has " + std::to_string(m_scan.v) + " vertices and " +
                                         std::to_string(m_scan.vt) + " texture coordinates (line " +
@@ -201,9 +201,9 @@ Result<void> Scanner::lineOf(char* line, std::size_t length) {
         return n > k && std::memcmp(s, word, k) == 0 && blank(static_cast<unsigned char>(s[k]));
     };
     if (n == 0 || s[0] == '#') return {};
-    if (is("v")) return numbers(s, n, 2, "vertex", m_scan.v++);
-    if (is("vn")) return numbers(s, n, 3, "normal", m_scan.vn++);
-    if (is("vt")) return numbers(s, n, 3, "texture coordinate", m_scan.vt++);
+    if (is("v")) return numbers(s, n, 2, "vertex", ++m_scan.v);
+    if (is("vn")) return numbers(s, n, 3, "normal", ++m_scan.vn);
+    if (is("vt")) return numbers(s, n, 3, "texture coordinate", ++m_scan.vt);
     if (is("l") || is("p")) return polyline(s, n, s[0] == 'p');
     if (is("f")) return face(s, n);
     if (is("vw") || is("t")) {

@@ -62,6 +62,7 @@ private:
 
     Result<void> header() {
         std::string_view t = m_text.next();
+        if (t.empty()) return m_diag.error("header", "the file is empty");
         std::int64_t ignored = 0;
         if (!parseInteger(t, ignored)) {  // a file may leave the keyword out
             LANTERN_TRY(keyword(t));

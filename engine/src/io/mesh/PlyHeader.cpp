@@ -81,13 +81,22 @@ public:
             } else if (w[0] == "property") {
                 LANTERN_TRY(propertyLine(w));
             } else {
-                return refuse("unknown header line \"" + io::printable(w[0], 40) + "\"");
+                return refuse("unknown header line \"" + io::printable(w[0], 40) + "\"" +
+                              (hasEndHeader() ? "" : "; the file has no end_header line"));
             }
         }
         return m_diag.error("header", "has no end_header line (the file ends in the header)");
     }
 
 private:
+    bool hasEndHeader() const {
+        const std::string_view text(reinterpret_cast<const char*>(m_bytes.data()), m_bytes.size());
+        for (std::size_t at = text.find("end_header"); at != std::string_view::npos;
+             at = text.find("end_header", at + 1))
+            if (at > 0 && (text[at - 1] == '\n' || text[at - 1] == '\r')) return true;
+        return false;
+    }
+
     Error refuse(const std::string& message) const {
         return m_diag.error("header", message + " (line " + std::to_string(m_lines.line()) + ")");
     }

@@ -294,7 +294,7 @@ Result<void> PlyReader::faces(const PlyElement& e) {
     }
     if (!has[std::size_t(Role::Indices)])
         return m_diag.error("header", "the face element has no vertex_indices list");
-    m_mesh.hasFaces = true;
+    m_mesh.hasFaces = e.count > 0;  // "element face 0": a point cloud, as many scanners write
     if (has[std::size_t(Role::R)] && has[std::size_t(Role::G)] && has[std::size_t(Role::B)]) {
         LANTERN_TRY(m_diag.charge(e.count, sizeof(glm::vec4), "faces", "the faces' colours"));
         m_mesh.faceColors.assign(e.count, glm::vec4(1.0f));
