@@ -5,6 +5,7 @@
 #include "io/FileAccess.h"
 
 #include <charconv>
+#include <cstdio>
 #include <limits>
 #include <new>
 
@@ -124,6 +125,12 @@ Result<Scene> indexedScene(IndexedMesh m, const Diagnostics& diag) {
     std::vector<Mesh> meshes;
     meshes.push_back(std::move(mesh));
     return assembleScene(std::move(meshes), {}, {}, diag);
+}
+
+std::string shownNumber(double value) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.17g", value);
+    return buf;
 }
 
 bool parseNumber(std::string_view token, double& out) {

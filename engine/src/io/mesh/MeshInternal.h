@@ -141,6 +141,9 @@ private:
     std::size_t m_line = 1;
 };
 
+/// A number as a message shows it: "9000", "0.25", "nan" (%.17g, so an integer reads as one).
+std::string shownNumber(double value);
+
 /// A decimal number (std::from_chars: "1", "-2.5e3", "nan", "inf"), the whole token; false
 /// when the token is not one. Callers refuse non-finite values with the element named.
 bool parseNumber(std::string_view token, double& out);

@@ -194,7 +194,7 @@ Result<void> ObjAssembly::polylines() {
         for (; i < m_scan.polylines.size() && m_scan.polylines[i].group == g; ++i) {
             const ObjPolyline& p = m_scan.polylines[i];
             LANTERN_TRY(primitive(p.points ? points : lines, p.points ? Topology::Points : Topology::Lines, mat)
-                            .polyline(&m_scan.corners[p.first], p.count));
+                            .polyline(m_scan.corners.data() + p.first, p.count));
         }
         LANTERN_TRY(addMesh(object, lines));
         LANTERN_TRY(addMesh(object, points));

@@ -240,7 +240,10 @@ Result<void> readMaps(const tinyobj::material_t& m, const std::string& object,
                                     std::pair{"map_Ka", &m.ambient_texname},
                                     std::pair{"map_Ns", &m.specular_highlight_texname},
                                     std::pair{"disp", &m.displacement_texname},
-                                    std::pair{"refl", &m.reflection_texname}})
+                                    std::pair{"refl", &m.reflection_texname},
+                                    std::pair{"map_Pr", &m.roughness_texname},
+                                    std::pair{"map_Pm", &m.metallic_texname},
+                                    std::pair{"map_Ps", &m.sheen_texname}})
         if (!name->empty()) skipped += std::string(skipped.empty() ? "" : ", ") + key;
     if (!skipped.empty())
         diag.warn(object, skipped + " not read (Lantern's material has no slot for them: the "

@@ -147,6 +147,8 @@ private:
 
 Result<void> Scanner::polyline(char* s, std::size_t n, bool points) {
     const std::vector<std::string_view> w = words(s, n, 2);
+    s[0] = '#';  // read here: tinyobjloader repeats lines and points at each usemtl
+    if (w.empty()) return {};  // "l" or "p" alone: nothing to draw
     const char* what = points ? "point element" : "line element";
     ObjPolyline element{m_scan.corners.size(), w.size(), points, group(), m_line};
     LANTERN_TRY(reserveCharged(m_scan.corners, w.size(), m_diag, points ? "points" : "lines"));
@@ -170,7 +172,6 @@ Result<void> Scanner::polyline(char* s, std::size_t n, bool points) {
     }
     LANTERN_TRY(reserveCharged(m_scan.polylines, 1, m_diag, points ? "points" : "lines"));
     m_scan.polylines.push_back(element);
-    s[0] = '#';  // read here: tinyobjloader repeats lines and points at each usemtl
     return {};
 }
 

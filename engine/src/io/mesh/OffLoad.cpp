@@ -95,7 +95,7 @@ private:
         for (std::size_t i = 0; i < n; ++i) {
             const double value = integers ? c[i] / 255.0 : c[i];
             if (!(value >= 0.0 && value <= 1.0))
-                return refuse(obj, "colour component " + std::to_string(c[i]) +
+                return refuse(obj, "colour component " + shownNumber(c[i]) +
                                        (integers ? " is outside 0-255" : " is outside 0-1"));
             rgba[int(i)] = float(value);
         }

@@ -134,7 +134,7 @@ private:
         if (!n) return std::move(n).error();
         // Each entry takes a byte at least: so many never fit in the rest of the file.
         if (!(*n >= 0.0) || *n != std::floor(*n) || *n > double(m_values.remaining()))
-            return refuse(element(e, index), "list \"" + p.name + "\" has " + std::to_string(*n) +
+            return refuse(element(e, index), "list \"" + p.name + "\" has " + shownNumber(*n) +
                                                  " entries, not a count the rest of the file can hold");
         return std::uint64_t(*n);
     }
@@ -264,7 +264,7 @@ Result<void> PlyReader::storeVertex(const std::array<double, kRoles>& v, std::ui
             if (r == Role::A && !m_alpha) break;
             const double x = get(r) / m_scale[std::size_t(r)];
             if (!(x >= 0.0 && x <= 1.0))
-                return refuse(at("vertex", index), "colour component " + std::to_string(get(r)) +
+                return refuse(at("vertex", index), "colour component " + shownNumber(get(r)) +
                                                        " is outside its range (0-1, or 0 to the integer type's maximum)");
             c[int(r) - int(Role::R)] = float(x);
         }
@@ -318,7 +318,7 @@ Result<void> PlyReader::face(const PlyElement& e, const std::vector<Role>& roles
             if (!c) return std::move(c).error();
             const double x = *c / m_scale[std::size_t(roles[k])];
             if (!(x >= 0.0 && x <= 1.0))
-                return refuse(at("face", index), "colour component " + std::to_string(*c) + " is outside its range");
+                return refuse(at("face", index), "colour component " + shownNumber(*c) + " is outside its range");
             m_mesh.faceColors[index][int(roles[k]) - int(Role::R)] = float(x);
         } else {
             auto n = listCount(p, e, index);
@@ -329,7 +329,7 @@ Result<void> PlyReader::face(const PlyElement& e, const std::vector<Role>& roles
                 auto v = value(p.type, e, index);
                 if (!v) return std::move(v).error();
                 if (!(*v >= 0.0) || *v >= double(m_vertexCount) || *v != std::floor(*v))
-                    return refuse(at("face", index), "corner " + std::to_string(c) + " is " + std::to_string(*v) +
+                    return refuse(at("face", index), "corner " + std::to_string(c) + " is " + shownNumber(*v) +
                                                          ", not a vertex index (0 to " + std::to_string(m_vertexCount) + " - 1)");
                 m_corners.push_back(std::uint32_t(*v));
             }
