@@ -147,7 +147,7 @@ TEST(PlyLoader, RefusalsNameTheElementAndComeBeforeAnyAllocation) {
         std::string text, object, fragment;
     };
     const Case cases[] = {
-        {head + "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "face 0", "corner 2 is 3.000000, not a vertex index"},
+        {head + "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "face 0", "corner 2 is 3, not a vertex index (0 to 3 - 1)"},
         {head + "0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n", "face 0", "not a vertex index"},
         {head + "0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n", "vertex 1", "not finite"},
         {head + "0 0 0\n1 0 0\n0 1 0\n", "header", "element \"face\" claims 1 records"},
