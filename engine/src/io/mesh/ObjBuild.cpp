@@ -19,36 +19,32 @@ constexpr std::uint32_t kEmpty = UINT32_MAX;
 } // namespace
 
 Result<void> CornerTable::grow(const Diagnostics& diag) {
-    const std::size_t size = std::max<std::size_t>(1024, m_keys.size() * 2);
-    LANTERN_TRY(diag.charge(size, sizeof(CornerKey) + sizeof(std::uint32_t), "faces",
-                            "welding the corners into vertices"));
-    std::vector<CornerKey> keys(size);
-    std::vector<std::uint32_t> values(size, kEmpty);
-    for (std::size_t i = 0; i < m_keys.size(); ++i) {
-        if (m_values[i] == kEmpty) continue;
-        std::size_t j = hashOf(m_keys[i]) & (size - 1);
-        while (values[j] != kEmpty) j = (j + 1) & (size - 1);
-        keys[j] = m_keys[i];
-        values[j] = m_values[i];
+    const std::size_t size = std::max<std::size_t>(1024, m_slots.size() * 2);
+    LANTERN_TRY(diag.charge(size, sizeof(Slot), "faces", "welding the corners into vertices"));
+    std::vector<Slot> slots(size);
+    for (const Slot& old : m_slots) {
+        if (old.value == kEmpty) continue;
+        std::size_t j = hashOf(old.key) & (size - 1);
+        while (slots[j].value != kEmpty) j = (j + 1) & (size - 1);
+        slots[j] = old;
     }
-    diag.release(m_keys.size() * (sizeof(CornerKey) + sizeof(std::uint32_t)));
-    m_keys = std::move(keys);
-    m_values = std::move(values);
+    diag.release(m_slots.size() * sizeof(Slot));
+    m_slots = std::move(slots);
     return {};
 }
 
 Result<std::uint32_t> CornerTable::find(const CornerKey& key, std::uint32_t next,
                                         const Diagnostics& diag) {
-    if (2 * (m_count + 1) > m_keys.size()) LANTERN_TRY(grow(diag));
-    const std::size_t mask = m_keys.size() - 1;
+    if (2 * (m_count + 1) > m_slots.size()) LANTERN_TRY(grow(diag));
+    const std::size_t mask = m_slots.size() - 1;
     for (std::size_t j = hashOf(key) & mask;; j = (j + 1) & mask) {
-        if (m_values[j] == kEmpty) {
-            m_keys[j] = key;
-            m_values[j] = next;
+        Slot& slot = m_slots[j];
+        if (slot.value == kEmpty) {
+            slot = Slot{key, next};
             ++m_count;
             return next;
         }
-        if (m_keys[j] == key) return m_values[j];
+        if (slot.key == key) return slot.value;
     }
 }
 

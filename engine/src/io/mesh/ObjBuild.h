@@ -5,6 +5,8 @@
 
 #include "io/mesh/ObjInternal.h"
 
+#include <cstdint>
+
 namespace lantern::mesh {
 
 /// One corner's key: what makes two corners the same vertex.
@@ -22,8 +24,11 @@ public:
 
 private:
     Result<void> grow(const Diagnostics& diag);
-    std::vector<CornerKey> m_keys;
-    std::vector<std::uint32_t> m_values;  ///< UINT32_MAX: empty
+    struct Slot {
+        CornerKey key;
+        std::uint32_t value = UINT32_MAX;  ///< UINT32_MAX: empty
+    };
+    std::vector<Slot> m_slots;  ///< key and value side by side: one cache line per probe
     std::size_t m_count = 0;
 };
 
