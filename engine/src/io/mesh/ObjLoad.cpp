@@ -219,6 +219,9 @@ Result<Scene> readObj(std::vector<unsigned char>& bytes, const LoadOptions& opti
     const std::filesystem::path path(diag.file());
     auto model = parse(bytes, path, options, diag);
     if (!model) return std::move(model).error();
+    // The text is read: its memory goes back before the vertices are built.
+    diag.release(bytes.size());
+    std::vector<unsigned char>().swap(bytes);
     LANTERN_TRY(checkFinite(model->attrib, diag));
     std::vector<Texture> textures;
     auto materials = convertObjMaterials(model->materials, model->illum, folderOf(path), options,
