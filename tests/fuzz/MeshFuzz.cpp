@@ -1,5 +1,5 @@
 // MeshFuzz.cpp: the mesh formats' libFuzzer targets, one per format, built from this file with
-// LANTERN_FUZZ_LOADER (mesh::loadObjBytes ...) and LANTERN_FUZZ_NAME ("input.obj" ...) defined
+// LANTERN_FUZZ_READER (mesh::readObj ...) and LANTERN_FUZZ_NAME ("input.obj" ...) defined
 // (tests/fuzz/CMakeLists.txt). What each does with an input: load it as an OBJ, PLY, STL or
 // OFF file in an empty folder of this process (an OBJ's input may carry an MTL library after a
 // line "#MTL", written there as "m.mtl" so that `mtllib m.mtl` reads it), then everything a
@@ -13,9 +13,6 @@
 
 namespace lantern::fuzz {
 
-using MeshLoader = Result<Scene> (*)(std::vector<unsigned char>, const std::filesystem::path&,
-                                     const LoadOptions&);
-
 inline void planScene(const Scene& scene) {
     (void)summarize(scene);
     RenderOptions render;
@@ -24,7 +21,7 @@ inline void planScene(const Scene& scene) {
     (void)frame::buildFrame(scene, render, 0.0);
 }
 
-inline void loadMeshAndPlan(MeshLoader load, const char* name, const std::uint8_t* data,
+inline void loadMeshAndPlan(mesh::BytesReader reader, const char* name, const std::uint8_t* data,
                             std::size_t size) {
     std::string_view text(reinterpret_cast<const char*>(data), size);
     const std::size_t mtl = text.find("\n#MTL\n");
@@ -37,13 +34,14 @@ inline void loadMeshAndPlan(MeshLoader load, const char* name, const std::uint8_
     }
     LoadOptions options;
     options.maxBytes = std::uint64_t(64) << 20;
-    auto scene = load(std::vector<unsigned char>(text.begin(), text.end()), folder / name, options);
+    auto scene = mesh::loadBytes(reader, std::vector<unsigned char>(text.begin(), text.end()),
+                                 folder / name, options);
     if (scene) planScene(*scene);
 }
 
 } // namespace lantern::fuzz
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    lantern::fuzz::loadMeshAndPlan(&lantern::mesh::LANTERN_FUZZ_LOADER, LANTERN_FUZZ_NAME, data, size);
+    lantern::fuzz::loadMeshAndPlan(&lantern::mesh::LANTERN_FUZZ_READER, LANTERN_FUZZ_NAME, data, size);
     return 0;
 }

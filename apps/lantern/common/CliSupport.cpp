@@ -412,6 +412,21 @@ void addUpOption(CLI::App& app, std::string& up) {
 
 UpAxis upAxisOf(const std::string& up) { return parseUpAxis(up).value_or(UpAxis::Y); }
 
+void SceneFileOptions::add(CLI::App& app) {
+    addMaxSizeOption(app, maxSize);
+    addAllowFolderOption(app, allowFolders);
+    addUpOption(app, up);
+}
+
+LoadOptions SceneFileOptions::load(LogSink log) const {
+    LoadOptions o;
+    o.maxBytes = maxSize;
+    o.allowedFolders.assign(allowFolders.begin(), allowFolders.end());
+    o.up = upAxisOf(up);
+    o.log = std::move(log);
+    return o;
+}
+
 void addMaxSizeOption(CLI::App& app, std::uint64_t& maxSize) {
     app.add_option("--max-size", maxSize,
                    "Largest file, buffer or image accepted, and the most memory one scene's load "

@@ -23,9 +23,7 @@ struct InfoArgs {
     std::string deviceName;
     int sceneIndex = -1;
     double time = 0.0;
-    std::uint64_t maxSize = kDefaultMaxBytes;
-    std::vector<std::string> allowFolders;
-    std::string up = "y";
+    SceneFileOptions file;  ///< --max-size, --allow-folder, --up
 };
 
 /// "3 (a 2, b 1)": a total and its non-zero parts in a fixed order.
@@ -222,11 +220,7 @@ int run(const InfoArgs& a) {
         return report(makeError(ErrorCode::Usage, "give a SCENE, or --devices", "scene"));
     if (a.devices)
         if (int code = runDevices(a); code != kOk) return code;
-    LoadOptions load;
-    load.maxBytes = a.maxSize;
-    load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
-    load.up = upAxisOf(a.up);
-    load.log = stderrSink(false);
+    const LoadOptions load = a.file.load(stderrSink(false));
     auto loaded = loadScene(a.scene, load);
     if (!loaded) return report(loaded.error());
     const Scene& scene = *loaded;
@@ -261,9 +255,7 @@ Runner addInfoCommand(CLI::App& app) {
     cmd->add_option("--scene", args->sceneIndex, "glTF scene index (default: the file's default)");
     cmd->add_option("--time", args->time, "Animation time in seconds for bounds and features")
         ->capture_default_str();
-    addMaxSizeOption(*cmd, args->maxSize);
-    addAllowFolderOption(*cmd, args->allowFolders);
-    addUpOption(*cmd, args->up);
+    args->file.add(*cmd);
     return [args, cmd]() { return cmd->parsed() ? run(*args) : -1; };
 }
 

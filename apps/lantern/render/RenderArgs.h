@@ -40,9 +40,7 @@ struct RenderArgs {
     std::string probe;
     std::string compression = "zip";
     int zipLevel = ExrOptions{}.zipLevel;
-    std::uint64_t maxSize = kDefaultMaxBytes;
-    std::vector<std::string> allowFolders;
-    std::string up = "y";                   ///< --up
+    SceneFileOptions file;  ///< --max-size, --allow-folder, --up
     std::string background;
     std::string frames;
     std::string frameList; // --frame-list: explicit frames, e.g. those a farm job is missing

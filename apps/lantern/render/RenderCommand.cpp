@@ -292,10 +292,7 @@ int runBatchArgs(RenderArgs a) {
     r.writeCamera = a.writeCamera;
     r.options = *options;
     r.exr = *exr;
-    r.load.maxBytes = a.maxSize;
-    r.load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
-    r.load.up = upAxisOf(a.up);
-    r.load.log = stderrSink(a.device.verbose);
+    r.load = a.file.load(stderrSink(a.device.verbose));
     r.device = a.device.desc();
     r.verbose = a.device.verbose;
     r.checkDevice = [&a](const DeviceInfo& d) { return a.shading.checkDevice(d); };
@@ -364,11 +361,7 @@ int run(RenderArgs a) {
         probe = *xy;
     }
 
-    LoadOptions load;
-    load.maxBytes = a.maxSize;
-    load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
-    load.up = upAxisOf(a.up);
-    load.log = stderrSink(a.device.verbose);
+    const LoadOptions load = a.file.load(stderrSink(a.device.verbose));
     std::future<Result<Renderer>> pendingRenderer = startRenderer(a);
     auto scene = loadScene(a.scenes.front(), load);
     if (!scene) return report(scene.error());
@@ -472,9 +465,7 @@ Runner addRenderCommand(CLI::App& app) {
     cmd->add_option("--probe", args->probe,
                     "X,Y: print the lighting equation term by term at pixel X,Y (x from the left, "
                     "y from the top)");
-    addMaxSizeOption(*cmd, args->maxSize);
-    addAllowFolderOption(*cmd, args->allowFolders);
-    addUpOption(*cmd, args->up);
+    args->file.add(*cmd);
     args->camera.add(*cmd);
     args->shading.add(*cmd);
     args->device.add(*cmd);

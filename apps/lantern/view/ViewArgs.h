@@ -26,9 +26,7 @@ struct ViewArgs {
     bool noPanel = false, showHelp = false, stats = false;
     bool headlight = false, wireframe = false, normals = false;
     std::string background;
-    std::uint64_t maxSize = kDefaultMaxBytes;
-    std::vector<std::string> allowFolders;  ///< --allow-folder
-    std::string up = "y";                   ///< --up
+    SceneFileOptions file;  ///< --max-size, --allow-folder, --up
     CameraOptions camera;
     ShadingOptions shading;
     DeviceOptions device;

@@ -34,11 +34,7 @@ int runView(const ViewArgs& a) {
     if (a.watch && a.scene.rfind("builtin:", 0) == 0)
         std::cerr << "lantern: warning: --watch has no file to watch for " << a.scene << "\n";
 
-    LoadOptions load;
-    load.maxBytes = a.maxSize;
-    load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
-    load.up = upAxisOf(a.up);
-    load.log = stderrSink(a.device.verbose);
+    const LoadOptions load = a.file.load(stderrSink(a.device.verbose));
     auto scene = loadScene(a.scene, load);
     if (!scene) return report(scene.error());
     if (a.sceneIndex < -1 || a.sceneIndex >= int(scene->roots.size()))
@@ -137,9 +133,7 @@ Runner addViewCommand(CLI::App& app) {
     cmd->add_flag("--wireframe", args->wireframe, "Start with the wireframe overlay on (Z)");
     cmd->add_flag("--normals", args->normals, "Start with the normals displayed (N)");
     cmd->add_flag("--stats", args->stats, "Print frame-time statistics when the viewer exits");
-    addMaxSizeOption(*cmd, args->maxSize);
-    addAllowFolderOption(*cmd, args->allowFolders);
-    addUpOption(*cmd, args->up);
+    args->file.add(*cmd);
     args->camera.add(*cmd);
     args->shading.add(*cmd);
     args->device.add(*cmd);

@@ -83,10 +83,10 @@ std::string extensionList() {
 const std::vector<SceneFormat>& sceneFormats() {
     static const std::vector<SceneFormat> formats = {
         {"glTF", {".gltf", ".glb"}, &gltf::loadGltf},
-        {"OBJ", {".obj"}, &mesh::loadObj},
-        {"PLY", {".ply"}, &mesh::loadPly},
-        {"STL", {".stl"}, &mesh::loadStl},
-        {"OFF", {".off"}, &mesh::loadOff},
+        {"OBJ", {".obj"}, &mesh::load<&mesh::readObj>},
+        {"PLY", {".ply"}, &mesh::load<&mesh::readPly>},
+        {"STL", {".stl"}, &mesh::load<&mesh::readStl>},
+        {"OFF", {".off"}, &mesh::load<&mesh::readOff>},
     };
     return formats;
 }

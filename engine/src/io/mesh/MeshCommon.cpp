@@ -3,6 +3,7 @@
 #include "io/mesh/MeshInternal.h"
 
 #include "io/FileAccess.h"
+#include "io/mesh/MeshLoad.h"
 
 #include <charconv>
 #include <cstdio>

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "io/LoadDiagnostics.h"
+#include "io/mesh/MeshLoad.h"
 
 #include <lantern/FileOptions.h>
 #include <lantern/Result.h>
@@ -25,17 +26,6 @@ using io::Diagnostics;
 /// "vertex 57", "face 12": the object of a message, 0-based as the file's elements count.
 std::string at(const char* what, std::uint64_t index);
 
-/// How a format reads a file's bytes (already charged to the budget; a reader may change them
-/// in place).
-using BytesReader = Result<Scene> (*)(std::vector<unsigned char>& bytes,
-                                      const LoadOptions& options, const Diagnostics& diag);
-/// Reads the scene file (a regular file of at most --max-size), charges it and hands it to
-/// `reader`.
-Result<Scene> loadFile(BytesReader reader, const std::filesystem::path& path,
-                       const LoadOptions& options);
-/// The same for bytes in memory as if read from `path`; what a reader throws becomes an error.
-Result<Scene> loadBytes(BytesReader reader, std::vector<unsigned char> bytes,
-                        const std::filesystem::path& path, const LoadOptions& options);
 
 /// Makes room in `v` for `extra` more elements, charging the new block to the budget before it
 /// is allocated (and returning the old one's bytes): a vector that grows with what the file

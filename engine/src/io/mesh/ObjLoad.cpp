@@ -211,6 +211,8 @@ void forwardWarnings(const std::string& warnings, const Diagnostics& diag) {
             diag.warn("usemtl", io::printable(line, 200) + ": the default material is used");
 }
 
+} // namespace
+
 Result<Scene> readObj(std::vector<unsigned char>& bytes, const LoadOptions& options,
                       const Diagnostics& diag) {
     auto scan = scanObj(bytes, diag);
@@ -231,17 +233,6 @@ Result<Scene> readObj(std::vector<unsigned char>& bytes, const LoadOptions& opti
     if (!meshes) return std::move(meshes).error();
     forwardWarnings(model->warnings, diag);
     return assembleScene(std::move(*meshes), std::move(*materials), std::move(textures), diag);
-}
-
-} // namespace
-
-Result<Scene> loadObjBytes(std::vector<unsigned char> bytes, const std::filesystem::path& path,
-                           const LoadOptions& options) {
-    return loadBytes(&readObj, std::move(bytes), path, options);
-}
-
-Result<Scene> loadObj(const std::filesystem::path& path, const LoadOptions& options) {
-    return loadFile(&readObj, path, options);
 }
 
 } // namespace lantern::mesh

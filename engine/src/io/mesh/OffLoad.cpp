@@ -240,20 +240,11 @@ private:
     bool m_warnedExtra = false, m_warnedIndex = false;
 };
 
+} // namespace
+
 Result<Scene> readOff(std::vector<unsigned char>& bytes, const LoadOptions&,
                       const Diagnostics& diag) {
     return OffReader(bytes, diag).read();
-}
-
-} // namespace
-
-Result<Scene> loadOffBytes(std::vector<unsigned char> bytes, const std::filesystem::path& path,
-                           const LoadOptions& options) {
-    return loadBytes(&readOff, std::move(bytes), path, options);
-}
-
-Result<Scene> loadOff(const std::filesystem::path& path, const LoadOptions& options) {
-    return loadFile(&readOff, path, options);
 }
 
 } // namespace lantern::mesh

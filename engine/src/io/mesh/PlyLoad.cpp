@@ -343,22 +343,13 @@ Result<void> PlyReader::face(const PlyElement& e, const std::vector<Role>& roles
     return {};
 }
 
+} // namespace
+
 Result<Scene> readPly(std::vector<unsigned char>& bytes, const LoadOptions&,
                       const Diagnostics& diag) {
     auto header = readPlyHeader(bytes, diag);
     if (!header) return std::move(header).error();
     return PlyReader(bytes, std::move(*header), diag).read();
-}
-
-} // namespace
-
-Result<Scene> loadPlyBytes(std::vector<unsigned char> bytes, const std::filesystem::path& path,
-                           const LoadOptions& options) {
-    return loadBytes(&readPly, std::move(bytes), path, options);
-}
-
-Result<Scene> loadPly(const std::filesystem::path& path, const LoadOptions& options) {
-    return loadFile(&readPly, path, options);
 }
 
 } // namespace lantern::mesh

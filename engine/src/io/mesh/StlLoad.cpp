@@ -193,6 +193,8 @@ private:
     std::uint64_t m_facets = 0;
 };
 
+} // namespace
+
 Result<Scene> readStl(std::vector<unsigned char>& bytes, const LoadOptions&,
                       const Diagnostics& diag) {
     if (looksLikeBinaryStl(bytes.data(), bytes.size(), bytes.size())) return loadBinary(bytes, diag);
@@ -210,20 +212,9 @@ Result<Scene> readStl(std::vector<unsigned char>& bytes, const LoadOptions&,
     return assembleScene(std::move(*meshes), {}, {}, diag);
 }
 
-} // namespace
-
 bool looksLikeBinaryStl(const unsigned char* head, std::size_t headSize, std::uint64_t size) {
     if (headSize < kHeaderBytes || size < kHeaderBytes) return false;
     return kHeaderBytes + kFacetBytes * std::uint64_t(readU32(head + 80)) == size;
-}
-
-Result<Scene> loadStlBytes(std::vector<unsigned char> bytes, const std::filesystem::path& path,
-                           const LoadOptions& options) {
-    return loadBytes(&readStl, std::move(bytes), path, options);
-}
-
-Result<Scene> loadStl(const std::filesystem::path& path, const LoadOptions& options) {
-    return loadFile(&readStl, path, options);
 }
 
 } // namespace lantern::mesh
