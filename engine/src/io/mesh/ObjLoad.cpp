@@ -45,6 +45,8 @@ Result<TinyModel> parse(std::vector<unsigned char>& bytes, const std::filesystem
                                      &mtl, false, false);
     if (mtl.failure()) return *mtl.failure();
     m.illum = mtl.illum();
+    // Colours for every vertex or none (tinyobjloader's rule with no fallback): kept only whole.
+    if (m.attrib.colors.size() != m.attrib.vertices.size()) m.attrib.colors.clear();
     if (!ok) {
         std::istringstream lines(err);
         std::string first;
