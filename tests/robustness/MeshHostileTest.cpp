@@ -105,17 +105,7 @@ TEST(MeshHostile, HeadersClaimingHugeCountsAreRefusedAtOnce) {
 // every atoi tinyobjloader calls measure the rest of its line, which on one line of 100,000
 // indices is quadratic (22 s): that build gets a polygon of 20,000 corners, still far beyond the
 // ear-clipping budget (4 n^2 > 2^26 from n = 4097 on).
-#if defined(__SANITIZE_ADDRESS__)
-constexpr int kCorners = 20000;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr int kCorners = 20000;
-#else
-constexpr int kCorners = 100000;
-#endif
-#else
-constexpr int kCorners = 100000;
-#endif
+constexpr int kCorners = test::kAddressSanitizer ? 20000 : 100000;
 
 TEST(MeshHostile, PolygonsOfAHundredThousandCornersTakeLinearTime) {
     const auto dir = testOutputDir();
