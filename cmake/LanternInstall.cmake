@@ -87,7 +87,7 @@ if(LANTERN_SHARED)
     set(LANTERN_PC_GLFW_REQUIRES "lantern")
 else()
     # meshoptimizer installs no pkg-config file: its library goes on the Libs line.
-    set(LANTERN_PC_REQUIRES "glm vulkan OpenEXR tinygltf stb libpng libwebp draco")
+    set(LANTERN_PC_REQUIRES "glm vulkan OpenEXR tinygltf stb libpng libwebp draco tinyobjloader")
     set(LANTERN_PC_LIBS " -lmeshoptimizer -pthread")
     set(LANTERN_PC_GLFW_REQUIRES "lantern glfw3")
 endif()

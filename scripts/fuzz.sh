@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# Fuzzes for a bounded time with three libFuzzer targets: the glTF/GLB loader (bytes, and the
-# document structure) and the `lantern render` command line (option values, --dry-run): builds
+# Fuzzes for a bounded time with seven libFuzzer targets: the glTF/GLB loader (bytes, and the
+# document structure), the `lantern render` command line (option values, --dry-run) and the
+# mesh formats' loaders (OBJ with an MTL, PLY, STL, OFF: tests/fuzz/MeshFuzz.cpp): builds
 # the asan preset (clang, AddressSanitizer + UndefinedBehavior-
 # Sanitizer + libFuzzer), seeds a corpus from ../shared/assets (the samples and the
-# glTF-Validator's invalid files), the regression inputs and tests/fuzz/seeds/, runs each for
-# a third of the time, and prints libFuzzer's totals. Usage: scripts/fuzz.sh [SECONDS] (default 120). Exit non-zero on a crash;
+# glTF-Validator's invalid files), the regression inputs and tests/fuzz/seeds/ (the mesh targets
+# from tests/fuzz/mesh-seeds/FORMAT/ and mesh-regressions/), runs each for a seventh of the time,
+# and prints libFuzzer's totals. Usage: scripts/fuzz.sh [SECONDS] (default 120). Exit non-zero on a crash;
 # the input that crashed is left in build/asan/fuzz-findings/ (add it to
 # tests/fuzz/regressions/ with the fix).
 set -euo pipefail
@@ -24,11 +26,12 @@ fi
 cp -f tests/fuzz/regressions/* "$corpus/" 2>/dev/null || true
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0
-# Three targets share the time: the byte fuzzer (GltfFuzz.cpp: any bytes as .gltf/.glb), the
+# Seven targets share the time: the byte fuzzer (GltfFuzz.cpp: any bytes as .gltf/.glb), the
 # structure fuzzer (GltfStructureFuzz.cpp: valid documents mutated as JSON trees, seeded also
 # with tests/fuzz/seeds/) and the command-line fuzzer (CliFuzz.cpp: arguments one per line,
 # seeded with tests/fuzz/cli-seeds/ and cli-regressions/, with a dictionary of every render
-# option read from `lantern help --markdown`). -jobs/-workers 1: the 2-core CI machine;
+# option read from `lantern help --markdown`), and one per mesh format (MeshFuzz.cpp, seeded with
+# tests/fuzz/mesh-seeds/FORMAT/ and the mesh regressions of that format). -jobs/-workers 1: the 2-core CI machine;
 # -timeout: a hang (one input over 10 s) is a finding. The corpora live under build/asan only:
 # libFuzzer writes new units into its first corpus folder, never a tracked one.
 log=build/asan/fuzz.log
@@ -39,7 +42,8 @@ dict=build/asan/fuzz-cli.dict
 build/asan/apps/lantern/lantern help --markdown |
     awk '/^## `lantern render`/ {on = 1; next} /^## / {on = 0} on' |
     grep -oE -- '`--[a-z][a-z0-9-]*' | tr -d '`' | sort -u | sed 's/.*/"&"/' >"$dict"
-for target in gltf structure cli; do
+targets=(gltf structure cli obj ply stl off)
+for target in "${targets[@]}"; do
     dirs=("$corpus")
     extra=(-max_len=65536)
     if [ "$target" = structure ]; then
@@ -52,9 +56,14 @@ for target in gltf structure cli; do
         dirs=("$corpus-cli")
         # The command prints on every run: stdout and stderr closed (libFuzzer keeps its own).
         extra=(-max_len=4096 -dict="$dict" -close_fd_mask=3)
+    elif [ "$target" != gltf ]; then
+        mkdir -p "$corpus-$target"
+        cp -f tests/fuzz/mesh-seeds/"$target"/* "$corpus-$target/"
+        cp -f tests/fuzz/mesh-regressions/*."$target" "$corpus-$target/" 2>/dev/null || true
+        dirs=("$corpus-$target")
     fi
     one=build/asan/fuzz-$target.log
-    build/asan/tests/fuzz/lantern_fuzz_$target "${dirs[@]}" -max_total_time="$(( (seconds + 2) / 3 ))" \
+    build/asan/tests/fuzz/lantern_fuzz_$target "${dirs[@]}" -max_total_time="$(( (seconds + ${#targets[@]} - 1) / ${#targets[@]} ))" \
         -timeout=10 -rss_limit_mb=2048 "${extra[@]}" -artifact_prefix="$findings/$target-" \
         -print_final_stats=1 >"$one" 2>&1 || status=$?
     cat "$one" >>"$log"
@@ -65,5 +74,5 @@ for target in gltf structure cli; do
     [ "$status" = 0 ] || break
 done
 [ "$status" = 0 ] || echo "fuzz: libFuzzer exited with $status; see $log and $findings/" >&2
-echo "Done $total runs of the three fuzzers (bytes, structure, command line)" | tee -a "$log"
+echo "Done $total runs of the seven fuzzers (glTF bytes, glTF structure, command line, OBJ, PLY, STL, OFF)" | tee -a "$log"
 exit "$status"

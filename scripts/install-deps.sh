@@ -19,7 +19,7 @@ build_pkgs=(
     libcli11-dev libfmt-dev libglfw3-dev libimgui-dev libx11-dev
     libpng-dev libyaml-cpp-dev libwebp-dev
     libgtest-dev libgmock-dev libbenchmark-dev
-    libmeshoptimizer-dev libdraco-dev
+    libmeshoptimizer-dev libdraco-dev libtinyobjloader-dev
     python3-dev pybind11-dev python3-numpy
 )
 # The farm tests start a private single-node Slurm (scripts/slurm-single-node.sh).

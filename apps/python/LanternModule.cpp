@@ -11,9 +11,13 @@ using namespace lantern::python;
 
 namespace {
 
-std::shared_ptr<PyScene> loadPyScene(const std::string& pathOrBuiltin, const std::string& variant) {
+std::shared_ptr<PyScene> loadPyScene(const std::string& pathOrBuiltin, const std::string& variant,
+                                     const std::string& up) {
     LoadOptions options;
     options.variant = variant;
+    const auto axis = parseUpAxis(up);
+    if (!axis) raise(makeError(ErrorCode::Usage, "up must be \"y\" or \"z\", not \"" + up + "\"", "up"));
+    options.up = *axis;
     auto loaded = lantern::loadScene(pathOrBuiltin, options);
     if (!loaded) raise(loaded.error());
     auto s = std::make_shared<PyScene>();
@@ -79,7 +83,7 @@ py::list deviceList(const std::string& name) {
 
 void defineScene(py::module_& m) {
     py::class_<PyScene, std::shared_ptr<PyScene>>(
-        m, "Scene", "A scene: loaded from glTF/GLB or a built-in; its lights can be edited")
+        m, "Scene", "A scene: loaded from a scene file or a built-in; its lights can be edited")
         .def_property_readonly(
             "path", [](const PyScene& s) { return s.scene->sourcePath; },
             "The file it came from, or builtin:NAME")
@@ -214,9 +218,11 @@ PYBIND11_MODULE(_lantern, m) {
     m.attr("__version__") = versionString();
     defineScene(m);
     defineRenderer(m);
-    m.def("load", &loadPyScene, py::arg("path"), py::arg("variant") = "",
-          "Loads a scene file (glTF/GLB) or builtin:NAME; variant: a KHR_materials_variants "
-          "variant to draw (the scene's `variants` lists them)");
+    m.def("load", &loadPyScene, py::arg("path"), py::kw_only(), py::arg("variant") = "",
+          py::arg("up") = "y",
+          "Loads a scene file (glTF/GLB, OBJ, PLY, STL, OFF) or builtin:NAME; variant: a "
+          "KHR_materials_variants variant to draw (the scene's `variants` lists them); up=\"z\" "
+          "turns a Z-up file (CAD, STL) so that +Z points up");
     m.def("builtin_scenes", &builtinSceneNames, "The names builtin:NAME accepts");
     m.def("write_image", &writeImageFile, py::arg("path"), py::arg("rgba"), py::kw_only(),
           py::arg("depth") = py::none(), py::arg("normal") = py::none(), py::arg("half") = false,

@@ -31,6 +31,19 @@ def test_refused_input_raises_value_or_os_error_naming_it(lantern_module):
         lantern_module.load("/nonexistent/nothing.gltf")
 
 
+def test_mesh_files_load_through_the_same_loader_with_their_up_axis(lantern_module, out_dir):
+    # lantern.load is loadScene: OBJ, PLY, STL and OFF load as glTF does, refusals included.
+    (out_dir / "tri.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    (out_dir / "tri.off").write_text("OFF\n3 1 0\n0 0 0\n1 0 0\n0 0 1\n3 0 1 2\n")
+    assert lantern_module.load(str(out_dir / "tri.obj")).summary["triangles"] == 1
+    assert lantern_module.load(str(out_dir / "tri.off"), up="z").summary["triangles"] == 1
+    with pytest.raises(ValueError, match="up must be"):
+        lantern_module.load(str(out_dir / "tri.off"), up="x")
+    (out_dir / "bad.obj").write_text("v 0 nan 0\n")
+    with pytest.raises(ValueError, match=r"bad\.obj: vertex 1"):
+        lantern_module.load(str(out_dir / "bad.obj"))
+
+
 def test_lights_are_added_and_cleared(lantern_module):
     scene = lantern_module.load("builtin:teapot")
     scene.clear_lights()

@@ -5,6 +5,8 @@
 #include "TestSupport.h"
 
 #include "io/gltf/GltfLoad.h"
+
+#include <lantern/Io.h>
 #include "render/FrameRender.h"
 
 #include <gtest/gtest.h>
@@ -78,6 +80,42 @@ TEST(FuzzRegressions, CommandLineInputsExitCleanly) {
         }
     }
     EXPECT_GE(inputs, 10);
+}
+
+// The mesh fuzzers' regressions (tests/fuzz/mesh-regressions/: refused, or loaded when named
+// valid-*) and seeds (tests/fuzz/mesh-seeds/FORMAT/: all load), through loadScene as files: an
+// OBJ input's part after a "#MTL" line is its library m.mtl, as the OBJ fuzzer writes it.
+TEST(FuzzRegressions, MeshInputsAreRefusedOrLoadedSafely) {
+    const auto fuzz = test::sourceDir() / "tests" / "fuzz";
+    std::vector<std::pair<std::filesystem::path, bool>> inputs;  // (file, must load)
+    for (const auto& e : std::filesystem::directory_iterator(fuzz / "mesh-regressions"))
+        inputs.emplace_back(e.path(), e.path().filename().string().rfind("valid-", 0) == 0);
+    for (const auto& e : std::filesystem::recursive_directory_iterator(fuzz / "mesh-seeds"))
+        if (e.is_regular_file()) inputs.emplace_back(e.path(), true);
+    const auto folder = test::testOutputDir();
+    for (const auto& [path, valid] : inputs) {
+        SCOPED_TRACE(path.filename().string());
+        std::ifstream in(path, std::ios::binary);
+        std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+        const std::size_t mtl = bytes.find("\n#MTL\n");
+        if (mtl != std::string::npos) {
+            std::ofstream(folder / "m.mtl", std::ios::binary) << bytes.substr(mtl + 6);
+            bytes.resize(mtl + 1);
+        }
+        std::ofstream(folder / path.filename(), std::ios::binary) << bytes;
+        auto scene = loadScene((folder / path.filename()).string());
+        EXPECT_EQ(bool(scene), valid) << (scene ? "loaded" : scene.error().describe());
+        if (!scene) {
+            EXPECT_NE(scene.error().file.find(path.filename().string()), std::string::npos);
+            EXPECT_EQ(scene.error().describe().find('\n'), std::string::npos) << "one line";
+            continue;
+        }
+        RenderOptions o;
+        o.width = 32;
+        o.height = 32;
+        (void)render::planFrame(*scene, o, 0.0);
+    }
+    EXPECT_GE(inputs.size(), 20u);
 }
 
 } // namespace

@@ -1,5 +1,6 @@
-// Issue 17: the load's budget (--max-size) follows the memory a glTF file really makes Lantern
-// hold, the parsed JSON and the models built from it included. This binary counts every
+// Issue 17: the load's budget (--max-size) follows the memory a scene file really makes Lantern
+// hold: for glTF the parsed JSON and the models built from it included, for OBJ tinyobjloader's
+// model, for PLY, STL and OFF what their readers build. This binary counts every
 // operator new and delete (global replacements below) to find the true peak of a load, then
 // checks that the budget charged for it is neither far below (a file could then allocate more
 // than --max-size) nor far above (a legitimate file would be refused).
@@ -66,7 +67,7 @@ Measured loadMeasured(const fs::path& file, std::uint64_t maxBytes) {
     g_peak = before;
     Measured m;
     {
-        auto scene = loadGltf(file, options);
+        auto scene = loadScene(file.string(), options);
         m.peak = g_peak.load() - before;
         m.loaded = bool(scene);
         if (!scene) m.error = scene.error().describe();
@@ -169,6 +170,49 @@ TEST(LoadBudget, ZeroFilledAccessorsAndComputedNormalsAreCharged) {
         text += std::string(i ? "," : "") + R"({"attributes":{"POSITION":)" + std::to_string(i) + "}}";
     text += R"(]}],"nodes":[{"mesh":0}],"scene":0,"scenes":[{"nodes":[0]}]})";
     expectBudgetFollowsThePeak(writeScene("zeros.gltf", text));
+}
+
+// The mesh formats: a grid of N x N quads (2 N^2 triangles) in each.
+constexpr int kGrid = 300;
+
+std::string gridVertex(int i, int j) {
+    return std::to_string(i) + " " + std::to_string(j) + " " + std::to_string((i * j) % 7);
+}
+
+TEST(LoadBudget, AnObjIsChargedForTinyobjloadersModelAndItsVertices) {
+    std::string text = "o grid\ns 1\n";
+    for (int i = 0; i <= kGrid; ++i)
+        for (int j = 0; j <= kGrid; ++j)
+            text += "v " + gridVertex(i, j) + "\nvt 0.5 0.5\n";
+    for (int i = 0; i < kGrid; ++i)
+        for (int j = 0; j < kGrid; ++j) {
+            const int a = i * (kGrid + 1) + j + 1, b = a + kGrid + 1;
+            const auto c = [](int v) { return std::to_string(v) + "/" + std::to_string(v); };
+            text += "f " + c(a) + " " + c(b) + " " + c(b + 1) + " " + c(a + 1) + "\n";
+        }
+    expectBudgetFollowsThePeak(writeScene("grid.obj", text));
+}
+
+TEST(LoadBudget, PlyStlAndOffAreChargedForWhatTheirReadersBuild) {
+    std::string ply = "ply\nformat ascii 1.0\nelement vertex " + std::to_string((kGrid + 1) * (kGrid + 1)) +
+                      "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
+                      std::to_string(kGrid * kGrid) + "\nproperty list uchar int vertex_indices\nend_header\n";
+    std::string off = "OFF\n" + std::to_string((kGrid + 1) * (kGrid + 1)) + " " +
+                      std::to_string(kGrid * kGrid) + " 0\n";
+    std::string stl = "solid grid\n", vertices, faces;
+    for (int i = 0; i <= kGrid; ++i)
+        for (int j = 0; j <= kGrid; ++j) vertices += gridVertex(i, j) + "\n";
+    for (int i = 0; i < kGrid; ++i)
+        for (int j = 0; j < kGrid; ++j) {
+            const int a = i * (kGrid + 1) + j, b = a + kGrid + 1;
+            faces += "4 " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(b + 1) +
+                     " " + std::to_string(a + 1) + "\n";
+            stl += "facet normal 0 0 1\nouter loop\nvertex " + gridVertex(i, j) + "\nvertex " +
+                   gridVertex(i + 1, j) + "\nvertex " + gridVertex(i, j + 1) + "\nendloop\nendfacet\n";
+        }
+    expectBudgetFollowsThePeak(writeScene("grid.ply", ply + vertices + faces));
+    expectBudgetFollowsThePeak(writeScene("grid.off", off + vertices + faces));
+    expectBudgetFollowsThePeak(writeScene("grid.stl", stl + "endsolid grid\n"));
 }
 
 } // namespace

@@ -66,17 +66,7 @@ TEST_F(Soak, TwoThousandFramesKeepMemoryFlat) {
     // Under AddressSanitizer freed blocks wait in its quarantine (256 MiB by default) before
     // reuse, so resident memory creeps up and drops back in steps of a few MiB with no leak
     // (LeakSanitizer checks leaks in that build); the plain build holds the 4 MiB line.
-#if defined(__SANITIZE_ADDRESS__)
-    constexpr double kToleranceMiB = 16.0;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-    constexpr double kToleranceMiB = 16.0;
-#else
-    constexpr double kToleranceMiB = 4.0;
-#endif
-#else
-    constexpr double kToleranceMiB = 4.0;
-#endif
+    constexpr double kToleranceMiB = test::kAddressSanitizer ? 16.0 : 4.0;
     EXPECT_LT(peak - base, kToleranceMiB) << series;
     EXPECT_LE(r->peakQueuedFrames, 2u * std::max(1u, std::thread::hardware_concurrency()));
 }

@@ -19,6 +19,19 @@
 
 namespace lantern::test {
 
+/// True in an AddressSanitizer build (GCC's __SANITIZE_ADDRESS__, clang's __has_feature).
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kAddressSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+inline constexpr bool kAddressSanitizer = true;
+#else
+inline constexpr bool kAddressSanitizer = false;
+#endif
+#else
+inline constexpr bool kAddressSanitizer = false;
+#endif
+
 std::filesystem::path sourceDir();   ///< the checkout
 std::filesystem::path sharedDir();   ///< ../shared beside the checkout (test assets)
 std::filesystem::path binaryDir();   ///< the build tree

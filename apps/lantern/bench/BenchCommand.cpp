@@ -39,6 +39,7 @@ struct FrameArgs {
     bool half = false;
     std::string outDir = "/tmp";
     std::vector<std::string> aovs;  ///< --aov: time the data passes too (docs/aovs.md)
+    std::string up = "y";           ///< --up
     ShadingOptions shading;
     DeviceOptions device;
 };
@@ -55,7 +56,9 @@ int runFrame(const FrameArgs& a) {
     auto compression = parseExrCompression(a.compression);
     if (!compression)
         return report(makeError(ErrorCode::InvalidInput, "unknown compression", "--compression"));
-    auto scene = loadScene(a.scene);
+    LoadOptions load;
+    load.up = upAxisOf(a.up);
+    auto scene = loadScene(a.scene, load);
     if (!scene) return report(scene.error());
     auto renderer = Renderer::create(a.device.desc());
     if (!renderer) return report(renderer.error());
@@ -112,7 +115,7 @@ Runner addBenchCommand(CLI::App& app) {
     bench->require_subcommand(1);
     auto args = std::make_shared<FrameArgs>();
     CLI::App* frame = bench->add_subcommand("frame", "Time the frames of one scene");
-    frame->add_option("scene", args->scene, "glTF/GLB file or builtin:NAME")->capture_default_str();
+    frame->add_option("scene", args->scene, "Scene file (glTF, GLB, OBJ, PLY, STL, OFF) or builtin:NAME")->capture_default_str();
     addSizeOptions(*frame, args->width, args->height);
     frame->add_option("--runs", args->runs, "Timed frames")
         ->capture_default_str()
@@ -127,6 +130,7 @@ Runner addBenchCommand(CLI::App& app) {
     frame->add_option("--aov", args->aovs, "AOVs to render and write too, comma-separated")
         ->delimiter(',');
     frame->add_option("--tmp", args->outDir, "Folder for the temporary EXR")->capture_default_str();
+    addUpOption(*frame, args->up);
     args->shading.add(*frame);
     args->device.add(*frame);
     std::vector<Runner> more = addMoreBenchCommands(*bench);

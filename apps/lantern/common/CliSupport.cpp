@@ -423,8 +423,9 @@ RendererDesc DeviceOptions::desc() const {
 
 void addAllowFolderOption(CLI::App& app, std::vector<std::string>& folders) {
     app.add_option("--allow-folder", folders,
-                   "A folder besides the scene's own that its external buffers and images may "
-                   "come from (repeat for several; URIs may then contain \"..\")")
+                   "A folder besides the scene's own that its external buffers, images, MTL "
+                   "libraries and textures may come from (repeat for several; names may then "
+                   "contain \"..\")")
         ->check(CLI::ExistingDirectory);
 }
 
@@ -434,10 +435,38 @@ void addVariantOption(CLI::App& app, std::string& variant) {
                    "`lantern info` lists them); default: the file's own materials");
 }
 
+void addUpOption(CLI::App& app, std::string& up) {
+    app.add_option("--up", up,
+                   "The file's up axis: y (glTF, OBJ, most files) or z (CAD, most STL and PLY "
+                   "scans: turned so that +Z points up)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"y", "z"}));
+}
+
+UpAxis upAxisOf(const std::string& up) { return parseUpAxis(up).value_or(UpAxis::Y); }
+
+void SceneFileOptions::add(CLI::App& app) {
+    addMaxSizeOption(app, maxSize);
+    addVariantOption(app, variant);
+    addAllowFolderOption(app, allowFolders);
+    addUpOption(app, up);
+}
+
+LoadOptions SceneFileOptions::load(LogSink log) const {
+    LoadOptions o;
+    o.maxBytes = maxSize;
+    o.variant = variant;
+    o.allowedFolders.assign(allowFolders.begin(), allowFolders.end());
+    o.up = upAxisOf(up);
+    o.log = std::move(log);
+    return o;
+}
+
 void addMaxSizeOption(CLI::App& app, std::uint64_t& maxSize) {
     app.add_option("--max-size", maxSize,
                    "Largest file, buffer or image accepted, and the most memory one scene's load "
-                   "may hold (parsed JSON, buffers, accessors, images), in bytes (1 to " +
+                   "may hold (parsed JSON, buffers, accessors, images, a mesh file's vertices and "
+                   "faces), in bytes (1 to " +
                        std::to_string(kMaxMaxSize) + ")")
         ->capture_default_str()
         ->check(CLI::Range(std::uint64_t(1), kMaxMaxSize));

@@ -79,6 +79,24 @@ void addMaxSizeOption(CLI::App& app, std::uint64_t& maxSize);
 void addVariantOption(CLI::App& app, std::string& variant);
 /// --allow-folder DIR (repeatable): LoadOptions::allowedFolders.
 void addAllowFolderOption(CLI::App& app, std::vector<std::string>& folders);
+/// --up y|z: LoadOptions::up, the file's up axis (z: +Z becomes +Y).
+void addUpOption(CLI::App& app, std::string& up);
+
+/// How a scene file is read, as render, view and info take it: --max-size, --variant,
+/// --allow-folder, --up.
+struct SceneFileOptions {
+    std::uint64_t maxSize = kDefaultMaxBytes;
+    std::string variant;  ///< KHR_materials_variants; empty: the file's own materials
+    std::vector<std::string> allowFolders;
+    std::string up = "y";
+
+    void add(CLI::App& app);
+    /// The LoadOptions they say, with warnings going to `log`.
+    LoadOptions load(LogSink log) const;
+};
+
+/// The --up value as LoadOptions::up (the option's check admits only y and z).
+UpAxis upAxisOf(const std::string& up);
 
 /// The camera and view options shared by render and view.
 struct CameraOptions {

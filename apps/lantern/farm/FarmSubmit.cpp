@@ -138,7 +138,7 @@ Result<Submission> resumedSubmission(const SubmitArgs& a, const RenderPart& part
 // A new submission: the scene (absolute; every task must reach it), frames and tasks.
 Result<Submission> newSubmission(const SubmitArgs& a, const RenderPart& part,
                                  const std::vector<std::string>& outputs) {
-    if (part.scene.empty()) return usage("farm submit needs a SCENE (glTF/GLB or builtin:NAME)");
+    if (part.scene.empty()) return usage("farm submit needs a SCENE (a scene file or builtin:NAME)");
     if (a.frames.empty()) return usage("farm submit needs --frames A-B", "--frames");
     if (a.tasks < 1) return usage("farm submit needs --tasks N (the job array's size)", "--tasks");
     auto r = parseFrameRange(a.frames);

@@ -24,10 +24,8 @@ struct InfoArgs {
     std::string deviceName;
     int sceneIndex = -1;
     double time = 0.0;
-    std::uint64_t maxSize = kDefaultMaxBytes;
-    std::string variant;  ///< --variant
-    std::vector<std::string> allowFolders;
-    bool json = false;  ///< --json
+    SceneFileOptions file;  ///< --max-size, --variant, --allow-folder, --up
+    bool json = false;      ///< --json
 };
 
 /// "3 (a 2, b 1)": a total and its non-zero parts in a fixed order.
@@ -264,11 +262,7 @@ int run(const InfoArgs& a) {
         return report(makeError(ErrorCode::Usage, "give a SCENE, or --devices", "scene"));
     if (a.devices)
         if (int code = runDevices(a); code != kOk) return code;
-    LoadOptions load;
-    load.maxBytes = a.maxSize;
-    load.variant = a.variant;
-    load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
-    load.log = stderrSink(false);
+    const LoadOptions load = a.file.load(stderrSink(false));
     auto loaded = loadScene(a.scene, load);
     if (!loaded) return report(loaded.error());
     const Scene& scene = *loaded;
@@ -297,7 +291,7 @@ Runner addInfoCommand(CLI::App& app) {
     auto args = std::make_shared<InfoArgs>();
     CLI::App* cmd = app.add_subcommand(
         "info", "Print what a scene holds and the features it needs, or the Vulkan devices");
-    cmd->add_option("scene", args->scene, "glTF/GLB file, or builtin:NAME");
+    cmd->add_option("scene", args->scene, "Scene file (glTF, GLB, OBJ, PLY, STL, OFF), or builtin:NAME");
     cmd->add_flag("--devices", args->devices,
                   "List the Vulkan devices, the one Lantern would choose and why, the sample "
                   "counts each supports, the pipeline cache and whether a display is available");
@@ -306,12 +300,10 @@ Runner addInfoCommand(CLI::App& app) {
     cmd->add_option("--scene", args->sceneIndex, "glTF scene index (default: the file's default)");
     cmd->add_option("--time", args->time, "Animation time in seconds for bounds and features")
         ->capture_default_str();
-    addMaxSizeOption(*cmd, args->maxSize);
-    addVariantOption(*cmd, args->variant);
+    args->file.add(*cmd);
     cmd->add_flag("--json", args->json,
                   "Print everything as JSON, with the fidelity report: every feature the file "
                   "uses, supported, approximated (the rule) or skipped, and its objects");
-    addAllowFolderOption(*cmd, args->allowFolders);
     return [args, cmd]() { return cmd->parsed() ? run(*args) : -1; };
 }
 

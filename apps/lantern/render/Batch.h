@@ -91,7 +91,7 @@ bool wantsBatch(const std::vector<std::string>& scenes, const std::vector<std::s
 /// True when `arg` is a glob (has *, ? or [ and is not an existing file nor builtin:).
 bool isGlob(const std::string& arg);
 
-/// The scenes, in order: each path as given, each glob's .gltf/.glb matches sorted (confined
+/// The scenes, in order: each path as given, each glob's scene files sorted (confined
 /// to the glob's folder and `allowed`), each list's entries in order (relative to the list's
 /// folder). Usage error for a glob that matches nothing; IoError for an unreadable list.
 Result<std::vector<BatchScene>> expandScenes(const std::vector<std::string>& args,

@@ -29,8 +29,9 @@ std::string lower(std::string s) {
 }
 
 bool isSceneFile(const std::string& path) {
+    static const std::vector<std::string> extensions = sceneFileExtensions();
     const std::string ext = lower(fs::path(path).extension().string());
-    return ext == ".gltf" || ext == ".glb";
+    return std::find(extensions.begin(), extensions.end(), ext) != extensions.end();
 }
 
 BatchScene sceneFor(const std::string& path) {
@@ -80,7 +81,7 @@ fs::path globBase(const std::string& pattern) {
     return slash == 0 ? fs::path("/") : fs::path(pattern.substr(0, slash));
 }
 
-// A glob's .gltf/.glb matches, sorted by their bytes; a match whose real path leaves the
+// A glob's scene files (every format loadScene reads), sorted by their bytes; a match whose real path leaves the
 // glob's folder fails at its turn.
 Result<std::vector<BatchScene>> expandGlob(const std::string& pattern,
                                            const std::vector<fs::path>& allowed) {
@@ -96,7 +97,7 @@ Result<std::vector<BatchScene>> expandGlob(const std::string& pattern,
     if (rc != 0 && rc != GLOB_NOMATCH)
         return makeError(ErrorCode::IoError, "the pattern could not be expanded", "scene", pattern);
     if (matches.empty())
-        return makeError(ErrorCode::Usage, "the pattern matches no .gltf or .glb file", "scene",
+        return makeError(ErrorCode::Usage, "the pattern matches no scene file (.gltf, .glb, .obj, .ply, .stl, .off)", "scene",
                          pattern);
     std::sort(matches.begin(), matches.end());
     const fs::path base = globBase(pattern);

@@ -1,4 +1,5 @@
-// RenderArgs.h: the options of `lantern render` as parsed (RenderCommand.cpp).
+// RenderArgs.h: the options of `lantern render` as parsed (render/RenderCli.cpp) for
+// RenderCommand.cpp.
 #pragma once
 
 #include "common/CliSupport.h"
@@ -40,10 +41,8 @@ struct RenderArgs {
     std::string probe;
     std::string compression = "zip";
     int zipLevel = ExrOptions{}.zipLevel;
-    std::uint64_t maxSize = kDefaultMaxBytes;
-    std::string variant;  ///< --variant
-    std::string report;   ///< --report FILE: the fidelity report
-    std::vector<std::string> allowFolders;
+    SceneFileOptions file;  ///< --max-size, --variant, --allow-folder, --up
+    std::string report;     ///< --report FILE: the fidelity report
     std::string background;
     std::string frames;
     std::string frameList; // --frame-list: explicit frames, e.g. those a farm job is missing
@@ -56,5 +55,12 @@ struct RenderArgs {
     std::string compareRef;     // --compare REF: compare the picture with REF
     CompareCliOptions compare;  // its thresholds (common/CompareCli.h)
 };
+
+/// Adds render's options to `cmd`, parsed into `args` (render/RenderCli.cpp).
+void addRenderOptions(CLI::App& cmd, RenderArgs& args);
+
+/// Once parsed: notes which options were given and refuses what CLI11 cannot (no scene, an
+/// empty --frames or --frame-list: usage errors).
+Result<void> takeParsedRenderOptions(const CLI::App& cmd, RenderArgs& args);
 
 } // namespace lantern::cli

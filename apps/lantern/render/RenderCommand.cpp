@@ -296,10 +296,7 @@ int runBatchArgs(RenderArgs a) {
     r.writeCamera = a.writeCamera;
     r.options = *options;
     r.exr = *exr;
-    r.load.maxBytes = a.maxSize;
-    r.load.variant = a.variant;
-    r.load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
-    r.load.log = stderrSink(a.device.verbose);
+    r.load = a.file.load(stderrSink(a.device.verbose));
     r.device = a.device.desc();
     r.verbose = a.device.verbose;
     r.checkDevice = [&a](const DeviceInfo& d) { return a.shading.checkDevice(d); };
@@ -331,6 +328,23 @@ std::future<Result<Renderer>> startRenderer(const RenderArgs& a) {
                       [device = a.device.desc()] { return Renderer::create(device); });
 }
 
+// --frames, --frame-list, --time and --frame: which go together, and --time's range.
+Result<void> checkFrameOptions(const RenderArgs& a, bool sequence) {
+    if (!a.frames.empty() && !a.frameList.empty())
+        return makeError(ErrorCode::Usage, "--frames and --frame-list cannot be combined",
+                         "--frame-list");
+    if (sequence && (a.timeGiven || a.frameGiven))
+        return makeError(ErrorCode::Usage,
+                         std::string(a.timeGiven ? "--time" : "--frame") +
+                             " and --frames/--frame-list cannot be combined",
+                         a.timeGiven ? "--time" : "--frame");
+    // CLI11's range check lets NaN through (every comparison with it is false).
+    if (!(a.time >= 0.0 && a.time <= 1e9))
+        return makeError(ErrorCode::InvalidInput, "must be a number of seconds from 0 to 1e9",
+                         "--time");
+    return {};
+}
+
 int run(RenderArgs a) {
     auto options = renderOptionsAndSize(a);
     if (!options) return report(options.error());
@@ -338,21 +352,10 @@ int run(RenderArgs a) {
     if (!exrChecked) return report(exrChecked.error());
     const ExrOptions exr = *exrChecked;
     const bool sequence = !a.frames.empty() || !a.frameList.empty();
-    if (!a.frames.empty() && !a.frameList.empty())
-        return report(makeError(ErrorCode::Usage, "--frames and --frame-list cannot be combined",
-                                "--frame-list"));
+    if (auto r = checkFrameOptions(a, sequence); !r) return report(r.error());
     std::vector<std::string> outputs = a.outputs;
     if (outputs.empty()) outputs.push_back(sequence ? "out/frame_####.exr" : "out/render.exr");
-    if (sequence && (a.timeGiven || a.frameGiven))
-        return report(makeError(ErrorCode::Usage,
-                                std::string(a.timeGiven ? "--time" : "--frame") +
-                                    " and --frames/--frame-list cannot be combined",
-                                a.timeGiven ? "--time" : "--frame"));
     if (auto r = checkImagePaths(outputs, "--output"); !r) return report(r.error());
-    // CLI11's range check lets NaN through (every comparison with it is false).
-    if (!(a.time >= 0.0 && a.time <= 1e9))
-        return report(makeError(ErrorCode::InvalidInput,
-                                "must be a number of seconds from 0 to 1e9", "--time"));
     SingleFrame frame;
     if (!sequence) {
         auto f = singleFrame(a);
@@ -384,11 +387,7 @@ int run(RenderArgs a) {
         probe = *xy;
     }
 
-    LoadOptions load;
-    load.maxBytes = a.maxSize;
-    load.variant = a.variant;
-    load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
-    load.log = stderrSink(a.device.verbose);
+    const LoadOptions load = a.file.load(stderrSink(a.device.verbose));
     std::future<Result<Renderer>> pendingRenderer = startRenderer(a);
     auto scene = loadScene(a.scenes.front(), load);
     if (!scene) return report(scene.error());
@@ -419,111 +418,15 @@ int run(RenderArgs a) {
     return renderFrame(a, frame, *renderer, *prepared, *options, exr, outputs);
 }
 
-// --cryptomatte-levels and --cryptomatte-samples (docs/aovs.md).
-void addCryptomatteOptions(CLI::App& cmd, RenderArgs& args) {
-    cmd.add_option("--cryptomatte-levels", args.cryptomatteLevels,
-                   "Cryptomatte ranks (id, coverage) per pixel: even, 2 to 16, two per EXR layer")
-        ->capture_default_str()
-        ->check(CLI::Range(2, 16));
-    cmd.add_option("--cryptomatte-samples", args.cryptomatteSamples,
-                   "Cryptomatte coverage samples per pixel along each axis (N x N), 1 to 16")
-        ->capture_default_str()
-        ->check(CLI::Range(1, 16));
-}
-
 } // namespace
 
 Runner addRenderCommand(CLI::App& app) {
     auto args = std::make_shared<RenderArgs>();
     CLI::App* cmd = app.add_subcommand("render", "Render a scene headless to EXR/PNG");
-    cmd->add_option("scene", args->scenes,
-                    "glTF/GLB file, or builtin:NAME; several, a quoted glob or @LIST render a "
-                    "batch (docs/sequences.md); required unless --list is given");
-    cmd->add_option("-o,--output", args->outputs,
-                    "Output file(s): .exr or .png, repeat to write several; '#' runs are the "
-                    "frame number; missing folders are created (default out/render.exr, "
-                    "out/frame_####.exr for a sequence)");
-    addSizeOptions(*cmd, args->width, args->height);
-    cmd->add_option("--scene", args->sceneIndex,
-                    "glTF scene index (default: the file's default; 0 to the file's last)")
-        ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--time", args->time,
-                    "Animation time in seconds of the one frame (its number: round(time x fps); "
-                    "finite, 0 to 1e9)")
-        ->capture_default_str()
-        ->check(CLI::Range(0.0, 1e9)); // and not NaN: run() checks
-    cmd->add_option("--frame", args->frame, "Render frame N alone, at time N / fps")
-        ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--background", args->background, help::kBackground);
-    cmd->add_option("--frames", args->frames,
-                    "Render the sequence of frames A-B inclusive (frame k at time k/fps)");
-    cmd->add_option(
-        "--frame-list", args->frameList,
-        "Render these frames, not a range: N,A-B,... (--shard splits the list by position)");
-    cmd->add_option("--fps", args->fps, "Frames per second: frame k is at time k / fps")
-        ->capture_default_str()
-        ->check(CLI::PositiveNumber);
-    cmd->add_option("--shard", args->shard, "Render only frames k with k mod N == I (I/N)");
-    cmd->add_option("--encoder-threads", args->encoderThreads,
-                    "Threads encoding frames (0: one per core; 0 to 256)")
-        ->capture_default_str()
-        ->check(CLI::Range(0, kMaxEncoderThreads));
-    cmd->add_option("--aov", args->aovs,
-                    std::string("Extra EXR channels, comma-separated (docs/aovs.md): ") + aovNames())
-        ->delimiter(',');
-    addCryptomatteOptions(*cmd, *args);
-    cmd->add_flag("--unlit-exact", args->unlitExact,
-                  "Exact label colours: every material unlit, its base colour written bit for "
-                  "bit (no lighting, texture, blending or anti-aliasing)");
-    cmd->add_flag("--write-camera", args->writeCamera,
-                  "Write each image's camera beside it as JSON (same name, .json): size, "
-                  "intrinsics K, the pose in OpenCV's and glTF's axes, near, far, projection");
-    cmd->add_flag("--half", args->half, "Write 16-bit half channels instead of 32-bit float");
-    cmd->add_option("--compression", args->compression,
-                    "EXR compression: none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab")
-        ->capture_default_str();
-    cmd->add_option("--zip-level", args->zipLevel,
-                    "zlib level of the zip and zips compressions: 1 fastest to 9 smallest")
-        ->capture_default_str()
-        ->check(CLI::Range(1, 9));
-    cmd->add_flag("--dry-run", args->dryRun,
-                  "Check the options and load the scene, print what would be written, and stop: "
-                  "no device is created and no file or folder is written");
-    cmd->add_flag("--explain", args->explain,
-                  "Print the features the scene uses and the pipeline variants");
-    cmd->add_option("--probe", args->probe,
-                    "X,Y: print the lighting equation term by term at pixel X,Y (x from the left, "
-                    "y from the top)");
-    addMaxSizeOption(*cmd, args->maxSize);
-    addVariantOption(*cmd, args->variant);
-    cmd->add_option("--report", args->report,
-                    "Write the fidelity report as JSON to FILE: every feature the file uses, "
-                    "supported, approximated (the rule) or skipped, and its objects");
-    addAllowFolderOption(*cmd, args->allowFolders);
-    args->camera.add(*cmd);
-    args->shading.add(*cmd);
-    args->device.add(*cmd);
-    cmd->add_option("--compare", args->compareRef,
-                    "Compare the picture with this reference (.exr or .png) as `lantern compare` "
-                    "does, with its thresholds; exit 1 when it fails");
-    args->compare.add(*cmd);
-    args->batch.add(*cmd);
+    addRenderOptions(*cmd, *args);
     return [args, cmd]() {
         if (!cmd->parsed()) return -1;
-        args->timeGiven = cmd->count("--time") > 0;
-        args->frameGiven = cmd->count("--frame") > 0;
-        if (args->scenes.empty() && args->batch.lists.empty())
-            return report(makeError(ErrorCode::Usage, "give a scene (or --list FILE)", "scene"));
-        // An empty value is a forgotten one, not "no sequence": `--frames ""` rendered frame 0.
-        for (const char* option : {"--frames", "--frame-list"})
-            if (cmd->count(option) > 0 && cmd->get_option(option)->as<std::string>().empty())
-                return report(makeError(ErrorCode::Usage,
-                                        std::string("needs a value (") +
-                                            (option[7] == '-' ? "N,A-B,..." : "A-B") +
-                                            "); it was given an empty one",
-                                        option));
-        args->widthGiven = cmd->count("--width") > 0;
-        args->heightGiven = cmd->count("--height") > 0;
+        if (auto r = takeParsedRenderOptions(*cmd, *args); !r) return report(r.error());
         const RenderArgs& a = *args;
         return wantsBatch(a.scenes, a.batch.lists, a.batch.views, a.outputs) ? runBatchArgs(a)
                                                                              : run(a);

@@ -26,9 +26,7 @@ struct ViewArgs {
     bool noPanel = false, showHelp = false, stats = false;
     bool headlight = false, wireframe = false, normals = false;
     std::string background;
-    std::uint64_t maxSize = kDefaultMaxBytes;
-    std::string variant;  ///< --variant
-    std::vector<std::string> allowFolders;  ///< --allow-folder
+    SceneFileOptions file;  ///< --max-size, --variant, --allow-folder, --up
     CameraOptions camera;
     ShadingOptions shading;
     DeviceOptions device;

@@ -34,11 +34,7 @@ int runView(const ViewArgs& a) {
     if (a.watch && a.scene.rfind("builtin:", 0) == 0)
         std::cerr << "lantern: warning: --watch has no file to watch for " << a.scene << "\n";
 
-    LoadOptions load;
-    load.maxBytes = a.maxSize;
-    load.variant = a.variant;
-    load.allowedFolders.assign(a.allowFolders.begin(), a.allowFolders.end());
-    load.log = stderrSink(a.device.verbose);
+    const LoadOptions load = a.file.load(stderrSink(a.device.verbose));
     auto scene = loadScene(a.scene, load);
     if (!scene) return report(scene.error());
     if (a.sceneIndex < -1 || a.sceneIndex >= int(scene->roots.size()))
@@ -101,7 +97,7 @@ Runner addViewCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "view", "Open a window and play the scene: orbit/pan/zoom/fly, shading keys, a side panel "
                 "editing lights and materials (F1 lists the keys)");
-    cmd->add_option("scene", args->scene, "glTF/GLB file, or builtin:NAME")->required();
+    cmd->add_option("scene", args->scene, "Scene file (glTF, GLB, OBJ, PLY, STL, OFF), or builtin:NAME")->required();
     const auto [width, height] = addSizeOptions(*cmd, args->width, args->height);
     width->check(CLI::Range(1, 16384));
     height->check(CLI::Range(1, 16384));
@@ -137,9 +133,7 @@ Runner addViewCommand(CLI::App& app) {
     cmd->add_flag("--wireframe", args->wireframe, "Start with the wireframe overlay on (Z)");
     cmd->add_flag("--normals", args->normals, "Start with the normals displayed (N)");
     cmd->add_flag("--stats", args->stats, "Print frame-time statistics when the viewer exits");
-    addMaxSizeOption(*cmd, args->maxSize);
-    addVariantOption(*cmd, args->variant);
-    addAllowFolderOption(*cmd, args->allowFolders);
+    args->file.add(*cmd);
     args->camera.add(*cmd);
     args->shading.add(*cmd);
     args->device.add(*cmd);

@@ -118,11 +118,7 @@ void Viewer::checkWatch() {
         return;
     m_loadedTime = time;
     m_loadedSize = size;
-    LoadOptions load;
-    load.maxBytes = m_args.maxSize;
-    load.variant = m_args.variant;
-    load.allowedFolders.assign(m_args.allowFolders.begin(), m_args.allowFolders.end());
-    load.log = stderrSink(m_args.device.verbose);
+    const LoadOptions load = m_args.file.load(stderrSink(m_args.device.verbose));
     auto scene = loadScene(m_st.source, load);
     if (!scene) {
         std::cerr << "lantern: the file changed but cannot be loaded; still showing the previous "

@@ -2,7 +2,7 @@
 
     import lantern
     renderer = lantern.Renderer()                 # the Vulkan device, created once
-    scene = lantern.load("builtin:teapot")        # or a .gltf/.glb path
+    scene = lantern.load("builtin:teapot")        # or a .gltf/.glb/.obj/.ply/.stl/.off path
     rgba = renderer.render(scene, width=256, height=256)   # (256, 256, 4) float32, linear
     lantern.write_image("teapot.png", rgba)
 

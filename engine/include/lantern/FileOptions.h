@@ -20,6 +20,15 @@ namespace lantern {
 /// it, and a 1,000,000-node chain holds about 1 GB while tinygltf builds its model.
 inline constexpr std::uint64_t kDefaultMaxBytes = std::uint64_t(2) << 30;
 
+/// Which of the file's axes points up (--up). Lantern's world is +Y up, as glTF's and OBJ's
+/// usually are; CAD files, most STL and many PLY scans are +Z up. Z: the loaded scene is
+/// turned -90 degrees about X (its +Z becomes +Y, its +Y becomes -Z) by a node above each of
+/// its root nodes, whatever the format.
+enum class UpAxis { Y, Z };
+
+LANTERN_API const char* toString(UpAxis up) noexcept;  ///< "y", "z"
+LANTERN_API std::optional<UpAxis> parseUpAxis(std::string_view text) noexcept;
+
 struct LoadOptions {
     /// Largest accepted file, buffer or image, in bytes (--max-size), and the most memory one
     /// load may hold for what the file decides: the parsed JSON and the models built from it,
@@ -34,6 +43,7 @@ struct LoadOptions {
     /// KHR_materials_variants: the variant whose materials the primitives take (--variant);
     /// empty: the file's own. A name the file does not have is refused, listing its variants.
     std::string variant;
+    UpAxis up = UpAxis::Y;  ///< the file's up axis (--up)
 };
 
 // --- Images ---------------------------------------------------------------------------------

@@ -36,9 +36,14 @@ LANTERN_API std::vector<std::string> builtinSceneNames();
 /// A built-in scene by name (without the "builtin:" prefix).
 LANTERN_API Result<Scene> builtinScene(std::string_view name);
 
-/// Loads "builtin:NAME" or a glTF/GLB path.
+/// Loads "builtin:NAME" or a scene file of any format Lantern reads: glTF (.gltf, .glb), OBJ
+/// with its MTL libraries, PLY, STL, OFF (docs/scene-format-support.md). The format is chosen by
+/// the file's extension, or when that names none of them, by its first bytes.
 LANTERN_API Result<Scene> loadScene(std::string_view pathOrBuiltin,
                                     const LoadOptions& options = {});
+
+/// The extensions of the scene files loadScene reads, lower case with the dot (".gltf", ".obj").
+LANTERN_API std::vector<std::string> sceneFileExtensions();
 
 // --- Images ---------------------------------------------------------------------------------
 

@@ -39,6 +39,13 @@ Result<Scene> loadScene(std::string_view pathOrBuiltin, const LoadOptions& optio
     return io::loadScene(pathOrBuiltin, options);
 }
 
+std::vector<std::string> sceneFileExtensions() {
+    std::vector<std::string> out;
+    for (const io::SceneFormat& f : io::sceneFormats())
+        out.insert(out.end(), f.extensions.begin(), f.extensions.end());
+    return out;
+}
+
 Result<void> writeExr(const std::filesystem::path& path, const Image& image,
                       const ExrOptions& options) {
     return io::writeExr(path, image, options);

@@ -77,6 +77,12 @@ const std::vector<FeatureUse>& fidelityKeys() {
         row("KHR_texture_basisu", F::Supported, "png-jpeg-fallback"),
         row("lantern-extensions"),
         row("other-extension", F::Skipped, "not-supported"),
+        row("obj"),
+        row("obj-skipped-maps", F::Skipped, "not-read"),
+        row("ply"),
+        row("stl"),
+        row("off"),
+        row("up-axis"),
     };
     return keys;
 }

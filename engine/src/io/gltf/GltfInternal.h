@@ -20,6 +20,7 @@
 #pragma once
 
 #include "io/FileAccess.h"
+#include "io/LoadDiagnostics.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -57,9 +58,6 @@ inline constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT;
 /// `extensions` and `extras` recursively, so a hostile file nested millions of levels deep
 /// would overflow the stack without this bound.
 inline constexpr int kMaxJsonDepth = 256;
-
-/// Largest texture side accepted (Vulkan guarantees 4096; lavapipe and desktop GPUs 16384).
-inline constexpr int kMaxTextureSide = 16384;
 
 /// The finite ceiling of the PBR roughness -> shininess mapping 2/r^4 - 2 (reached for
 /// roughness <= 0.1189). Above ~1e4 float32 pow(n.h, s) loses accuracy (numerics.md 3.3), and
@@ -124,49 +122,8 @@ int extensionSource(const tinygltf::Texture& texture, const char* extension);
 inline constexpr const char* kMeshoptExtensions[] = {"EXT_meshopt_compression",
                                                      "KHR_meshopt_compression"};
 
-/// Where a load's errors and warnings come from: every message names the file. It also keeps
-/// the load's allocation budget: every allocation whose size the file decides (buffers,
-/// decoded accessors, decoded images and their decoder's working memory, converted
-/// geometry, meshopt- and Draco-decoded data) is charged with charge() before it is made, and
-/// the total may not exceed LoadOptions::maxBytes, however small the file (a count of 10^9
-/// costs 20 bytes of JSON).
-class Diagnostics {
-public:
-    Diagnostics(std::string file, LogSink log, std::uint64_t budget = ~std::uint64_t(0))
-        : m_file(std::move(file)), m_log(std::move(log)),
-          m_budget(std::make_shared<Budget>(Budget{budget, 0})) {}
-    const std::string& file() const { return m_file; }
-    /// An InvalidInput error naming the file and `object`.
-    Error error(std::string object, std::string message) const {
-        return makeError(ErrorCode::InvalidInput, std::move(message), std::move(object), m_file);
-    }
-    /// An error of another kind (IoError).
-    Error error(ErrorCode code, std::string object, std::string message) const {
-        return makeError(code, std::move(message), std::move(object), m_file);
-    }
-    /// A warning: something skipped or repaired. "file: object: message".
-    void warn(const std::string& object, const std::string& message) const;
-    /// Charges `bytes` (`count` x `each`, overflow-safe) to the load's budget for `object`'s
-    /// `what`; an InvalidInput error naming both when the total would exceed it.
-    Result<void> charge(std::uint64_t count, std::uint64_t each, const std::string& object,
-                        const std::string& what) const;
-    /// Returns `bytes` charged earlier for memory freed since (a parsed document, once read).
-    void release(std::uint64_t bytes) const {
-        m_budget->used -= std::min(bytes, m_budget->used);
-    }
-    /// Bytes charged so far, and the budget.
-    std::uint64_t charged() const { return m_budget->used; }
-    std::uint64_t budget() const { return m_budget->limit; }
-
-private:
-    struct Budget {
-        std::uint64_t limit;
-        std::uint64_t used;
-    };
-    std::string m_file;
-    LogSink m_log;
-    std::shared_ptr<Budget> m_budget;
-};
+/// A load's messages and budget: shared with the other formats (io/LoadDiagnostics.h).
+using io::Diagnostics;
 
 /// "name[i]": the glTF object path convention of every message.
 std::string at(std::string_view array, std::size_t index);

@@ -1,11 +1,10 @@
 // glTF materials -> Lantern's: LANTERN_materials_phong, the PBR fallback mapping,
 // KHR_materials_unlit, alpha modes, and the base-colour textures they use, decoded to RGBA8.
 #include "io/gltf/GltfInternal.h"
-#include "io/image/ImageDecode.h"
+#include "io/image/TextureDecode.h"
 #include "scene/Fidelity.h"
 
 #include <algorithm>
-#include <climits>
 #include <cmath>
 
 namespace lantern::gltf {
@@ -132,33 +131,10 @@ private:
                                                   ? problem->second
                                                   : "\"" + image.uri + "\" could not be read");
         }
-        auto info = io::inspectImage(bytes, size);
-        if (!info) return m_diag.error(obj, info.error().message);
-        const int w = info->width, h = info->height;
-        if (w > kMaxTextureSide || h > kMaxTextureSide)
-            return m_diag.error(obj, std::to_string(w) + "x" + std::to_string(h) +
-                                         " is outside the supported texture size (1 to " +
-                                         std::to_string(kMaxTextureSide) + " per side)");
-        const std::uint64_t rgbaBytes = std::uint64_t(w) * std::uint64_t(h) * 4;
-        if (rgbaBytes > m_options.maxBytes)
-            return m_diag.error(obj, "decoded image (" + std::to_string(rgbaBytes) +
-                                         " bytes) exceeds --max-size (" +
-                                         std::to_string(m_options.maxBytes) + " bytes)");
-        // The header's declared size is charged before a pixel is decoded: the decoder's working
-        // memory (the inflated rows at the file's channels and depth, the conversion to
-        // 4 channels at that depth) and the result, then Lantern's copy.
-        const std::uint64_t depth = info->sixteenBit ? 2 : 1;
-        const std::uint64_t perPixel = std::uint64_t(info->channels) * depth + 4 * depth + 4 + 4;
-        LANTERN_TRY(m_diag.charge(std::uint64_t(w) * std::uint64_t(h), perPixel, obj,
-                                  "decoding the " + std::to_string(w) + "x" + std::to_string(h) +
-                                      " image"));
-        auto pixels = io::decodeRgba8(bytes, size, *info);
-        if (!pixels) return m_diag.error(obj, pixels.error().message);
-        Texture t;
+        auto decoded = io::decodeTexture(bytes, size, obj, m_options.maxBytes, m_diag);
+        if (!decoded) return decoded;
+        Texture t = std::move(*decoded);
         t.name = !image.name.empty() ? image.name : image.uri.size() < 200 ? image.uri : obj;
-        t.width = w;
-        t.height = h;
-        t.rgba8 = std::move(*pixels);
         return t;
     }
 
