@@ -8,6 +8,7 @@ layout(location = LANTERN_LOC_POSITION) in vec3 inPosition;
 layout(location = LANTERN_LOC_NORMAL) in vec3 inNormal;
 layout(location = LANTERN_LOC_COLOR) in vec4 inColor;
 layout(location = LANTERN_LOC_TEXCOORD) in vec2 inTexcoord;
+layout(location = LANTERN_LOC_TANGENT) in vec4 inTangent;  // zero: none
 
 layout(location = 0) out vec3 vEyePosition;
 layout(location = 1) out vec3 vNormal;
@@ -15,6 +16,7 @@ layout(location = 2) out vec4 vColor;
 layout(location = 3) out vec2 vTexcoord;
 layout(location = 4) out vec3 vEyeCentre;      // the same two at the pixel centre, for
 layout(location = 5) out vec2 vTexcoordCentre; // derivatives (phong.frag)
+layout(location = 6) out vec4 vTangent;        // eye space, w the bitangent's sign; zero: none
 
 void main() {
     vec4 eye = draw.viewFromModel * vec4(inPosition, 1.0);
@@ -24,6 +26,10 @@ void main() {
     vTexcoord = inTexcoord;
     vEyeCentre = eye.xyz;
     vTexcoordCentre = inTexcoord;
+    // Only the variants with normal maps use it (a constant zero elsewhere, dropped).
+    vTangent = (SC_MAPS & LANTERN_MAP_NORMAL) != 0u
+                   ? vec4(mat3(draw.viewFromModel) * inTangent.xyz, inTangent.w)
+                   : vec4(0.0);
     gl_Position = frame.clipFromView * eye;
     gl_PointSize = frame.pointSize;
 }

@@ -12,6 +12,7 @@ layout(location = 2) centroid in vec4 vColor;
 layout(location = 3) centroid in vec2 vTexcoord;
 layout(location = 4) in vec3 vEyeCentre;
 layout(location = 5) in vec2 vTexcoordCentre;
+layout(location = 6) centroid in vec4 vTangent;
 
 void main() {
     // Derivatives only in the variants that sample (the branches are on constants, so control
@@ -32,7 +33,7 @@ void main() {
     MaterialSideData side = back ? material.back : material.front;
     if ((maps & LANTERN_MAP_METALLIC_ROUGHNESS) != 0u) side = mappedPbrSide(side, material, u);
     vec3 n = safeNormalize(vNormal);
-    if ((maps & LANTERN_MAP_NORMAL) != 0u) n = mappedNormal(n, dp1, dp2, u, material);
+    if ((maps & LANTERN_MAP_NORMAL) != 0u) n = mappedNormal(n, vTangent, dp1, dp2, u, material);
     vec3 ambientM, diffuseM;
     float alpha;
     materialColours(side, vColor, ambientM, diffuseM, alpha);

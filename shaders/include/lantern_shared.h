@@ -47,7 +47,8 @@
 #define LANTERN_LOC_COLOR 2
 #define LANTERN_LOC_TEXCOORD 3
 #define LANTERN_LOC_CENTROID 4       // flat shading only: the triangle's centroid
-#define LANTERN_VERTEX_BINDINGS 5
+#define LANTERN_VERTEX_BINDINGS 5    // the bindings of flat shading's per-corner draws
+#define LANTERN_LOC_TANGENT 5        // phong (mesh.vert) only: TANGENT, zero when absent
 
 // Fragment outputs (colour attachments of the render pass, in this order).
 #define LANTERN_OUT_COLOR 0

@@ -30,14 +30,26 @@ MaterialSideData mappedPbrSide(MaterialSideData side, MaterialData material, Sur
                    material.pbrParams.y * texel.g, material.params.z);
 }
 
-// The normal map applied to the unit normal n, with dp1, dp2 the screen derivatives of the
-// eye-space position: the tangent frame from those and the map's coordinates' derivatives
+// The normal map applied to the unit normal n. With the vertex's tangent (eye space, w the
+// bitangent's sign; glTF TANGENT), the frame is T = the tangent made orthogonal to n and
+// B = cross(n, T) w (as glTF and MikkTSpace define it). Without one (zero), with dp1, dp2 the
+// screen derivatives of the eye-space position: the tangent frame from those and the map's coordinates' derivatives
 // (Schüler's cotangent frame, "Normal mapping without precomputed tangents", 2013), T along
 // +u and B along -v (glTF's +Y is up in the image); t and b below point the other way because
 // Lantern's framebuffer y runs down the eye's y (clipFromView flips it), which reverses the
 // frame's handedness. The texel's X and Y are scaled by the material's normal scale. Where no
 // frame can be built (the map's coordinates do not change across the pixel) n is kept.
-vec3 mappedNormal(vec3 n, vec3 dp1, vec3 dp2, SurfaceUv u, MaterialData material) {
+vec3 mappedNormal(vec3 n, vec4 tangent, vec3 dp1, vec3 dp2, SurfaceUv u, MaterialData material) {
+    vec3 m = mapTexel(normalTexture, u, draw.materialIndex, 1).xyz * 2.0 - 1.0;
+    m.xy *= material.pbrParams.z;
+    vec3 given = tangent.xyz - n * dot(n, tangent.xyz);
+    float length2 = dot(given, given);
+    if (length2 > 0.0 && !isinf(length2)) {
+        vec3 t = given * inversesqrt(length2);
+        vec3 b = cross(n, t) * (tangent.w < 0.0 ? -1.0 : 1.0);
+        vec3 mapped = safeNormalize(mat3(t, b, n) * m);
+        return dot(mapped, mapped) > 0.0 ? mapped : n;
+    }
     vec2 duv1 = transformedGradient(material.mapUv[2], material.mapUv[3], u.dx);
     vec2 duv2 = transformedGradient(material.mapUv[2], material.mapUv[3], u.dy);
     vec3 dp2perp = cross(dp2, n), dp1perp = cross(n, dp1);
@@ -46,8 +58,6 @@ vec3 mappedNormal(vec3 n, vec3 dp1, vec3 dp2, SurfaceUv u, MaterialData material
     float scale = max(dot(t, t), dot(b, b));
     if (!(scale > 0.0) || isinf(scale)) return n;
     float inv = inversesqrt(scale);
-    vec3 m = mapTexel(normalTexture, u, draw.materialIndex, 1).xyz * 2.0 - 1.0;
-    m.xy *= material.pbrParams.z;
     vec3 mapped = safeNormalize(mat3(-t * inv, b * inv, n) * m);
     return dot(mapped, mapped) > 0.0 ? mapped : n;
 }

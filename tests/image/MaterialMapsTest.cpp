@@ -2,7 +2,7 @@
 // orthographic view, textured with small nearest-filtered maps, against renders of the same
 // square whose vertex data or material factors say what the map says:
 // - a normal map draws what the same normal given per vertex draws (glTF's +Y is up in the
-//   image), and a zero normal scale what no map draws;
+//   image), and a zero normal scale what no map draws; given tangents orient its frame;
 // - an occlusion map scales the ambient term by 1 + strength (R - 1), in phong;
 // - an emissive map multiplies the emission (sRGB-decoded), in every shading mode;
 // - a metallic-roughness map draws, texel by texel, what the factors it scales draw.
@@ -109,6 +109,47 @@ TEST_F(MaterialMaps, ANormalMapDrawsWhatTheSameNormalPerVertexDraws) {
     mapped.normalScale = 0.0;
     const Image unscaled = render(device(), square(mapped, {halves(texel, texel, false)}, lights, glm::dvec3(0.2)));
     EXPECT_LT(interiorDifference(unscaled, flat), 2e-4);
+}
+
+// glTF TANGENT orients the normal map's frame: T the tangent, B = cross(N, T) w. A tangent
+// along +u draws what the frame from derivatives draws; turned or with w = -1, the map tilts
+// the normal the way the given frame says, though the texture coordinates are the same.
+TEST_F(MaterialMaps, GivenTangentsOrientTheNormalMapsFrame) {
+    const Material shiny = test::phongMaterial({0.1, 0.1, 0.1}, {0.7, 0.6, 0.5, 1.0}, {0.6, 0.6, 0.6}, 30.0);
+    const std::vector<std::pair<Light, glm::dmat4>> lights = {
+        {test::makeLight(LightType::Directional), test::aimed({1, 2, 3}, {-1, -2, -3})}};
+    const glm::dvec3 t = glm::normalize(glm::dvec3(0.3, 0.4, 1.0));
+    const glm::u8vec4 texel(std::uint8_t(std::lround((t.x + 1) * 127.5)), std::uint8_t(std::lround((t.y + 1) * 127.5)),
+                            std::uint8_t(std::lround((t.z + 1) * 127.5)), 255);
+    const glm::vec3 m = glm::normalize(glm::vec3(texel) / 255.0f * 2.0f - 1.0f);
+    Material mapped = shiny;
+    mapped.normalMap.texture = 0;
+    auto withTangent = [&](const glm::vec4& tangent) {
+        Scene scene = square(mapped, {halves(texel, texel, false)}, lights, glm::dvec3(0.2));
+        Primitive& p = scene.meshes.at(0).primitives.at(0);
+        p.tangents.assign(p.positions.size(), tangent);
+        return render(device(), scene);
+    };
+    auto perVertex = [&](const glm::vec3& normal) {
+        return render(device(), square(shiny, {}, lights, glm::dvec3(0.2), normal));
+    };
+    const Image derivatives = render(device(), square(mapped, {halves(texel, texel, false)}, lights, glm::dvec3(0.2)));
+    const Image alongU = withTangent({1, 0, 0, 1});
+    EXPECT_LT(interiorDifference(alongU, derivatives), 2e-4) << test::saveComparison(alongU, derivatives, "tangent_u");
+    struct Case {
+        glm::vec4 tangent;
+        glm::vec3 normal;  // T m.x + B m.y + N m.z
+        const char* name;
+    };
+    for (const Case& c : {Case{{0, 1, 0, 1}, {-m.y, m.x, m.z}, "tangent_up"},   // B = -X
+                          Case{{1, 0, 0, -1}, {m.x, -m.y, m.z}, "tangent_w"},   // B = -Y
+                          Case{{-2, 0, 0.5f, 1}, {-m.x, -m.y, m.z}, "tangent_back"}}) {  // not unit, not orthogonal
+        SCOPED_TRACE(c.name);
+        const Image given = withTangent(c.tangent);
+        const Image expected = perVertex(c.normal);
+        EXPECT_LT(interiorDifference(given, expected), 2e-4) << test::saveComparison(given, expected, c.name);
+        EXPECT_GT(interiorDifference(given, derivatives), 0.02) << "the tangent changed nothing";
+    }
 }
 
 TEST_F(MaterialMaps, OcclusionScalesTheAmbientTermInPhong) {

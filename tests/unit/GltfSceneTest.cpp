@@ -351,6 +351,59 @@ TEST(GltfScene, NormalOcclusionAndEmissiveTexturesAreReadAsMapsWithTheirEncoding
                             "materials[0].occlusionTexture.strength", "[0, 1]"));
 }
 
+// TANGENT is read for a normal-mapped material (its own or a variant's), not otherwise, and
+// the fidelity report says a morphed primitive's tangents give way to derivatives.
+TEST(GltfScene, TangentsAreReadForANormalMappedMaterial) {
+    GltfBuilder b;
+    b.addTriangle({{"material", 0}});
+    json& prim = b.doc["meshes"][0]["primitives"][0];
+    prim["attributes"]["TEXCOORD_0"] = b.addFloats({0, 0, 1, 0, 0, 1}, "VEC2");
+    prim["attributes"]["TANGENT"] = b.addFloats({1, 0, 0, 1, 0, 1, 0, -1, -0.6f, 0.8f, 0, 1}, "VEC4");
+    b.doc["images"] = json::array({{{"uri", "data:image/png;base64," + GltfBuilder::base64(onePixelPng())}}});
+    b.doc["textures"] = json::array({{{"source", 0}}});
+    b.doc["materials"] = json::array({{{"normalTexture", {{"index", 0}}}}, json::object()});
+    auto o = loadCapturing(b.write(testOutputDir(), "tangents"));
+    ASSERT_TRUE(o.scene) << o.scene.error().describe();
+    const auto& t = o.scene->meshes[0].primitives[0].tangents;
+    ASSERT_EQ(t.size(), 3u);
+    EXPECT_EQ(t[1], glm::vec4(0, 1, 0, -1));
+    EXPECT_EQ(t[2], glm::vec4(-0.6f, 0.8f, 0, 1));
+    auto keyed = [](const Scene& s, const char* key) -> const FeatureUse* {
+        for (const FeatureUse& f : s.features)
+            if (f.key == key) return &f;
+        return nullptr;
+    };
+    const FeatureUse* used = keyed(*o.scene, "tangents");
+    ASSERT_TRUE(used);
+    EXPECT_EQ(used->fidelity, Fidelity::Supported);
+    EXPECT_EQ(used->objects, std::vector<std::string>{"meshes[0].primitives[0].attributes.TANGENT"});
+
+    // A morphed primitive's tangents stay (the deformation pass does not move them, so the
+    // renderer takes the frame from derivatives): approximated.
+    b.doc["meshes"][0]["primitives"][0]["targets"] =
+        json::array({{{"POSITION", b.addFloats({0, 0, 0.1f, 0, 0, 0, 0, 0, 0}, "VEC3")}}});
+    auto m = loadCapturing(b.write(testOutputDir(), "tangents_morphed"));
+    ASSERT_TRUE(m.scene) << m.scene.error().describe();
+    ASSERT_TRUE(keyed(*m.scene, "tangents"));
+    EXPECT_EQ(keyed(*m.scene, "tangents")->fidelity, Fidelity::Approximated);
+    EXPECT_EQ(keyed(*m.scene, "tangents")->rule, "derivative-frame-when-deformed");
+    b.doc["meshes"][0]["primitives"][0].erase("targets");
+
+    // Without a normal map nothing reads them: they are not kept.
+    b.doc["meshes"][0]["primitives"][0]["material"] = 1;
+    auto plain = loadCapturing(b.write(testOutputDir(), "tangents_unused"));
+    ASSERT_TRUE(plain.scene) << plain.scene.error().describe();
+    EXPECT_TRUE(plain.scene->meshes[0].primitives[0].tangents.empty());
+    EXPECT_FALSE(keyed(*plain.scene, "tangents"));
+
+    // A TANGENT that is not a VEC4 of floats is refused with its path.
+    b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    b.doc["meshes"][0]["primitives"][0]["attributes"]["TANGENT"] =
+        b.addFloats({1, 0, 0, 0, 1, 0, 1, 0, 0}, "VEC3");
+    EXPECT_TRUE(refusedWith(loadCapturing(b.write(testOutputDir(), "tangents_vec3")),
+                            "meshes[0].primitives[0].attributes.TANGENT", "expected VEC4"));
+}
+
 // --- Lights ---------------------------------------------------------------------------------
 
 Result<Scene> loadLights(const json& lights, const std::string& name = "lights") {

@@ -168,6 +168,10 @@ struct Primitive {
     std::vector<glm::vec3> normals;
     std::vector<glm::vec4> colors;     ///< empty, or COLOR_0 per vertex (linear RGBA)
     std::vector<glm::vec2> texcoords;  ///< empty, or TEXCOORD_0 per vertex
+    /// Empty, or a tangent per vertex (glTF TANGENT: xyz along +u, w = +-1 the sign of the
+    /// bitangent cross(normal, tangent) w). The normal map's frame in phong; without it (and for
+    /// skinned or morphed primitives) the frame comes from screen-space derivatives.
+    std::vector<glm::vec4> tangents;
     /// Skinning (JOINTS_0/1, WEIGHTS_0/1): up to 8 influences per vertex, indices into the
     /// joints of the skin of the node that draws the mesh. Empty, or one per vertex; set 1
     /// only with set 0. Weights are used as given (a vertex whose weights are all 0 is not

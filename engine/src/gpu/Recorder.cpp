@@ -61,8 +61,8 @@ void FrameRecorder::beginAttachments() const {
                          VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
 }
 
-// The primitive's streams, one binding per attribute location; absent colours and texture
-// coordinates read a stride-0 default (white, zero). `flatJob`: a flat draw lit by the
+// The primitive's streams, one binding per attribute location; absent colours, texture
+// coordinates and tangents read a stride-0 default (white, zero, zero). `flatJob`: a flat draw lit by the
 // per-triangle pass, which binds no streams: its index list, written by the pass at three
 // times the draw's first record, names vertices whose corners flat.vert pulls from the job.
 void FrameRecorder::bindStreams(const DrawCommand& d, std::uint32_t flatJob) const {
@@ -114,6 +114,14 @@ void FrameRecorder::bindStreams(const DrawCommand& d, std::uint32_t flatJob) con
     offsets[LANTERN_LOC_TEXCOORD] = texcoord ? gp.texcoord : scene.defaultTexcoordOffset();
     strides[LANTERN_LOC_TEXCOORD] = texcoord ? 8 : 0;
     vkCmdBindVertexBuffers2(cmd, 0, LANTERN_LOC_CENTROID, buffers, offsets, nullptr, strides);
+    if (d.pipeline.program == frame::Program::Phong || d.pipeline.program == frame::Program::Floor) {
+        // mesh.vert's tangents; a deformed draw's are not moved by the pre-pass, so it takes
+        // the zero tangent (the frame from derivatives).
+        const bool tangent = gp.tangent != kNoStream && !ds;
+        const VkDeviceSize offset = tangent ? gp.tangent : scene.defaultTangentOffset();
+        const VkDeviceSize stride = tangent ? 16 : 0;
+        vkCmdBindVertexBuffers2(cmd, LANTERN_LOC_TANGENT, 1, &geometry, &offset, nullptr, &stride);
+    }
     if (gp.indexCount > 0) {
         vkCmdBindIndexBuffer(cmd, geometry, gp.index, VK_INDEX_TYPE_UINT32);
         vkCmdDrawIndexed(cmd, gp.indexCount, 1, 0, 0, 0);

@@ -105,7 +105,8 @@ Result<std::shared_ptr<SceneBuffers>> SceneBuffers::create(std::shared_ptr<Conte
     g->m_scene = std::move(scene);
     const Scene& s = *g->m_scene;
 
-    // Layout: defaults first (a white colour and a zero texcoord for stride-0 bindings).
+    // Layout: defaults first (a white colour, and 16 zero bytes: the texcoord and the tangent
+    // of stride-0 bindings).
     VkDeviceSize size = 32;
     g->m_defaultColor = 0;
     g->m_defaultTexcoord = 16;
@@ -132,6 +133,10 @@ Result<std::shared_ptr<SceneBuffers>> SceneBuffers::create(std::shared_ptr<Conte
                 gp.texcoord = size;
                 size = align16(size + n * 8);
             }
+            if (!p.tangents.empty()) {
+                gp.tangent = size;
+                size = align16(size + n * 16);
+            }
             if (!p.indices.empty()) {
                 gp.index = size;
                 size = align16(size + p.indices.size() * 4);
@@ -152,7 +157,7 @@ Result<std::shared_ptr<SceneBuffers>> SceneBuffers::create(std::shared_ptr<Conte
     auto fill = beginFill(c, g->m_geometry);
     if (!fill) return std::move(fill).error();
     char* dst = fill->dst;
-    const float white[4] = {1, 1, 1, 1}, zero[2] = {0, 0};
+    const float white[4] = {1, 1, 1, 1}, zero[4] = {0, 0, 0, 0};
     std::memcpy(dst + g->m_defaultColor, white, sizeof white);
     std::memcpy(dst + g->m_defaultTexcoord, zero, sizeof zero);
     std::size_t k = 0;
@@ -166,6 +171,7 @@ Result<std::shared_ptr<SceneBuffers>> SceneBuffers::create(std::shared_ptr<Conte
                 put(dst, gp.normal, p.normals);
             if (gp.color != kNoStream) put(dst, gp.color, p.colors);
             if (gp.texcoord != kNoStream) put(dst, gp.texcoord, p.texcoords);
+            if (gp.tangent != kNoStream) put(dst, gp.tangent, p.tangents);
             if (gp.index != kNoStream) put(dst, gp.index, p.indices);
         }
     LANTERN_TRY(endFill(c, g->m_geometry, *fill,

@@ -21,7 +21,7 @@ inline constexpr VkDeviceSize kNoStream = ~VkDeviceSize(0);
 struct PrimitiveBuffers {
     // Offsets into the geometry buffer; kNoStream for absent colours/texcoords.
     VkDeviceSize position = 0, normal = 0, color = kNoStream, texcoord = kNoStream,
-                 index = kNoStream;
+                 tangent = kNoStream, index = kNoStream;
     std::uint32_t vertexCount = 0;
     std::uint32_t indexCount = 0;  ///< 0: non-indexed
     // Offsets into the flat-geometry buffer (valid once flat streams exist).
@@ -59,6 +59,8 @@ public:
     VkDeviceSize deformInputBytes() const { return m_deformInput.size; }
     VkDeviceSize defaultColorOffset() const { return m_defaultColor; }
     VkDeviceSize defaultTexcoordOffset() const { return m_defaultTexcoord; }
+    /// A zero vec4 (a tangent of zero: the normal map's frame from derivatives).
+    VkDeviceSize defaultTangentOffset() const { return m_defaultTexcoord; }
     /// The texture set of material `index` (its base colour and maps, white where it has
     /// none); -1: every binding white.
     VkDescriptorSet textureSet(int index) const {

@@ -44,7 +44,7 @@ const std::vector<FeatureUse>& fidelityKeys() {
         row("points-lines"),
         row("attributes"),
         row("texcoord-sets", F::Approximated, "map-mean-for-missing-set"),
-        row("tangents", F::Skipped, "derivative-tangent-frame"),
+        row("tangents"),
         row("skins"),
         row("morph-targets"),
         row("animations"),

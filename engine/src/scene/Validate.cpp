@@ -77,6 +77,9 @@ Result<void> validatePrimitive(const Primitive& prim, const std::string& obj,
     if (!prim.texcoords.empty() && prim.texcoords.size() != n)
         return invalid(obj, "has " + std::to_string(prim.texcoords.size()) +
                                 " texture coordinates for " + std::to_string(n) + " positions");
+    if (!prim.tangents.empty() && prim.tangents.size() != n)
+        return invalid(obj, "has " + std::to_string(prim.tangents.size()) + " tangents for " +
+                                std::to_string(n) + " positions");
     const std::size_t k = prim.verticesPerElement();
     const char* list = k == 3 ? "triangle" : k == 2 ? "line" : "point";
     if (prim.indices.empty() && n % k != 0)
@@ -104,6 +107,9 @@ Result<void> validatePrimitive(const Primitive& prim, const std::string& obj,
     for (std::size_t i = 0; i < prim.texcoords.size(); ++i)
         if (!std::isfinite(prim.texcoords[i].x) || !std::isfinite(prim.texcoords[i].y))
             return invalid(obj + "." + at("texcoords", i), "non-finite texture coordinate");
+    for (std::size_t i = 0; i < prim.tangents.size(); ++i)
+        if (!finite(glm::vec3(prim.tangents[i])) || !std::isfinite(prim.tangents[i].w))
+            return invalid(obj + "." + at("tangents", i), "non-finite tangent");
     if (prim.material < -1 || prim.material >= int(materialCount))
         return invalid(obj + ".material",
                        "material " + std::to_string(prim.material) + " does not exist");

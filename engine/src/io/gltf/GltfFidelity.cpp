@@ -83,7 +83,14 @@ void noteMeshes(const tinygltf::Model& model, Scene& scene) {
                                 p.mode == TINYGLTF_MODE_LINE_LOOP || p.mode == TINYGLTF_MODE_LINE_STRIP;
             noteFeature(scene, points ? "points-lines" : "triangles", obj);
             noteFeature(scene, "attributes", obj);
-            if (p.attributes.count("TANGENT")) noteFeature(scene, "tangents", obj + ".attributes.TANGENT");
+            if (p.attributes.count("TANGENT") && needsTangents(model, p)) {
+                // The deformation pre-pass moves positions and normals, not tangents.
+                if (p.attributes.count("JOINTS_0") || !p.targets.empty())
+                    noteFeature(scene, "tangents", obj + ".attributes.TANGENT",
+                                Fidelity::Approximated, "derivative-frame-when-deformed");
+                else
+                    noteFeature(scene, "tangents", obj + ".attributes.TANGENT");
+            }
             if (!p.targets.empty()) noteFeature(scene, "morph-targets", obj + ".targets");
             if (extension(p.extensions, "KHR_draco_mesh_compression"))
                 noteFeature(scene, "KHR_draco_mesh_compression", obj);

@@ -114,14 +114,37 @@ bool hasTextures(const tinygltf::Model& model, int material) {
            m.emissiveTexture.index >= 0;
 }
 
+} // namespace
+
+bool needsTangents(const tinygltf::Model& model, const tinygltf::Primitive& prim) {
+    auto normalMapped = [&](int material) {
+        return material >= 0 && std::size_t(material) < model.materials.size() &&
+               model.materials[std::size_t(material)].normalTexture.index >= 0;
+    };
+    if (normalMapped(prim.material)) return true;
+    const tinygltf::Value* variants = extension(prim.extensions, "KHR_materials_variants");
+    if (!variants || !variants->Has("mappings") || !variants->Get("mappings").IsArray()) return false;
+    const tinygltf::Value& mappings = variants->Get("mappings");
+    for (std::size_t i = 0; i < mappings.ArrayLen(); ++i) {
+        const tinygltf::Value& m = mappings.Get(int(i));
+        if (m.Has("material") && m.Get("material").IsInt() &&
+            normalMapped(m.Get("material").GetNumberAsInt()))
+            return true;
+    }
+    return false;
+}
+
+namespace {
+
 // The accessor of the primitive's attribute `name`, or -1.
 int attributeAccessor(const tinygltf::Primitive& prim, const std::string& name) {
     auto it = prim.attributes.find(name);
     return it == prim.attributes.end() ? -1 : it->second;
 }
 
-// POSITION (accessor `positionAccessor`), and NORMAL, COLOR_0 and the TEXCOORD set of the
-// material's base colour texture when the primitive has them.
+// POSITION (accessor `positionAccessor`), and NORMAL, COLOR_0, the TEXCOORD set of the
+// material's base colour texture, and TANGENT for a normal-mapped material, when the primitive
+// has them.
 Result<void> readAttributes(const tinygltf::Model& model, const tinygltf::Primitive& prim,
                             int positionAccessor, const std::string& obj, const Diagnostics& diag,
                             Primitive& out) {
@@ -136,6 +159,12 @@ Result<void> readAttributes(const tinygltf::Model& model, const tinygltf::Primit
         if (!normals) return std::move(normals).error();
         LANTERN_TAKE(out.normals,
                      toVectors<glm::vec3>(*normals, 3, obj + ".attributes.NORMAL", diag));
+    }
+    if (const int a = attribute("TANGENT"); a >= 0 && needsTangents(model, prim)) {
+        auto tangents = readFloats(model, a, obj + ".attributes.TANGENT", diag);
+        if (!tangents) return std::move(tangents).error();
+        LANTERN_TAKE(out.tangents,
+                     toVectors<glm::vec4>(*tangents, 4, obj + ".attributes.TANGENT", diag));
     }
     if (const int a = attribute("COLOR_0"); a >= 0) {
         auto colors = readFloats(model, a, obj + ".attributes.COLOR_0", diag);

@@ -95,6 +95,10 @@ int texCoordOf(const tinygltf::TextureInfo& info);
 /// metallic-roughness, normal, occlusion and emissive textures' (0 without textures).
 int materialTexcoordSet(const tinygltf::Material& material);
 
+/// Whether a material the primitive may be drawn with (its own, or one of its
+/// KHR_materials_variants mappings) has a normal map: only then are its tangents read.
+bool needsTangents(const tinygltf::Model& model, const tinygltf::Primitive& prim);
+
 /// KHR_texture_transform's matrix: uv' = (T(offset) R(rotation) S(scale) (u, v, 1)).xy, with
 /// u' = cos(r) u + sin(r) v, v' = -sin(r) u + cos(r) v for the rotation (counter-clockwise UVs,
 /// the extension's own example: offset (0, 1), rotation pi/2, scale 0.5 reads the lower left

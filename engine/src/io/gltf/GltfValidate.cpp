@@ -85,13 +85,14 @@ bool declares(const tinygltf::Model& model, const char* name) {
 
 /// The formats allowed for each vertex attribute Lantern reads: glTF 2.0's, or, when the file
 /// declares KHR_mesh_quantization, that extension's wider table (integer positions and texture
-/// coordinates, normalized or not; BYTE/SHORT normalized normals; BYTE/SHORT morph target
+/// coordinates, normalized or not; BYTE/SHORT normalized normals and tangents; BYTE/SHORT morph target
 /// position displacements, normalized or not, and normalized normal displacements). Skin
 /// influences (JOINTS_0/1, WEIGHTS_0/1) are the same in both: KHR_mesh_quantization leaves them.
 struct AttributeFormats {
-    Format position, normal, color, texcoord, joints, weights, targetPosition, targetNormal;
+    Format position, normal, tangent, color, texcoord, joints, weights, targetPosition, targetNormal;
     explicit AttributeFormats(bool quantized)
         : position{{TINYGLTF_TYPE_VEC3}, {kFloat}}, normal{{TINYGLTF_TYPE_VEC3}, {kFloat}},
+          tangent{{TINYGLTF_TYPE_VEC4}, {kFloat}},
           color{{TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, {kFloat, kUnsignedByte, kUnsignedShort}},
           texcoord{{TINYGLTF_TYPE_VEC2}, {kFloat, kUnsignedByte, kUnsignedShort}},
           joints{{TINYGLTF_TYPE_VEC4}, {kUnsignedByte, kUnsignedShort}, false},
@@ -102,6 +103,7 @@ struct AttributeFormats {
         const std::vector<int> all{kFloat, kByte, kUnsignedByte, kShort, kUnsignedShort};
         position = {{TINYGLTF_TYPE_VEC3}, all, false};
         normal = {{TINYGLTF_TYPE_VEC3}, {kFloat, kByte, kShort}};
+        tangent = {{TINYGLTF_TYPE_VEC4}, {kFloat, kByte, kShort}};
         texcoord = {{TINYGLTF_TYPE_VEC2}, all, false};
         targetPosition = {{TINYGLTF_TYPE_VEC3}, {kFloat, kByte, kShort}, false};
         targetNormal = {{TINYGLTF_TYPE_VEC3}, {kFloat, kByte, kShort}};
@@ -116,6 +118,7 @@ struct AttributeFormats {
         }
         if (name == "POSITION") return &position;
         if (name == "NORMAL") return &normal;
+        if (name == "TANGENT") return &tangent;
         if (name == "COLOR_0") return &color;
         if (name.rfind("TEXCOORD_", 0) == 0) return &texcoord;
         if (name == "JOINTS_0" || name == "JOINTS_1") return &joints;
