@@ -16,6 +16,8 @@
 layout(location = 5) centroid out vec2 vTexcoord;
 layout(location = 6) centroid out vec3 vEyePosition;
 layout(location = 8) out vec2 vTexcoordCentre;  // at the pixel centre, for derivatives
+layout(location = 10) centroid out vec2 vTexcoord1;  // the second set (emissive map)
+layout(location = 11) out vec2 vTexcoord1Centre;
 layout(location = 9) flat out uint vTriangle;   // the triangle's record
 
 void main() {
@@ -29,7 +31,14 @@ void main() {
         const uint o = j.texcoords + 2u * v;
         uv = uintBitsToFloat(uvec2(geometry.words[o], geometry.words[o + 1u]));
     }
+    vec2 uv1 = vec2(0.0);
+    if ((SC_MAPS & LANTERN_MAP_SECOND_SETS) != 0u && j.texcoords1 != LANTERN_DEFORM_NONE) {
+        const uint o = j.texcoords1 + 2u * v;
+        uv1 = uintBitsToFloat(uvec2(geometry.words[o], geometry.words[o + 1u]));
+    }
     vec4 eye = draw.viewFromModel * vec4(position(j, v), 1.0);
+    vTexcoord1 = uv1;
+    vTexcoord1Centre = uv1;
     vTexcoord = uv;
     vTexcoordCentre = uv;
     vEyePosition = eye.xyz;

@@ -9,6 +9,7 @@ layout(location = LANTERN_LOC_NORMAL) in vec3 inNormal;
 layout(location = LANTERN_LOC_COLOR) in vec4 inColor;
 layout(location = LANTERN_LOC_TEXCOORD) in vec2 inTexcoord;
 layout(location = LANTERN_LOC_TANGENT) in vec4 inTangent;  // zero: none
+layout(location = LANTERN_LOC_TEXCOORD1) in vec2 inTexcoord1;
 
 layout(location = 0) out vec3 vEyePosition;
 layout(location = 1) out vec3 vNormal;
@@ -17,6 +18,8 @@ layout(location = 3) out vec2 vTexcoord;
 layout(location = 4) out vec3 vEyeCentre;      // the same two at the pixel centre, for
 layout(location = 5) out vec2 vTexcoordCentre; // derivatives (phong.frag)
 layout(location = 6) out vec4 vTangent;        // eye space, w the bitangent's sign; zero: none
+layout(location = 7) out vec2 vTexcoord1;      // the second set, and its copy for derivatives
+layout(location = 8) out vec2 vTexcoord1Centre;
 
 void main() {
     vec4 eye = draw.viewFromModel * vec4(inPosition, 1.0);
@@ -26,7 +29,9 @@ void main() {
     vTexcoord = inTexcoord;
     vEyeCentre = eye.xyz;
     vTexcoordCentre = inTexcoord;
-    // Only the variants with normal maps use it (a constant zero elsewhere, dropped).
+    // Only the variants whose maps read it (a constant zero elsewhere, dropped).
+    vTexcoord1 = (SC_MAPS & LANTERN_MAP_SECOND_SETS) != 0u ? inTexcoord1 : vec2(0.0);
+    vTexcoord1Centre = vTexcoord1;
     vTangent = (SC_MAPS & LANTERN_MAP_NORMAL) != 0u
                    ? vec4(mat3(draw.viewFromModel) * inTangent.xyz, inTangent.w)
                    : vec4(0.0);

@@ -30,12 +30,19 @@ layout(location = 5) centroid in vec2 vTexcoord;
 layout(location = 6) centroid in vec3 vEyePosition;
 #endif
 layout(location = 8) in vec2 vTexcoordCentre;
+layout(location = 10) centroid in vec2 vTexcoord1;
+layout(location = 11) in vec2 vTexcoord1Centre;
 
 void main() {
     SurfaceUv u = SurfaceUv(vTexcoord, vec2(0.0), vec2(0.0));
     if (SC_TEXTURE || (SC_MAPS & LANTERN_MAP_EMISSIVE) != 0u) {  // on constants: uniform flow
         u.dx = dFdx(vTexcoordCentre);
         u.dy = dFdy(vTexcoordCentre);
+    }
+    MapUv mu = MapUv(u, SurfaceUv(vTexcoord1, vec2(0.0), vec2(0.0)));
+    if ((SC_MAPS & LANTERN_MAP_SECOND_SETS) != 0u) {
+        mu.second.dx = dFdx(vTexcoord1Centre);
+        mu.second.dy = dFdy(vTexcoord1Centre);
     }
     bool back = SC_TWO_SIDED && !gl_FrontFacing;
 #ifdef LANTERN_FLAT_PRIMITIVE
@@ -59,7 +66,7 @@ void main() {
     // maps need a per-fragment normal or material (phong only: docs/gl-differences.md).
     if ((materialMaps(draw.materialIndex) & LANTERN_MAP_EMISSIVE) != 0u) {
         MaterialData material = materials[draw.materialIndex];
-        c = max(c + mappedEmissionChange(back ? material.back : material.front, u), 0.0);
+        c = max(c + mappedEmissionChange(back ? material.back : material.front, mu), 0.0);
     }
 #ifdef LANTERN_FLAT_PRIMITIVE
 #ifdef LANTERN_AOV

@@ -24,6 +24,7 @@ layout(location = LANTERN_LOC_POSITION) in vec3 inPosition;
 layout(location = LANTERN_LOC_NORMAL) in vec3 inNormal;
 layout(location = LANTERN_LOC_COLOR) in vec4 inColor;
 layout(location = LANTERN_LOC_TEXCOORD) in vec2 inTexcoord;
+layout(location = LANTERN_LOC_TEXCOORD1) in vec2 inTexcoord1;
 #ifdef LANTERN_FLAT_CENTROID
 layout(location = LANTERN_LOC_CENTROID) in vec3 inCentroid;
 #endif
@@ -37,6 +38,8 @@ layout(location = 5) centroid out vec2 vTexcoord;
 layout(location = 6) centroid out vec3 vEyePosition;
 layout(location = 7) LIT out vec3 vNormal;
 layout(location = 8) out vec2 vTexcoordCentre;  // at the pixel centre, for derivatives
+layout(location = 10) centroid out vec2 vTexcoord1;  // the second set (emissive map)
+layout(location = 11) out vec2 vTexcoord1Centre;
 
 void main() {
     vec4 eye = draw.viewFromModel * vec4(inPosition, 1.0);
@@ -70,6 +73,8 @@ void main() {
 #endif
     vTexcoord = inTexcoord;
     vTexcoordCentre = inTexcoord;
+    vTexcoord1 = (SC_MAPS & LANTERN_MAP_SECOND_SETS) != 0u ? inTexcoord1 : vec2(0.0);
+    vTexcoord1Centre = vTexcoord1;
     vEyePosition = eye.xyz;
     vNormal = n;
     gl_Position = frame.clipFromView * eye;

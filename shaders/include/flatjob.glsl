@@ -34,6 +34,7 @@ struct FlatJob {
     uint view;
     vec4 viewport;     // xy: half the view's size in pixels
     uint texcoords;    // words into geometry (uv per vertex); LANTERN_DEFORM_NONE: zero
+    uint texcoords1;   // the second set, the same way
 };
 #ifdef LANTERN_FLAT_INDEX_WRITER
 layout(std430, set = LANTERN_SET_FLAT, binding = LANTERN_BINDING_FLAT_INDICES) writeonly buffer FlatIndices {

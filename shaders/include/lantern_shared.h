@@ -49,6 +49,7 @@
 #define LANTERN_LOC_CENTROID 4       // flat shading only: the triangle's centroid
 #define LANTERN_VERTEX_BINDINGS 5    // the bindings of flat shading's per-corner draws
 #define LANTERN_LOC_TANGENT 5        // phong (mesh.vert) only: TANGENT, zero when absent
+#define LANTERN_LOC_TEXCOORD1 6      // the second texture-coordinate set, zero when absent
 
 // Fragment outputs (colour attachments of the render pass, in this order).
 #define LANTERN_OUT_COLOR 0
@@ -87,6 +88,9 @@
 #define LANTERN_MAP_OCCLUSION 4u
 #define LANTERN_MAP_EMISSIVE 8u
 #define LANTERN_MAP_ALL 15u
+// Map bit << 4: that map reads the second texture-coordinate set (Primitive::texcoords1).
+#define LANTERN_MAP_SECOND_SET_SHIFT 4u
+#define LANTERN_MAP_SECOND_SETS 240u
 
 #define LANTERN_LIGHT_BIT_DIRECTIONAL 1
 #define LANTERN_LIGHT_BIT_POINT 2

@@ -24,7 +24,7 @@ MaterialSideData pbrSide(MaterialSideData side, vec4 base, float m, float r, flo
 
 // The metallic-roughness map at the fragment: the material's factors times the texel's blue
 // (metallic) and green (roughness).
-MaterialSideData mappedPbrSide(MaterialSideData side, MaterialData material, SurfaceUv u) {
+MaterialSideData mappedPbrSide(MaterialSideData side, MaterialData material, MapUv u) {
     vec4 texel = mapTexel(metallicRoughnessTexture, u, draw.materialIndex, 0);
     return pbrSide(side, material.pbrBase, material.pbrParams.x * texel.b,
                    material.pbrParams.y * texel.g, material.params.z);
@@ -39,7 +39,7 @@ MaterialSideData mappedPbrSide(MaterialSideData side, MaterialData material, Sur
 // Lantern's framebuffer y runs down the eye's y (clipFromView flips it), which reverses the
 // frame's handedness. The texel's X and Y are scaled by the material's normal scale. Where no
 // frame can be built (the map's coordinates do not change across the pixel) n is kept.
-vec3 mappedNormal(vec3 n, vec4 tangent, vec3 dp1, vec3 dp2, SurfaceUv u, MaterialData material) {
+vec3 mappedNormal(vec3 n, vec4 tangent, vec3 dp1, vec3 dp2, MapUv u, MaterialData material) {
     vec3 m = mapTexel(normalTexture, u, draw.materialIndex, 1).xyz * 2.0 - 1.0;
     m.xy *= material.pbrParams.z;
     vec3 given = tangent.xyz - n * dot(n, tangent.xyz);
@@ -50,8 +50,9 @@ vec3 mappedNormal(vec3 n, vec4 tangent, vec3 dp1, vec3 dp2, SurfaceUv u, Materia
         vec3 mapped = safeNormalize(mat3(t, b, n) * m);
         return dot(mapped, mapped) > 0.0 ? mapped : n;
     }
-    vec2 duv1 = transformedGradient(material.mapUv[2], material.mapUv[3], u.dx);
-    vec2 duv2 = transformedGradient(material.mapUv[2], material.mapUv[3], u.dy);
+    SurfaceUv own = mapSet(u, draw.materialIndex, 1);
+    vec2 duv1 = transformedGradient(material.mapUv[2], material.mapUv[3], own.dx);
+    vec2 duv2 = transformedGradient(material.mapUv[2], material.mapUv[3], own.dy);
     vec3 dp2perp = cross(dp2, n), dp1perp = cross(n, dp1);
     vec3 t = dp2perp * duv1.x + dp1perp * duv2.x;
     vec3 b = dp2perp * duv1.y + dp1perp * duv2.y;
@@ -63,13 +64,13 @@ vec3 mappedNormal(vec3 n, vec4 tangent, vec3 dp1, vec3 dp2, SurfaceUv u, Materia
 }
 
 // The occlusion map's factor on the ambient term: 1 + strength (R - 1).
-float mappedOcclusion(SurfaceUv u, MaterialData material) {
+float mappedOcclusion(MapUv u, MaterialData material) {
     float ao = mapTexel(occlusionTexture, u, draw.materialIndex, 2).r;
     return 1.0 + material.pbrParams.w * (ao - 1.0);
 }
 
 // What the emissive map adds to a colour that already holds the side's emission: e (texel - 1).
-vec3 mappedEmissionChange(MaterialSideData side, SurfaceUv u) {
+vec3 mappedEmissionChange(MaterialSideData side, MapUv u) {
     vec3 texel = mapTexel(emissiveTexture, u, draw.materialIndex, 3).rgb;
     return side.emission.rgb * (texel - 1.0);
 }

@@ -22,7 +22,7 @@ layout(constant_id = LANTERN_SC_CLAMP) const uint SC_CLAMP = 0u;
 layout(constant_id = LANTERN_SC_UNLIT) const bool SC_UNLIT = false;
 layout(constant_id = LANTERN_SC_AMBIENT_FOLLOWS_DIFFUSE) const bool SC_AMBIENT_FOLLOWS_DIFFUSE = false;
 layout(constant_id = LANTERN_SC_OPAQUE) const bool SC_OPAQUE = true;
-layout(constant_id = LANTERN_SC_MAPS) const uint SC_MAPS = 15u;
+layout(constant_id = LANTERN_SC_MAPS) const uint SC_MAPS = 255u;
 layout(constant_id = LANTERN_SC_UNROLLED_LIGHTS) const uint SC_UNROLLED_LIGHTS = 0u;
 layout(constant_id = LANTERN_SC_LIGHT_KINDS) const uint SC_LIGHT_KINDS = 0u;
 layout(constant_id = LANTERN_SC_LIGHTS_UNIFORM) const bool SC_LIGHTS_UNIFORM = false;

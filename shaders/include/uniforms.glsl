@@ -99,15 +99,28 @@ vec4 baseColorTexel(SurfaceUv u, uint materialIndex) {
                              materials[materialIndex].uvRow1, u);
 }
 
-// Map `k` (0 metallic-roughness, 1 normal, 2 occlusion, 3 emissive) at the fragment.
-vec4 mapTexel(sampler2D s, SurfaceUv u, uint materialIndex, int k) {
-    return sampleTransformed(s, materials[materialIndex].mapUv[2 * k],
-                             materials[materialIndex].mapUv[2 * k + 1], u);
-}
-
-// The material's maps (LANTERN_MAP_*) that this variant compiles in.
+// The material's maps (LANTERN_MAP_*, with their second-set bits) that this variant compiles
+// in.
 uint materialMaps(uint materialIndex) {
     return SC_MAPS & uint(materials[materialIndex].params.y);
+}
+
+// The maps' texture coordinates: the primitive's set and its second (Primitive::texcoords1).
+struct MapUv {
+    SurfaceUv first;
+    SurfaceUv second;
+};
+
+// The coordinates map `k` (0 metallic-roughness, 1 normal, 2 occlusion, 3 emissive) reads.
+SurfaceUv mapSet(MapUv m, uint materialIndex, int k) {
+    const uint bit = 1u << (LANTERN_MAP_SECOND_SET_SHIFT + uint(k));
+    return (materialMaps(materialIndex) & bit) != 0u ? m.second : m.first;
+}
+
+// Map `k` at the fragment.
+vec4 mapTexel(sampler2D s, MapUv m, uint materialIndex, int k) {
+    return sampleTransformed(s, materials[materialIndex].mapUv[2 * k],
+                             materials[materialIndex].mapUv[2 * k + 1], mapSet(m, materialIndex, k));
 }
 
 // Per draw: the 128 bytes every device guarantees. The flat-lighting pre-pass

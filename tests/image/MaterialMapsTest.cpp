@@ -5,6 +5,7 @@
 //   image), and a zero normal scale what no map draws; given tangents orient its frame;
 // - an occlusion map scales the ambient term by 1 + strength (R - 1), in phong;
 // - an emissive map multiplies the emission (sRGB-decoded), in every shading mode;
+// - a map on the second texture-coordinate set reads it, in every shading mode;
 // - a metallic-roughness map draws, texel by texel, what the factors it scales draw.
 #include "LightingCompare.h"
 
@@ -190,6 +191,42 @@ TEST_F(MaterialMaps, TheEmissiveMapMultipliesTheEmissionInEveryMode) {
             for (int c = 0; c < 3; ++c)
                 EXPECT_NEAR(img.pixel(x, kSize / 2)[c], m.front.emission[c] * texels.pixel(x, kSize / 2)[c], 1e-6)
                     << "x " << x << " channel " << c;
+    }
+}
+
+// A map on the second texture-coordinate set (Primitive::texcoords1, a bake's TEXCOORD_1)
+// reads it, in every shading mode: the emissive map on a mirrored second set draws what it
+// draws on the first set mirrored, and not what the first set draws. In phong the occlusion
+// map does the same.
+TEST_F(MaterialMaps, AMapOnTheSecondSetReadsIt) {
+    Material m = test::phongMaterial({0.3, 0.3, 0.3}, {0.2, 0.2, 0.2, 1.0}, {0.0, 0.0, 0.0}, 1.0);
+    m.front.emission = {1.0, 0.5, 2.0};
+    m.emissiveMap.texture = 0;
+    m.occlusionMap.texture = 1;
+    const std::vector<Texture> maps = {halves({200, 100, 50, 255}, {10, 255, 128, 255}, true),
+                                       halves({255, 0, 0, 255}, {40, 0, 0, 255}, false)};
+    const std::vector<std::pair<Light, glm::dmat4>> lights = {
+        {test::makeLight(LightType::Directional), test::aimed({0, 0, 3}, {0, 0, -3})}};
+    auto mirrored = [](std::vector<glm::vec2> uv) {
+        for (glm::vec2& t : uv) t.x = 1.0f - t.x;
+        return uv;
+    };
+    for (ShadingMode mode : {ShadingMode::Phong, ShadingMode::Gouraud, ShadingMode::Flat}) {
+        SCOPED_TRACE(toString(mode));
+        // The maps on the first set, mirrored.
+        Scene first = square(m, maps, lights, glm::dvec3(0.2));
+        Primitive& p = first.meshes.at(0).primitives.at(0);
+        p.texcoords = mirrored(p.texcoords);
+        // The same maps on a second set that is mirrored; the first set is not.
+        Material onSecond = m;
+        onSecond.emissiveMap.secondSet = onSecond.occlusionMap.secondSet = true;
+        Scene second = square(onSecond, maps, lights, glm::dvec3(0.2));
+        Primitive& q = second.meshes.at(0).primitives.at(0);
+        q.texcoords1 = mirrored(q.texcoords);
+        const Image a = render(device(), first, mode), b = render(device(), second, mode);
+        const Image unmirrored = render(device(), square(m, maps, lights, glm::dvec3(0.2)), mode);
+        EXPECT_LT(interiorDifference(a, b), 2e-4) << test::saveComparison(a, b, "second_set");
+        EXPECT_GT(interiorDifference(b, unmirrored), 0.05) << "the second set changed nothing";
     }
 }
 

@@ -60,12 +60,15 @@ GltfBuilder manyFeatures() {
     GltfBuilder b;
     const int pos = b.addFloats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
     const int uv = b.addFloats({0, 0, 1, 0, 0, 1}, "VEC2");
-    b.addNode({{"mesh", b.addMesh({{"attributes", {{"POSITION", pos}, {"TEXCOORD_0", uv}}}, {"material", 0}})}});
+    const int uv1 = b.addFloats({1, 1, 0, 1, 1, 0}, "VEC2");
+    b.addNode({{"mesh", b.addMesh({{"attributes", {{"POSITION", pos}, {"TEXCOORD_0", uv}, {"TEXCOORD_1", uv1}}},
+                                   {"material", 0}})}});
     b.doc["images"] = json::array({{{"uri", "white.png"}}});
     b.doc["textures"] = json::array({{{"source", 0}}});
     b.doc["materials"] = json::array({json{
         {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"metallicRoughnessTexture", {{"index", 0}}}}},
-        {"emissiveTexture", {{"index", 0}, {"texCoord", 1}}},
+        {"occlusionTexture", {{"index", 0}, {"texCoord", 1}}},
+        {"emissiveTexture", {{"index", 0}, {"texCoord", 2}}},
         {"emissiveFactor", {1, 1, 1}},
         {"extensions", {{"KHR_materials_clearcoat", {{"clearcoatFactor", 0.5}}}}}}});
     b.doc["extensionsUsed"] = {"KHR_materials_clearcoat", "EXT_lights_image_based"};
@@ -91,10 +94,18 @@ TEST(Fidelity, AFilesFeaturesAreNotedWithTheirStatusRuleAndObjects) {
     const FeatureUse* coat = find(s, "KHR_materials_clearcoat");
     ASSERT_TRUE(coat);
     EXPECT_EQ(coat->objects, std::vector<std::string>{"materials[0].extensions.KHR_materials_clearcoat"});
-    const FeatureUse* sets = find(s, "texcoord-sets");
-    ASSERT_TRUE(sets);
-    EXPECT_EQ(sets->fidelity, Fidelity::Approximated);
-    EXPECT_EQ(sets->objects, std::vector<std::string>{"materials[0].emissiveTexture"});
+    // The occlusion map reads the second set; the emissive map a third, drawn with its mean.
+    std::vector<const FeatureUse*> sets;
+    for (const FeatureUse& f : s.features)
+        if (f.key == "texcoord-sets") sets.push_back(&f);
+    ASSERT_EQ(sets.size(), 2u);
+    EXPECT_EQ(sets[0]->fidelity, Fidelity::Supported);
+    EXPECT_EQ(sets[0]->objects, std::vector<std::string>{"materials[0].occlusionTexture"});
+    EXPECT_EQ(sets[1]->fidelity, Fidelity::Approximated);
+    EXPECT_EQ(sets[1]->rule, "map-mean-for-third-set");
+    EXPECT_EQ(sets[1]->objects, std::vector<std::string>{"materials[0].emissiveTexture"});
+    EXPECT_TRUE(s.materials[0].occlusionMap.secondSet);
+    EXPECT_EQ(s.meshes[0].primitives[0].texcoords1.size(), 3u);
     const FeatureUse* other = find(s, "other-extension");
     ASSERT_TRUE(other);
     EXPECT_EQ(other->fidelity, Fidelity::Skipped);
@@ -109,9 +120,9 @@ TEST(Fidelity, AFilesFeaturesAreNotedWithTheirStatusRuleAndObjects) {
     EXPECT_TRUE(std::is_sorted(ranks.begin(), ranks.end()));
 }
 
-// The dropped emissive map keeps its texture's mean in the factor: Khronos' MultiUVTest drew
-// a white cube, its emissive map on TEXCOORD_1 dropped and its factor of 1 kept.
-TEST(Fidelity, AMapOnAnotherSetLeavesItsMeanInTheFactor) {
+// A map on a third set keeps its texture's mean in the factor: Khronos' MultiUVTest drew a
+// white cube when its emissive map on TEXCOORD_1 was dropped and its factor of 1 kept.
+TEST(Fidelity, AMapOnAThirdSetLeavesItsMeanInTheFactor) {
     Image grey(2, 2);
     std::fill(grey.rgba.begin(), grey.rgba.end(), 0.25f);
     for (std::size_t i = 3; i < grey.rgba.size(); i += 4) grey.rgba[i] = 1.0f;
@@ -121,7 +132,8 @@ TEST(Fidelity, AMapOnAnotherSetLeavesItsMeanInTheFactor) {
     ASSERT_TRUE(o.scene) << o.scene.error().describe();
     // 0.25 linear written as sRGB 137 reads back as 0.2502.
     EXPECT_NEAR(o.scene->materials[0].front.emission.x, 0.25, 0.002);
-    EXPECT_TRUE(o.warned("drawn with its texture's mean")) << o.allWarnings();
+    EXPECT_TRUE(o.warned("reads TEXCOORD_2, a third set beside the material's TEXCOORD_0 and "
+                         "TEXCOORD_1")) << o.allWarnings();
 }
 
 TEST(Fidelity, InfoJsonAndRenderReportPrintThem) {

@@ -339,13 +339,32 @@ TEST(GltfScene, NormalOcclusionAndEmissiveTexturesAreReadAsMapsWithTheirEncoding
     EXPECT_EQ(m.normalMap.uvTransform, glm::dmat3(1.0));
     EXPECT_FALSE(o.scene->meshes[0].primitives[0].texcoords.empty()) << "TEXCOORD_0 read for the maps";
 
-    // A map on another TEXCOORD set than the others is left out with a warning; a strength
-    // outside [0, 1] is refused with its path.
+    // A map on another TEXCOORD set reads the primitive's second set (with a warning where the
+    // primitive has none); a third set is left out with a warning; a strength outside [0, 1]
+    // is refused with its path.
     b.doc["materials"][0]["emissiveTexture"]["texCoord"] = 1;
     auto other = loadCapturing(b.write(testOutputDir(), "maps_set1"));
     ASSERT_TRUE(other.scene) << other.scene.error().describe();
-    EXPECT_EQ(other.scene->materials[0].emissiveMap.texture, -1);
-    EXPECT_TRUE(other.warned("reads TEXCOORD_1 where the material's other textures read TEXCOORD_0")) << other.allWarnings();
+    EXPECT_GE(other.scene->materials[0].emissiveMap.texture, 0);
+    EXPECT_TRUE(other.scene->materials[0].emissiveMap.secondSet);
+    EXPECT_FALSE(other.scene->materials[0].occlusionMap.secondSet);
+    EXPECT_TRUE(other.warned("no TEXCOORD_1 for the material's maps that read it")) << other.allWarnings();
+    b.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] = b.addFloats({1, 1, 0, 1, 1, 0}, "VEC2");
+    auto second = loadCapturing(b.write(testOutputDir(), "maps_set1_given"));
+    ASSERT_TRUE(second.scene) << second.scene.error().describe();
+    EXPECT_EQ(second.scene->meshes[0].primitives[0].texcoords1,
+              (std::vector<glm::vec2>{{1, 1}, {0, 1}, {1, 0}}));
+    EXPECT_EQ(second.scene->meshes[0].primitives[0].texcoords.at(1), glm::vec2(1, 0));
+    // The second set is the first other one met (metallic-roughness, normal, occlusion,
+    // emissive): occlusion's TEXCOORD_2 here, so the emissive map's TEXCOORD_1 is a third.
+    b.doc["materials"][0]["occlusionTexture"]["texCoord"] = 2;
+    auto third = loadCapturing(b.write(testOutputDir(), "maps_set2"));
+    ASSERT_TRUE(third.scene) << third.scene.error().describe();
+    EXPECT_TRUE(third.scene->materials[0].occlusionMap.secondSet);
+    EXPECT_EQ(third.scene->materials[0].emissiveMap.texture, -1);
+    EXPECT_TRUE(third.warned("reads TEXCOORD_1, a third set beside the material's TEXCOORD_0 and "
+                             "TEXCOORD_2")) << third.allWarnings();
+    b.doc["materials"][0]["occlusionTexture"]["texCoord"] = 0;
     b.doc["materials"][0]["occlusionTexture"]["strength"] = 2.0;
     EXPECT_TRUE(refusedWith(loadCapturing(b.write(testOutputDir(), "maps_bad")),
                             "materials[0].occlusionTexture.strength", "[0, 1]"));

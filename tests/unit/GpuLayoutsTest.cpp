@@ -100,6 +100,7 @@ TEST(GpuLayouts, MirrorsMatchTheShippedSpirv) {
         LANTERN_ROW(FlatJob, colors),            LANTERN_ROW(FlatJob, cull),
         LANTERN_ROW(FlatJob, writeNormals),      LANTERN_ROW(FlatJob, view),
         LANTERN_ROW(FlatJob, viewport),          LANTERN_ROW(FlatJob, texcoords),
+        LANTERN_ROW(FlatJob, texcoords1),
         LANTERN_ROW(DeformJob, count),           LANTERN_ROW(DeformJob, flatMode),
         LANTERN_ROW(DeformJob, vertexCount),     LANTERN_ROW(DeformJob, position),
         LANTERN_ROW(DeformJob, normal),          LANTERN_ROW(DeformJob, joints),
@@ -123,7 +124,7 @@ TEST(GpuLayouts, EveryShaderMemberIsMirrored) {
     // A member added to a shader block but not to the C++ mirror is caught here.
     const std::map<std::string, std::size_t> expectedCounts = {
         {"FrameBlock", 6}, {"LightData", 8}, {"MaterialSideData", 4}, {"MaterialData", 8}, {"DrawBlock", 6},
-        {"DeformJob", 16}, {"FlatJob", 16}};
+        {"DeformJob", 16}, {"FlatJob", 17}};
     const Layouts layouts = allLayouts();
     for (const auto& [type, count] : expectedCounts) {
         auto it = layouts.find(type);

@@ -67,10 +67,12 @@ struct MaterialSide {
 enum class AlphaMode { Opaque, Mask, Blend };
 
 /// A texture a material reads besides its base colour, with its KHR_texture_transform. It
-/// reads the primitive's texture coordinates (Primitive::texcoords).
+/// reads the primitive's texture coordinates (Primitive::texcoords), or its second set
+/// (Primitive::texcoords1) when `secondSet`.
 struct TextureMap {
     int texture = -1;             ///< Scene::textures index; -1: none
     glm::dmat3 uvTransform{1.0};  ///< as Material::baseColorUvTransform
+    bool secondSet = false;       ///< reads Primitive::texcoords1 (a bake's TEXCOORD_1)
 };
 
 /// The glTF metallic-roughness factors a material's classic colours were mapped from (see
@@ -167,7 +169,12 @@ struct Primitive {
     /// they are then drawn unlit (base colour times vertex colour), as glTF recommends.
     std::vector<glm::vec3> normals;
     std::vector<glm::vec4> colors;     ///< empty, or COLOR_0 per vertex (linear RGBA)
-    std::vector<glm::vec2> texcoords;  ///< empty, or TEXCOORD_0 per vertex
+    /// Empty, or texture coordinates per vertex: the set the base colour and most maps read
+    /// (glTF: the material's set, TEXCOORD_0 in most files).
+    std::vector<glm::vec2> texcoords;
+    /// Empty, or the second set, which the maps with TextureMap::secondSet read (glTF: the
+    /// other TEXCOORD_n the material's maps name, such as a baked occlusion's TEXCOORD_1).
+    std::vector<glm::vec2> texcoords1;
     /// Empty, or a tangent per vertex (glTF TANGENT: xyz along +u, w = +-1 the sign of the
     /// bitangent cross(normal, tangent) w). The normal map's frame in phong; without it (and for
     /// skinned or morphed primitives) the frame comes from screen-space derivatives.

@@ -22,10 +22,15 @@ bool twoSidedLighting(const Lighting& lighting, const Material& material) noexce
 
 std::uint32_t materialMaps(const Material& m) noexcept {
     std::uint32_t bits = 0;
-    if (m.metallicRoughnessMap.texture >= 0 && m.pbr) bits |= kMapMetallicRoughness;
-    if (m.normalMap.texture >= 0) bits |= kMapNormal;
-    if (m.occlusionMap.texture >= 0) bits |= kMapOcclusion;
-    if (m.emissiveMap.texture >= 0) bits |= kMapEmissive;
+    auto add = [&](const TextureMap& map, std::uint32_t bit) {
+        if (map.texture < 0) return;
+        bits |= bit;
+        if (map.secondSet) bits |= bit << kMapSecondSetShift;
+    };
+    if (m.pbr) add(m.metallicRoughnessMap, kMapMetallicRoughness);
+    add(m.normalMap, kMapNormal);
+    add(m.occlusionMap, kMapOcclusion);
+    add(m.emissiveMap, kMapEmissive);
     return bits;
 }
 

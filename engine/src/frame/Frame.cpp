@@ -66,7 +66,9 @@ DrawFeatures drawFeatures(const Material& mat, const Draw& d, const LightFeature
     // gouraud and flat shading apply only the emissive map (docs/gl-differences.md).
     if (d.hasTexcoords && d.topology == Topology::Triangles && !unlit)
         f.maps = materialMaps(mat) &
-                 (lighting.program == Program::Phong ? kMapAll : kMapEmissive);
+                 (lighting.program == Program::Phong
+                      ? kMapAll | kMapSecondSets
+                      : kMapEmissive | (kMapEmissive << kMapSecondSetShift));
     // A metallic-roughness map gives specular colour per texel even where the factors give
     // none (a rough metal: specular 0).
     const bool materialSpecular = nonZero(mat.front.specular) ||

@@ -62,9 +62,13 @@ enum MapBit : std::uint32_t {
     kMapOcclusion = 4,
     kMapEmissive = 8,
     kMapAll = 15,
+    /// A map's bit shifted by kMapSecondSetShift: it reads Primitive::texcoords1.
+    kMapSecondSetShift = 4,
+    kMapSecondSets = 240,
 };
 
-/// The maps a material has (MapBit): a metallic-roughness map only with `pbr`.
+/// The maps a material has (MapBit), each with its second-set bit when it reads
+/// Primitive::texcoords1: a metallic-roughness map only with `pbr`.
 std::uint32_t materialMaps(const Material& material) noexcept;
 
 /// A camera resolved for one view, in double precision.

@@ -57,6 +57,7 @@ FlatJob planJob(const DrawCommand& d, const PrimitiveBuffers& gp, const DeformSt
     j.positions = std::uint32_t((moved ? moved->position : gp.position) / 4);
     j.colors = gp.color != kNoStream ? std::uint32_t(gp.color / 4) : LANTERN_DEFORM_NONE;
     j.texcoords = gp.texcoord != kNoStream ? std::uint32_t(gp.texcoord / 4) : LANTERN_DEFORM_NONE;
+    j.texcoords1 = gp.texcoord1 != kNoStream ? std::uint32_t(gp.texcoord1 / 4) : LANTERN_DEFORM_NONE;
     j.cull = (d.cullBack ? LANTERN_FLAT_CULL_BACK : 0u) |
              (d.frontClockwise ? LANTERN_FLAT_FRONT_CLOCKWISE : 0u);
     j.writeNormals = aovs ? 1u : 0u;

@@ -136,7 +136,8 @@ struct FlatJob {
     std::uint32_t view = 0;
     Vec4 viewport;                               // x, y: half the view's size in pixels
     std::uint32_t texcoords = LANTERN_DEFORM_NONE;  // texture coordinates (uv); NONE: zero
-    std::uint32_t padding[3] = {};               // std430 rounds the struct to 16 bytes
+    std::uint32_t texcoords1 = LANTERN_DEFORM_NONE; // the second set; NONE: zero
+    std::uint32_t padding[2] = {};               // std430 rounds the struct to 16 bytes
 };
 static_assert(sizeof(FlatJob) == 192);
 static_assert(offsetof(FlatJob, flatBase) == 124);

@@ -200,11 +200,17 @@ Result<GraphicsPipelineDesc> Pipelines::describe(const PipelineKey& key) {
         d.bindings.push_back({at.location, at.stride, VK_VERTEX_INPUT_RATE_VERTEX});
         d.attributes.push_back({at.location, at.location, at.format, 0});
     }
-    // mesh.vert (phong and floor) reads the tangents too.
+    // mesh.vert (phong and floor) reads the tangents too; every vertex stage with streams
+    // the second texture-coordinate set.
     if (!key.flatPerTriangle && (key.program == Program::Phong || key.program == Program::Floor)) {
         d.bindings.push_back({LANTERN_LOC_TANGENT, 16, VK_VERTEX_INPUT_RATE_VERTEX});
         d.attributes.push_back(
             {LANTERN_LOC_TANGENT, LANTERN_LOC_TANGENT, VK_FORMAT_R32G32B32A32_SFLOAT, 0});
+    }
+    if (!key.flatPerTriangle) {
+        d.bindings.push_back({LANTERN_LOC_TEXCOORD1, 8, VK_VERTEX_INPUT_RATE_VERTEX});
+        d.attributes.push_back(
+            {LANTERN_LOC_TEXCOORD1, LANTERN_LOC_TEXCOORD1, VK_FORMAT_R32G32_SFLOAT, 0});
     }
     // Without the surface plane the pipeline has no attachment at its location, and the
     // shader's writes there are discarded (a null attachment would need its format undefined,

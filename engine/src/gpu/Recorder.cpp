@@ -62,7 +62,7 @@ void FrameRecorder::beginAttachments() const {
 }
 
 // The primitive's streams, one binding per attribute location; absent colours, texture
-// coordinates and tangents read a stride-0 default (white, zero, zero). `flatJob`: a flat draw lit by the
+// coordinates (either set) and tangents read a stride-0 default (white, zero, zero). `flatJob`: a flat draw lit by the
 // per-triangle pass, which binds no streams: its index list, written by the pass at three
 // times the draw's first record, names vertices whose corners flat.vert pulls from the job.
 void FrameRecorder::bindStreams(const DrawCommand& d, std::uint32_t flatJob) const {
@@ -95,6 +95,11 @@ void FrameRecorder::bindStreams(const DrawCommand& d, std::uint32_t flatJob) con
             texcoord ? gp.flatTexcoord : scene.defaultTexcoordOffset(), texcoord ? 8 : 0);
         set(LANTERN_LOC_CENTROID, ds ? moved : flat, ds ? ds->centroid : gp.flatCentroid, 12);
         vkCmdBindVertexBuffers2(cmd, 0, LANTERN_VERTEX_BINDINGS, buffers, offsets, nullptr, strides);
+        const bool texcoord1 = gp.flatTexcoord1 != kNoStream;
+        const VkBuffer b1 = texcoord1 ? flat : geometry;
+        const VkDeviceSize o1 = texcoord1 ? gp.flatTexcoord1 : scene.defaultTexcoordOffset();
+        const VkDeviceSize s1 = texcoord1 ? 8 : 0;
+        vkCmdBindVertexBuffers2(cmd, LANTERN_LOC_TEXCOORD1, 1, &b1, &o1, nullptr, &s1);
         vkCmdDraw(cmd, gp.flatVertexCount, 1, 0, 0);
         return;
     }
@@ -122,6 +127,10 @@ void FrameRecorder::bindStreams(const DrawCommand& d, std::uint32_t flatJob) con
         const VkDeviceSize stride = tangent ? 16 : 0;
         vkCmdBindVertexBuffers2(cmd, LANTERN_LOC_TANGENT, 1, &geometry, &offset, nullptr, &stride);
     }
+    const bool texcoord1 = gp.texcoord1 != kNoStream;
+    const VkDeviceSize o1 = texcoord1 ? gp.texcoord1 : scene.defaultTexcoordOffset();
+    const VkDeviceSize s1 = texcoord1 ? 8 : 0;
+    vkCmdBindVertexBuffers2(cmd, LANTERN_LOC_TEXCOORD1, 1, &geometry, &o1, nullptr, &s1);
     if (gp.indexCount > 0) {
         vkCmdBindIndexBuffer(cmd, geometry, gp.index, VK_INDEX_TYPE_UINT32);
         vkCmdDrawIndexed(cmd, gp.indexCount, 1, 0, 0, 0);

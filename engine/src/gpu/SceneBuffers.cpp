@@ -90,6 +90,45 @@ FlatElement flatElement(const Primitive& p, const std::uint32_t (&v)[3]) {
     return f;
 }
 
+
+// Where primitive `p`'s streams go in the geometry buffer, from byte `size` on (advanced past
+// them, each 16-byte aligned).
+Result<PrimitiveBuffers> layOut(const Primitive& p, VkDeviceSize& size) {
+    PrimitiveBuffers gp;
+    const VkDeviceSize n = p.positions.size();
+    if (n > std::numeric_limits<std::uint32_t>::max() ||
+        p.indices.size() > std::numeric_limits<std::uint32_t>::max())
+        return tooLarge("a primitive");
+    gp.vertexCount = std::uint32_t(n);
+    gp.corners = std::uint32_t(p.verticesPerElement());
+    gp.indexCount = std::uint32_t(p.indices.size());
+    gp.position = size;
+    size = align16(size + n * 12);
+    gp.normal = size;
+    size = align16(size + n * 12);
+    if (!p.colors.empty()) {
+        gp.color = size;
+        size = align16(size + n * 16);
+    }
+    if (!p.texcoords.empty()) {
+        gp.texcoord = size;
+        size = align16(size + n * 8);
+    }
+    if (!p.texcoords1.empty()) {
+        gp.texcoord1 = size;
+        size = align16(size + n * 8);
+    }
+    if (!p.tangents.empty()) {
+        gp.tangent = size;
+        size = align16(size + n * 16);
+    }
+    if (!p.indices.empty()) {
+        gp.index = size;
+        size = align16(size + p.indices.size() * 4);
+    }
+    return gp;
+}
+
 } // namespace
 
 SceneBuffers::~SceneBuffers() {
@@ -113,35 +152,9 @@ Result<std::shared_ptr<SceneBuffers>> SceneBuffers::create(std::shared_ptr<Conte
     for (const Mesh& mesh : s.meshes) {
         g->m_meshFirst.push_back(g->m_primitives.size());
         for (const Primitive& p : mesh.primitives) {
-            PrimitiveBuffers gp;
-            const VkDeviceSize n = p.positions.size();
-            if (n > std::numeric_limits<std::uint32_t>::max() ||
-                p.indices.size() > std::numeric_limits<std::uint32_t>::max())
-                return tooLarge("a primitive");
-            gp.vertexCount = std::uint32_t(n);
-            gp.corners = std::uint32_t(p.verticesPerElement());
-            gp.indexCount = std::uint32_t(p.indices.size());
-            gp.position = size;
-            size = align16(size + n * 12);
-            gp.normal = size;
-            size = align16(size + n * 12);
-            if (!p.colors.empty()) {
-                gp.color = size;
-                size = align16(size + n * 16);
-            }
-            if (!p.texcoords.empty()) {
-                gp.texcoord = size;
-                size = align16(size + n * 8);
-            }
-            if (!p.tangents.empty()) {
-                gp.tangent = size;
-                size = align16(size + n * 16);
-            }
-            if (!p.indices.empty()) {
-                gp.index = size;
-                size = align16(size + p.indices.size() * 4);
-            }
-            g->m_primitives.push_back(gp);
+            auto gp = layOut(p, size);
+            if (!gp) return std::move(gp).error();
+            g->m_primitives.push_back(*gp);
         }
     }
     Context& c = *g->m_ctx;
@@ -171,6 +184,7 @@ Result<std::shared_ptr<SceneBuffers>> SceneBuffers::create(std::shared_ptr<Conte
                 put(dst, gp.normal, p.normals);
             if (gp.color != kNoStream) put(dst, gp.color, p.colors);
             if (gp.texcoord != kNoStream) put(dst, gp.texcoord, p.texcoords);
+            if (gp.texcoord1 != kNoStream) put(dst, gp.texcoord1, p.texcoords1);
             if (gp.tangent != kNoStream) put(dst, gp.tangent, p.tangents);
             if (gp.index != kNoStream) put(dst, gp.index, p.indices);
         }
@@ -213,6 +227,10 @@ Result<void> SceneBuffers::ensureFlatStreams(bool triangles) {
                 gp.flatTexcoord = size;
                 size = align16(size + n * 8);
             }
+            if (!p.texcoords1.empty()) {
+                gp.flatTexcoord1 = size;
+                size = align16(size + n * 8);
+            }
         }
     m_flatReady = !any;
     m_flatTriangles = triangles;
@@ -246,6 +264,7 @@ Result<void> SceneBuffers::fillFlatStreams() {
             auto* cen = reinterpret_cast<glm::vec3*>(dst + gp.flatCentroid);
             auto* col = gp.flatColor != kNoStream ? reinterpret_cast<glm::vec4*>(dst + gp.flatColor) : nullptr;
             auto* tex = gp.flatTexcoord != kNoStream ? reinterpret_cast<glm::vec2*>(dst + gp.flatTexcoord) : nullptr;
+            auto* tex1 = gp.flatTexcoord1 != kNoStream ? reinterpret_cast<glm::vec2*>(dst + gp.flatTexcoord1) : nullptr;
             const std::size_t corners = p.verticesPerElement(), elements = p.elementCount();
             for (std::size_t e = 0; e < elements; ++e) {
                 std::uint32_t v[3] = {};
@@ -260,6 +279,7 @@ Result<void> SceneBuffers::fillFlatStreams() {
                     cen[o] = f.centroid;
                     if (col) col[o] = f.color;
                     if (tex) tex[o] = p.texcoords[v[c]];
+                    if (tex1) tex1[o] = p.texcoords1[v[c]];
                 }
             }
         }

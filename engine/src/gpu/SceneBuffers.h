@@ -21,12 +21,12 @@ inline constexpr VkDeviceSize kNoStream = ~VkDeviceSize(0);
 struct PrimitiveBuffers {
     // Offsets into the geometry buffer; kNoStream for absent colours/texcoords.
     VkDeviceSize position = 0, normal = 0, color = kNoStream, texcoord = kNoStream,
-                 tangent = kNoStream, index = kNoStream;
+                 texcoord1 = kNoStream, tangent = kNoStream, index = kNoStream;
     std::uint32_t vertexCount = 0;
     std::uint32_t indexCount = 0;  ///< 0: non-indexed
     // Offsets into the flat-geometry buffer (valid once flat streams exist).
     VkDeviceSize flatPosition = 0, flatNormal = 0, flatColor = kNoStream,
-                 flatTexcoord = kNoStream, flatCentroid = 0;
+                 flatTexcoord = kNoStream, flatTexcoord1 = kNoStream, flatCentroid = 0;
     std::uint32_t flatVertexCount = 0;
     std::uint32_t corners = 3;  ///< vertices per element: 3 triangles, 2 lines, 1 points
     // Words into the deformation-input buffer (primitives with joints or morph targets).

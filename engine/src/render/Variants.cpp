@@ -10,7 +10,9 @@ namespace {
 
 static_assert(frame::kMapMetallicRoughness == LANTERN_MAP_METALLIC_ROUGHNESS &&
               frame::kMapNormal == LANTERN_MAP_NORMAL && frame::kMapOcclusion == LANTERN_MAP_OCCLUSION &&
-              frame::kMapEmissive == LANTERN_MAP_EMISSIVE && frame::kMapAll == LANTERN_MAP_ALL);
+              frame::kMapEmissive == LANTERN_MAP_EMISSIVE && frame::kMapAll == LANTERN_MAP_ALL &&
+              frame::kMapSecondSetShift == LANTERN_MAP_SECOND_SET_SHIFT &&
+              frame::kMapSecondSets == LANTERN_MAP_SECOND_SETS);
 
 std::uint32_t lightTypeBits(const frame::LightFeatures& l) {
     std::uint32_t bits = 0;
@@ -72,7 +74,7 @@ gpu::PipelineKey pipelineKey(const frame::Frame& frame, const frame::Draw& d,
     sc[LANTERN_SC_UNLIT] = f.unlit;
     sc[LANTERN_SC_AMBIENT_FOLLOWS_DIFFUSE] = f.ambientFollowsDiffuse;
     sc[LANTERN_SC_OPAQUE] = !f.blend;
-    sc[LANTERN_SC_MAPS] = all ? LANTERN_MAP_ALL : f.maps;
+    sc[LANTERN_SC_MAPS] = all ? LANTERN_MAP_ALL | LANTERN_MAP_SECOND_SETS : f.maps;
     // A loop over up to LANTERN_UNIFORM_LIGHTS lights reads them from a uniform buffer, which
     // llvmpipe reads faster at an index that differs between lanes; unrolled lights (read at
     // constant indices, where the storage buffer is the faster on llvmpipe), more lights and
@@ -125,6 +127,7 @@ std::string describe(const gpu::PipelineKey& k) {
                              std::pair{LANTERN_MAP_OCCLUSION, "occlusion-map"},
                              std::pair{LANTERN_MAP_EMISSIVE, "emissive-map"}})
         if (maps & bit) s << " " << name;
+    if (maps & LANTERN_MAP_SECOND_SETS) s << " second-uv-set";
     const char* clamps[] = {"", " clamp", " gl-clamp"};
     s << clamps[std::min<std::uint32_t>(k.constants[LANTERN_SC_CLAMP], 2)];
     s << (k.constants[LANTERN_SC_OPAQUE] ? " opaque" : "");

@@ -43,7 +43,7 @@ const std::vector<FeatureUse>& fidelityKeys() {
         row("triangles"),
         row("points-lines"),
         row("attributes"),
-        row("texcoord-sets", F::Approximated, "map-mean-for-missing-set"),
+        row("texcoord-sets"),
         row("tangents"),
         row("skins"),
         row("morph-targets"),

@@ -77,6 +77,10 @@ Result<void> validatePrimitive(const Primitive& prim, const std::string& obj,
     if (!prim.texcoords.empty() && prim.texcoords.size() != n)
         return invalid(obj, "has " + std::to_string(prim.texcoords.size()) +
                                 " texture coordinates for " + std::to_string(n) + " positions");
+    if (!prim.texcoords1.empty() && prim.texcoords1.size() != n)
+        return invalid(obj, "has " + std::to_string(prim.texcoords1.size()) +
+                                " second texture coordinates for " + std::to_string(n) +
+                                " positions");
     if (!prim.tangents.empty() && prim.tangents.size() != n)
         return invalid(obj, "has " + std::to_string(prim.tangents.size()) + " tangents for " +
                                 std::to_string(n) + " positions");
@@ -107,6 +111,9 @@ Result<void> validatePrimitive(const Primitive& prim, const std::string& obj,
     for (std::size_t i = 0; i < prim.texcoords.size(); ++i)
         if (!std::isfinite(prim.texcoords[i].x) || !std::isfinite(prim.texcoords[i].y))
             return invalid(obj + "." + at("texcoords", i), "non-finite texture coordinate");
+    for (std::size_t i = 0; i < prim.texcoords1.size(); ++i)
+        if (!std::isfinite(prim.texcoords1[i].x) || !std::isfinite(prim.texcoords1[i].y))
+            return invalid(obj + "." + at("texcoords1", i), "non-finite texture coordinate");
     for (std::size_t i = 0; i < prim.tangents.size(); ++i)
         if (!finite(glm::vec3(prim.tangents[i])) || !std::isfinite(prim.tangents[i].w))
             return invalid(obj + "." + at("tangents", i), "non-finite tangent");

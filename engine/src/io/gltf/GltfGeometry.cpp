@@ -142,9 +142,9 @@ int attributeAccessor(const tinygltf::Primitive& prim, const std::string& name) 
     return it == prim.attributes.end() ? -1 : it->second;
 }
 
-// POSITION (accessor `positionAccessor`), and NORMAL, COLOR_0, the TEXCOORD set of the
-// material's base colour texture, and TANGENT for a normal-mapped material, when the primitive
-// has them.
+// POSITION (accessor `positionAccessor`), and NORMAL, COLOR_0, the material's TEXCOORD set
+// and its second (materialSecondTexcoordSet), and TANGENT for a normal-mapped material, when
+// the primitive has them.
 Result<void> readAttributes(const tinygltf::Model& model, const tinygltf::Primitive& prim,
                             int positionAccessor, const std::string& obj, const Diagnostics& diag,
                             Primitive& out) {
@@ -186,6 +186,19 @@ Result<void> readAttributes(const tinygltf::Model& model, const tinygltf::Primit
     } else if (hasTextures(model, prim.material)) {
         diag.warn(obj + ".attributes", "no " + texcoordName +
                                            " for the material's textures; they are not applied");
+    }
+    const int second = prim.material < 0 ? -1
+                       : materialSecondTexcoordSet(model.materials[std::size_t(prim.material)]);
+    if (second >= 0) {
+        const std::string name = "TEXCOORD_" + std::to_string(second);
+        if (const int a = attribute(name); a >= 0) {
+            auto uv = readFloats(model, a, obj + ".attributes." + name, diag);
+            if (!uv) return std::move(uv).error();
+            LANTERN_TAKE(out.texcoords1, toVectors<glm::vec2>(*uv, 2, obj + ".attributes." + name, diag));
+        } else {
+            diag.warn(obj + ".attributes", "no " + name +
+                                               " for the material's maps that read it; they read (0, 0)");
+        }
     }
     return {};
 }

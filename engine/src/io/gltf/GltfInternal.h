@@ -94,6 +94,9 @@ int texCoordOf(const tinygltf::TextureInfo& info);
 /// The TEXCOORD set a material's textures read: the base colour's, else the first of the
 /// metallic-roughness, normal, occlusion and emissive textures' (0 without textures).
 int materialTexcoordSet(const tinygltf::Material& material);
+/// The other TEXCOORD set the material's maps read (the first met: metallic-roughness,
+/// normal, occlusion, emissive), or -1 when they all read materialTexcoordSet.
+int materialSecondTexcoordSet(const tinygltf::Material& material);
 
 /// Whether a material the primitive may be drawn with (its own, or one of its
 /// KHR_materials_variants mappings) has a normal map: only then are its tangents read.

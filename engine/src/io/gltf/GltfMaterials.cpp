@@ -107,9 +107,9 @@ public:
 
     const Diagnostics& diagnostics() const { return m_diag; }
 
-    /// Maps drawn with their texture's mean because they read a TEXCOORD set the primitive's
-    /// one set is not (the fidelity report's texcoord-sets).
-    std::vector<std::string> meanMaps;
+    /// Maps on the material's second TEXCOORD set, and maps drawn with their texture's mean
+    /// because they read a third (the fidelity report's texcoord-sets).
+    std::vector<std::string> secondSetMaps, meanMaps;
 
 private:
     Result<Texture> decode(int source) {
@@ -210,11 +210,12 @@ tinygltf::TextureInfo infoOf(int index, int texCoord, const tinygltf::ExtensionM
 }
 
 // The metallic-roughness, normal, occlusion and emissive maps (phong shading; gouraud and
-// flat apply the emissive map and the factors). A map that reads another TEXCOORD set than
-// the material's (materialTexcoordSet) is left out with a warning: a primitive keeps one set.
+// flat apply the emissive map and the factors). A map reads the material's set
+// (materialTexcoordSet) or its second (materialSecondTexcoordSet, TextureMap::secondSet); one
+// that reads a third is left out with a warning: a primitive keeps two sets.
 Result<void> readMaps(const tinygltf::Material& src, const std::string& obj,
                       TextureTable& textures, const Diagnostics& diag, Material& m) {
-    const int set = materialTexcoordSet(src);
+    const int set = materialTexcoordSet(src), second = materialSecondTexcoordSet(src);
     auto meanInstead = [&](const tinygltf::TextureInfo& info, const std::string& name,
                            const std::string& where, bool srgb) -> Result<void> {
         auto mean = textures.meanColour(info.index, where, srgb);
@@ -230,19 +231,22 @@ Result<void> readMaps(const tinygltf::Material& src, const std::string& obj,
                     TextureMap& out) -> Result<void> {
         if (info.index < 0) return {};
         const std::string where = obj + "." + name;
-        if (texCoordOf(info) != set) {
-            // Left out, its texture's mean stays in the factor it scales: an emissive map on
-            // TEXCOORD_1 with an emissive factor of 1 (Khronos' MultiUVTest) drew white.
-            diag.warn(where, "reads TEXCOORD_" + std::to_string(texCoordOf(info)) +
-                                 " where the material's other textures read TEXCOORD_" +
-                                 std::to_string(set) + "; drawn with its texture's mean");
+        const int own = texCoordOf(info);
+        if (own != set && own != second) {
+            // Left out, its texture's mean stays in the factor it scales: a map dropped with
+            // a factor of 1 would draw white where the map darkens.
+            diag.warn(where, "reads TEXCOORD_" + std::to_string(own) +
+                                 ", a third set beside the material's TEXCOORD_" +
+                                 std::to_string(set) + " and TEXCOORD_" + std::to_string(second) +
+                                 " (a primitive keeps two); drawn with its texture's mean");
             return meanInstead(info, name, where, srgb);
         }
         auto t = textures.get(info.index, where, srgb);
         if (!t) return std::move(t).error();
         auto uv = uvTransformOf(info, where, diag);
         if (!uv) return std::move(uv).error();
-        out = TextureMap{*t, *uv};
+        out = TextureMap{*t, *uv, own != set};
+        if (own != set) textures.secondSetMaps.push_back(where);
         return {};
     };
     const tinygltf::PbrMetallicRoughness& pbr = src.pbrMetallicRoughness;
@@ -366,7 +370,11 @@ Result<void> convertMaterials(const tinygltf::Model& model, const RawFacts& raw,
         if (!m) return inFile(std::move(m).error(), diag);
         scene.materials.push_back(std::move(*m));
     }
-    for (const std::string& where : textures.meanMaps) scene::noteFeature(scene, "texcoord-sets", where);
+    for (const std::string& where : textures.secondSetMaps)
+        scene::noteFeature(scene, "texcoord-sets", where);
+    for (const std::string& where : textures.meanMaps)
+        scene::noteFeature(scene, "texcoord-sets", where, Fidelity::Approximated,
+                           "map-mean-for-third-set");
     return {};
 }
 
@@ -379,6 +387,17 @@ int materialTexcoordSet(const tinygltf::Material& m) {
           std::tuple{m.occlusionTexture.index, m.occlusionTexture.texCoord, &m.occlusionTexture.extensions}})
         if (index >= 0) return texCoordOf(infoOf(index, texCoord, *extensions));
     return m.emissiveTexture.index >= 0 ? texCoordOf(m.emissiveTexture) : 0;
+}
+
+int materialSecondTexcoordSet(const tinygltf::Material& m) {
+    const int first = materialTexcoordSet(m);
+    const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
+    for (const tinygltf::TextureInfo& info :
+         {pbr.metallicRoughnessTexture, infoOf(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions),
+          infoOf(m.occlusionTexture.index, m.occlusionTexture.texCoord, m.occlusionTexture.extensions),
+          m.emissiveTexture})
+        if (info.index >= 0 && texCoordOf(info) != first) return texCoordOf(info);
+    return -1;
 }
 
 int texCoordOf(const tinygltf::TextureInfo& info) {
