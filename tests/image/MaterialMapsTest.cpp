@@ -86,17 +86,27 @@ double srgbToLinear(int byte) {
 
 class MaterialMaps : public GpuTest {};
 
-TEST_F(MaterialMaps, ANormalMapDrawsWhatTheSameNormalPerVertexDraws) {
-    const Material shiny = test::phongMaterial({0.1, 0.1, 0.1}, {0.7, 0.6, 0.5, 1.0}, {0.6, 0.6, 0.6}, 30.0);
-    const std::vector<std::pair<Light, glm::dmat4>> lights = {
+// A shiny material lit obliquely, and a normal map of one texel: tangent-space (0.3, 0.4, 1)
+// normalised, stored as bytes, and `decoded` as the shader decodes it.
+struct NormalMapCase {
+    Material shiny = test::phongMaterial({0.1, 0.1, 0.1}, {0.7, 0.6, 0.5, 1.0}, {0.6, 0.6, 0.6}, 30.0);
+    std::vector<std::pair<Light, glm::dmat4>> lights = {
         {test::makeLight(LightType::Directional), test::aimed({1, 2, 3}, {-1, -2, -3})}};
-    // Tangent-space (0.3, 0.4, 1) normalised, stored as bytes; decoded as the shader decodes.
-    const glm::dvec3 t = glm::normalize(glm::dvec3(0.3, 0.4, 1.0));
-    const glm::u8vec4 texel(std::uint8_t(std::lround((t.x + 1) * 127.5)), std::uint8_t(std::lround((t.y + 1) * 127.5)),
-                            std::uint8_t(std::lround((t.z + 1) * 127.5)), 255);
-    const glm::vec3 decoded = glm::normalize(glm::vec3(texel) / 255.0f * 2.0f - 1.0f);
-    Material mapped = shiny;
-    mapped.normalMap.texture = 0;
+    glm::u8vec4 texel;
+    glm::vec3 decoded;
+    Material mapped;
+    NormalMapCase() {
+        const glm::dvec3 t = glm::normalize(glm::dvec3(0.3, 0.4, 1.0));
+        auto byte = [](double c) { return std::uint8_t(std::lround((c + 1) * 127.5)); };
+        texel = glm::u8vec4(byte(t.x), byte(t.y), byte(t.z), 255);
+        decoded = glm::normalize(glm::vec3(texel) / 255.0f * 2.0f - 1.0f);
+        mapped = shiny;
+        mapped.normalMap.texture = 0;
+    }
+};
+
+TEST_F(MaterialMaps, ANormalMapDrawsWhatTheSameNormalPerVertexDraws) {
+    auto [shiny, lights, texel, decoded, mapped] = NormalMapCase();
     const Image withMap = render(device(), square(mapped, {halves(texel, texel, false)}, lights, glm::dvec3(0.2)));
     const Image perVertex = render(device(), square(shiny, {}, lights, glm::dvec3(0.2), decoded));
     const Image flat = render(device(), square(shiny, {}, lights, glm::dvec3(0.2)));
@@ -116,25 +126,19 @@ TEST_F(MaterialMaps, ANormalMapDrawsWhatTheSameNormalPerVertexDraws) {
 // along +u draws what the frame from derivatives draws; turned or with w = -1, the map tilts
 // the normal the way the given frame says, though the texture coordinates are the same.
 TEST_F(MaterialMaps, GivenTangentsOrientTheNormalMapsFrame) {
-    const Material shiny = test::phongMaterial({0.1, 0.1, 0.1}, {0.7, 0.6, 0.5, 1.0}, {0.6, 0.6, 0.6}, 30.0);
-    const std::vector<std::pair<Light, glm::dmat4>> lights = {
-        {test::makeLight(LightType::Directional), test::aimed({1, 2, 3}, {-1, -2, -3})}};
-    const glm::dvec3 t = glm::normalize(glm::dvec3(0.3, 0.4, 1.0));
-    const glm::u8vec4 texel(std::uint8_t(std::lround((t.x + 1) * 127.5)), std::uint8_t(std::lround((t.y + 1) * 127.5)),
-                            std::uint8_t(std::lround((t.z + 1) * 127.5)), 255);
-    const glm::vec3 m = glm::normalize(glm::vec3(texel) / 255.0f * 2.0f - 1.0f);
-    Material mapped = shiny;
-    mapped.normalMap.texture = 0;
+    const NormalMapCase n;  // no structured bindings: lambdas capture them only from clang 16
+    const glm::vec3 m = n.decoded;
     auto withTangent = [&](const glm::vec4& tangent) {
-        Scene scene = square(mapped, {halves(texel, texel, false)}, lights, glm::dvec3(0.2));
+        Scene scene = square(n.mapped, {halves(n.texel, n.texel, false)}, n.lights, glm::dvec3(0.2));
         Primitive& p = scene.meshes.at(0).primitives.at(0);
         p.tangents.assign(p.positions.size(), tangent);
         return render(device(), scene);
     };
     auto perVertex = [&](const glm::vec3& normal) {
-        return render(device(), square(shiny, {}, lights, glm::dvec3(0.2), normal));
+        return render(device(), square(n.shiny, {}, n.lights, glm::dvec3(0.2), normal));
     };
-    const Image derivatives = render(device(), square(mapped, {halves(texel, texel, false)}, lights, glm::dvec3(0.2)));
+    const Image derivatives =
+        render(device(), square(n.mapped, {halves(n.texel, n.texel, false)}, n.lights, glm::dvec3(0.2)));
     const Image alongU = withTangent({1, 0, 0, 1});
     EXPECT_LT(interiorDifference(alongU, derivatives), 2e-4) << test::saveComparison(alongU, derivatives, "tangent_u");
     struct Case {
