@@ -103,34 +103,28 @@ void FrameRecorder::bindStreams(const DrawCommand& d, std::uint32_t flatJob) con
         vkCmdDraw(cmd, gp.flatVertexCount, 1, 0, 0);
         return;
     }
-    const bool color = gp.color != kNoStream, texcoord = gp.texcoord != kNoStream;
-    VkBuffer buffers[LANTERN_LOC_CENTROID];
-    VkDeviceSize offsets[LANTERN_LOC_CENTROID], strides[LANTERN_LOC_CENTROID];
+    // One call for every location up to the second texture set; the centroid's (flat only)
+    // reads the zero default, unused. A deformed draw's tangents are not moved by the
+    // pre-pass, so it takes the zero tangent (the frame from derivatives).
+    constexpr std::uint32_t kBindings = LANTERN_LOC_TEXCOORD1 + 1;
+    static_assert(LANTERN_LOC_CENTROID < kBindings && LANTERN_LOC_TANGENT < kBindings);
+    VkBuffer buffers[kBindings];
+    VkDeviceSize offsets[kBindings], strides[kBindings];
     for (VkBuffer& b : buffers) b = geometry;
-    offsets[LANTERN_LOC_POSITION] = gp.position, strides[LANTERN_LOC_POSITION] = 12;
-    offsets[LANTERN_LOC_NORMAL] = gp.normal, strides[LANTERN_LOC_NORMAL] = 12;
-    if (ds) {
-        buffers[LANTERN_LOC_POSITION] = buffers[LANTERN_LOC_NORMAL] = moved;
-        offsets[LANTERN_LOC_POSITION] = ds->position;
-        offsets[LANTERN_LOC_NORMAL] = ds->normal;
-    }
-    offsets[LANTERN_LOC_COLOR] = color ? gp.color : scene.defaultColorOffset();
-    strides[LANTERN_LOC_COLOR] = color ? 16 : 0;
-    offsets[LANTERN_LOC_TEXCOORD] = texcoord ? gp.texcoord : scene.defaultTexcoordOffset();
-    strides[LANTERN_LOC_TEXCOORD] = texcoord ? 8 : 0;
-    vkCmdBindVertexBuffers2(cmd, 0, LANTERN_LOC_CENTROID, buffers, offsets, nullptr, strides);
-    if (d.pipeline.program == frame::Program::Phong || d.pipeline.program == frame::Program::Floor) {
-        // mesh.vert's tangents; a deformed draw's are not moved by the pre-pass, so it takes
-        // the zero tangent (the frame from derivatives).
-        const bool tangent = gp.tangent != kNoStream && !ds;
-        const VkDeviceSize offset = tangent ? gp.tangent : scene.defaultTangentOffset();
-        const VkDeviceSize stride = tangent ? 16 : 0;
-        vkCmdBindVertexBuffers2(cmd, LANTERN_LOC_TANGENT, 1, &geometry, &offset, nullptr, &stride);
-    }
-    const bool texcoord1 = gp.texcoord1 != kNoStream;
-    const VkDeviceSize o1 = texcoord1 ? gp.texcoord1 : scene.defaultTexcoordOffset();
-    const VkDeviceSize s1 = texcoord1 ? 8 : 0;
-    vkCmdBindVertexBuffers2(cmd, LANTERN_LOC_TEXCOORD1, 1, &geometry, &o1, nullptr, &s1);
+    auto stream = [&](int loc, VkDeviceSize at, VkDeviceSize fallback, VkDeviceSize stride) {
+        const bool present = at != kNoStream;
+        offsets[loc] = present ? at : fallback;
+        strides[loc] = present ? stride : 0;
+    };
+    stream(LANTERN_LOC_POSITION, ds ? ds->position : gp.position, 0, 12);
+    stream(LANTERN_LOC_NORMAL, ds ? ds->normal : gp.normal, 0, 12);
+    if (ds) buffers[LANTERN_LOC_POSITION] = buffers[LANTERN_LOC_NORMAL] = moved;
+    stream(LANTERN_LOC_COLOR, gp.color, scene.defaultColorOffset(), 16);
+    stream(LANTERN_LOC_TEXCOORD, gp.texcoord, scene.defaultTexcoordOffset(), 8);
+    stream(LANTERN_LOC_CENTROID, kNoStream, scene.defaultTangentOffset(), 12);
+    stream(LANTERN_LOC_TANGENT, ds ? kNoStream : gp.tangent, scene.defaultTangentOffset(), 16);
+    stream(LANTERN_LOC_TEXCOORD1, gp.texcoord1, scene.defaultTexcoordOffset(), 8);
+    vkCmdBindVertexBuffers2(cmd, 0, kBindings, buffers, offsets, nullptr, strides);
     if (gp.indexCount > 0) {
         vkCmdBindIndexBuffer(cmd, geometry, gp.index, VK_INDEX_TYPE_UINT32);
         vkCmdDrawIndexed(cmd, gp.indexCount, 1, 0, 0, 0);
