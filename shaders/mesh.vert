@@ -2,7 +2,7 @@
 // interpolants on; lighting happens per fragment (phong.frag).
 #version 460
 #extension GL_GOOGLE_include_directive : require
-#include "lighting.glsl"
+#include "instance.glsl"
 
 layout(location = LANTERN_LOC_POSITION) in vec3 inPosition;
 layout(location = LANTERN_LOC_NORMAL) in vec3 inNormal;
@@ -22,9 +22,10 @@ layout(location = 7) out vec2 vTexcoord1;      // the second set, and its copy f
 layout(location = 8) out vec2 vTexcoord1Centre;
 
 void main() {
-    vec4 eye = draw.viewFromModel * vec4(inPosition, 1.0);
+    const mat4 viewFromModel = vertexViewFromModel();
+    vec4 eye = viewFromModel * vec4(inPosition, 1.0);
     vEyePosition = eye.xyz;
-    vNormal = drawNormalMatrix() * inNormal;
+    vNormal = vertexNormalMatrix() * inNormal;
     vColor = inColor;
     vTexcoord = inTexcoord;
     vEyeCentre = eye.xyz;
@@ -33,7 +34,7 @@ void main() {
     vTexcoord1 = (SC_MAPS & LANTERN_MAP_SECOND_SETS) != 0u ? inTexcoord1 : vec2(0.0);
     vTexcoord1Centre = vTexcoord1;
     vTangent = (SC_MAPS & LANTERN_MAP_NORMAL) != 0u
-                   ? vec4(mat3(draw.viewFromModel) * inTangent.xyz, inTangent.w)
+                   ? vec4(mat3(viewFromModel) * inTangent.xyz, inTangent.w)
                    : vec4(0.0);
     gl_Position = frame.clipFromView * eye;
     gl_PointSize = frame.pointSize;

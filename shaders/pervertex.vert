@@ -9,7 +9,7 @@
 // LANTERN_GUARD: the variant that checks what it lit (guard.glsl).
 #version 460
 #extension GL_GOOGLE_include_directive : require
-#include "lighting.glsl"
+#include "instance.glsl"
 #ifdef LANTERN_GUARD
 #include "guard.glsl"
 #endif
@@ -42,13 +42,14 @@ layout(location = 10) centroid out vec2 vTexcoord1;  // the second set (emissive
 layout(location = 11) out vec2 vTexcoord1Centre;
 
 void main() {
-    vec4 eye = draw.viewFromModel * vec4(inPosition, 1.0);
+    const mat4 viewFromModel = vertexViewFromModel();
+    vec4 eye = viewFromModel * vec4(inPosition, 1.0);
 #ifdef LANTERN_FLAT_CENTROID
-    vec3 shadePoint = (draw.viewFromModel * vec4(inCentroid, 1.0)).xyz;
+    vec3 shadePoint = (viewFromModel * vec4(inCentroid, 1.0)).xyz;
 #else
     vec3 shadePoint = eye.xyz;
 #endif
-    vec3 n = safeNormalize(drawNormalMatrix() * inNormal);
+    vec3 n = safeNormalize(vertexNormalMatrix() * inNormal);
     MaterialData material = materials[draw.materialIndex];
 
     vec3 ambientM, diffuseM;

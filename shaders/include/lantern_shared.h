@@ -14,6 +14,7 @@
 #define LANTERN_BINDING_GUARD 5         // buffer: the frame's output guard word (guard.glsl)
 #define LANTERN_BINDING_LIGHTS_UNIFORM 6  // uniform: the same lights as LIGHTS, for up to
                                           // LANTERN_UNIFORM_LIGHTS of them (SC_LIGHTS_UNIFORM)
+#define LANTERN_BINDING_INSTANCES 7     // buffer: the instanced draws' transforms (instance.glsl)
 #define LANTERN_SET_TEXTURE 1
 #define LANTERN_BINDING_BASE_COLOR 0 // sampler2D, the material's base-colour texture
 #define LANTERN_BINDING_METALLIC_ROUGHNESS 1  // sampler2D: B metallic, G roughness (linear)
@@ -80,7 +81,8 @@
 #define LANTERN_SC_UNROLLED_LIGHTS 15  // 0: a loop over frame.lightCount; n: exactly n lights
 #define LANTERN_SC_LIGHT_KINDS 16    // with n lights unrolled: light i's kind in bits 4i..4i+3
 #define LANTERN_SC_LIGHTS_UNIFORM 17  // 1: the lights are read from LIGHTS_UNIFORM, not LIGHTS
-#define LANTERN_SC_COUNT 18
+#define LANTERN_SC_INSTANCED 18      // 1: the draw's transforms are per instance (instance.glsl)
+#define LANTERN_SC_COUNT 19
 
 // Material maps (MaterialData.params.y holds the material's, as a float).
 #define LANTERN_MAP_METALLIC_ROUGHNESS 1u

@@ -26,5 +26,6 @@ layout(constant_id = LANTERN_SC_MAPS) const uint SC_MAPS = 255u;
 layout(constant_id = LANTERN_SC_UNROLLED_LIGHTS) const uint SC_UNROLLED_LIGHTS = 0u;
 layout(constant_id = LANTERN_SC_LIGHT_KINDS) const uint SC_LIGHT_KINDS = 0u;
 layout(constant_id = LANTERN_SC_LIGHTS_UNIFORM) const bool SC_LIGHTS_UNIFORM = false;
+layout(constant_id = LANTERN_SC_INSTANCED) const bool SC_INSTANCED = false;
 
 #endif

@@ -92,6 +92,7 @@ TEST(GpuLayouts, MirrorsMatchTheShippedSpirv) {
         LANTERN_ROW(DrawBlock, normalMatrix),    LANTERN_ROW(DrawBlock, materialIndex),
         LANTERN_ROW(DrawBlock, drawIndex),       LANTERN_ROW(DrawBlock, flags),
         LANTERN_ROW(DrawBlock, flatJob),
+        LANTERN_ROW(InstanceData, viewFromModel), LANTERN_ROW(InstanceData, normalMatrix),
         LANTERN_ROW(FlatJob, viewFromModel),     LANTERN_ROW(FlatJob, normalMatrix),
         LANTERN_ROW(FlatJob, materialIndex),     LANTERN_ROW(FlatJob, drawIndex),
         LANTERN_ROW(FlatJob, flags),             LANTERN_ROW(FlatJob, flatBase),
@@ -124,6 +125,7 @@ TEST(GpuLayouts, EveryShaderMemberIsMirrored) {
     // A member added to a shader block but not to the C++ mirror is caught here.
     const std::map<std::string, std::size_t> expectedCounts = {
         {"FrameBlock", 6}, {"LightData", 8}, {"MaterialSideData", 4}, {"MaterialData", 8}, {"DrawBlock", 6},
+        {"InstanceData", 2},
         {"DeformJob", 16}, {"FlatJob", 17}};
     const Layouts layouts = allLayouts();
     for (const auto& [type, count] : expectedCounts) {

@@ -97,6 +97,7 @@ int runFrame(const FrameArgs& a) {
                 aovs.empty() ? "none" : aovs.c_str(), renderer->device().name.c_str(), a.runs,
                 a.warmup);
     std::printf("%-34s %10s %10s\n", "", "median ms", "min ms");
+    std::printf("%-34s %10zu\n", "draw calls per frame", renderer->lastFrameStats().draws);
     std::printf("%-34s %10.2f\n", "first frame (pipeline JIT)", firstMs);
     std::printf("%-34s %10.2f %10.2f\n", "render only: GPU render pass", median(gpu), minimum(gpu));
     std::printf("%-34s %10.2f %10.2f\n", "render only: render() + readback", median(wall),

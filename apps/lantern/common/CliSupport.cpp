@@ -325,6 +325,9 @@ void ShadingOptions::add(CLI::App& app) {
                    "above 1 the device needs wideLines")
         ->capture_default_str()
         ->check(CLI::Range(1.0, 255.0));
+    app.add_flag("--no-instancing", noInstancing,
+                 "Draw every node on its own, not nodes that share a mesh as one instanced draw "
+                 "(the same picture; to measure what instancing buys)");
 }
 
 Result<void> ShadingOptions::apply(RenderOptions& o) const {
@@ -337,6 +340,7 @@ Result<void> ShadingOptions::apply(RenderOptions& o) const {
     o.msaa = msaa;
     o.pointSize = pointSize;
     o.lineWidth = lineWidth;
+    o.instancing = !noInstancing;
     return {};
 }
 

@@ -129,6 +129,7 @@ std::vector<View> quadLayout(int width, int height, const CameraSpec& perspectiv
 struct ShadingOptions {
     std::string shading, specular;
     bool localViewer = false, twoSided = false, clamp = false, glCompat = false;
+    bool noInstancing = false;
     int msaa = 1;
     double pointSize = 1.0, lineWidth = 1.0;
 

@@ -128,6 +128,11 @@ struct RenderOptions {
     /// nearest the scene's number, bit for bit.
     bool unlitExact = false;
     FeatureMode features = FeatureMode::Specialised;
+    /// Nodes that place one primitive with the same material and winding (glTF nodes that
+    /// share a mesh, EXT_mesh_gpu_instancing's instances) are drawn by one instanced draw;
+    /// false: one draw per node. The picture is the same either way (docs/performance.md,
+    /// "Instanced draws"); the switch is there to measure what instancing buys.
+    bool instancing = true;
     /// Linear, premultiplied. Opaque black by default, as `lantern render` and `lantern view`
     /// (one rule, docs/cli.md); {0, 0, 0, 0} for a transparent background, whose alpha is then
     /// each pixel's coverage (for compositing).

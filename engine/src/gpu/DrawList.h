@@ -52,6 +52,10 @@ struct DrawCommand {
     bool frontClockwise = false;  ///< a mirroring transform: clockwise triangles are front
     DrawBlock block{};            ///< push constants
     int deform = -1;  ///< DrawList::deforms index whose output it draws; -1: its own streams
+    /// With pipeline.constants[LANTERN_SC_INSTANCED]: the draw covers DrawList::instances
+    /// [firstInstance, firstInstance + instanceCount), and `block` is its first instance's
+    /// (whose transforms the shader ignores; its material and flags hold for all).
+    std::uint32_t firstInstance = 0, instanceCount = 1;
 };
 
 /// One deformation the pre-pass computes before the draws (shaders/deform.comp): a primitive
@@ -100,6 +104,8 @@ struct DrawList {
     std::vector<MaterialData> materials;  ///< at least one
     std::vector<ViewCommands> views;
     std::vector<DeformCommand> deforms;  ///< skinned and morphing primitives (usually none)
+    /// The instanced draws' per-instance transforms, every view's (render/DrawLists.cpp).
+    std::vector<InstanceData> instances;
     Overlays overlays;
     /// Which draws check their colours where they are made (shaders/include/guard.glsl):
     /// Auto weighs the vertex stage's check against the host's (gpu/FrameRing.cpp); tests
@@ -110,6 +116,7 @@ struct DrawList {
     /// pictureHeight 0: the target is the whole picture.
     std::uint32_t bandTop = 0, pictureHeight = 0;
 
+    /// Draw calls (an instanced draw counts once).
     std::size_t drawCount() const {
         std::size_t n = 0;
         for (const ViewCommands& v : views) n += v.draws.size();

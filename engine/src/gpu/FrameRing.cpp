@@ -45,8 +45,9 @@ bool vertexGuardPays(const DrawList& list, const SceneBuffers& scene, bool flatP
                 continue;
             const PrimitiveBuffers& gp = scene.primitive(d.mesh, d.primitive);
             // The per-corner flat streams are de-indexed: a vertex per corner.
-            vertices += p == frame::Program::Flat && gp.indexCount > 0 ? gp.indexCount
-                                                                       : gp.vertexCount;
+            vertices += std::uint64_t(d.instanceCount) *
+                        (p == frame::Program::Flat && gp.indexCount > 0 ? gp.indexCount
+                                                                        : gp.vertexCount);
         }
     return vertices * 32 <= std::uint64_t(list.target.width) * list.target.height;
 }
@@ -107,7 +108,7 @@ Result<void> FrameRing::createSlot(Slot& s, std::size_t index) {
 
     VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 2},
                                      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, 1},
-                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4}};
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5}};
     VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     dpci.maxSets = 1;
     dpci.poolSizeCount = 3;
@@ -216,7 +217,8 @@ Result<void> FrameRing::preparePrePasses(Slot& slot, const DrawList& list,
 }
 
 // The uniform arena: materials, then per view its FrameBlock and its lights, at the device's
-// offset alignments; the frame set points into it with dynamic offsets.
+// offset alignments (the frame set points into them with dynamic offsets), the output guard
+// and the instanced draws' transforms.
 Result<FrameRing::ArenaLayout> FrameRing::fillArena(Slot& slot, const DrawList& list) {
     const auto& lim = m_ctx.properties().limits;
     const VkDeviceSize uboAlign = std::max<VkDeviceSize>(lim.minUniformBufferOffsetAlignment, 16);
@@ -240,7 +242,9 @@ Result<FrameRing::ArenaLayout> FrameRing::fillArena(Slot& slot, const DrawList& 
     a.guardOffset = alignUp(std::max({size, a.lightOffsets.back() + a.lightRange,
                                       a.lightOffsets.back() + kUniformLightBytes}),
                             ssboAlign);
-    a.size = a.guardOffset + 16;
+    a.instanceOffset = a.guardOffset + ssboAlign;
+    a.instanceBytes = list.instances.size() * sizeof(InstanceData);
+    a.size = a.instanceOffset + std::max<VkDeviceSize>(a.instanceBytes, sizeof(InstanceData));
     if (slot.arena.size < a.size) {
         auto arena = createBuffer(m_ctx, a.size * 2,
                                   VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT |
@@ -257,6 +261,8 @@ Result<FrameRing::ArenaLayout> FrameRing::fillArena(Slot& slot, const DrawList& 
                     list.views[i].lights.size() * sizeof(LightData));
     }
     std::memset(base + a.guardOffset, 0, 16);  // the output guard, cleared (guard.glsl)
+    if (a.instanceBytes > 0)
+        std::memcpy(base + a.instanceOffset, list.instances.data(), a.instanceBytes);
     slot.guardOffset = a.guardOffset;
     LANTERN_TRY(flush(m_ctx, slot.arena));
 
@@ -271,7 +277,9 @@ Result<FrameRing::ArenaLayout> FrameRing::fillArena(Slot& slot, const DrawList& 
          {LANTERN_BINDING_MATERIALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
           {slot.arena.get(), 0, std::max<VkDeviceSize>(a.materialBytes, sizeof(MaterialData))}},
          {LANTERN_BINDING_GUARD, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-          {slot.arena.get(), a.guardOffset, 16}}});
+          {slot.arena.get(), a.guardOffset, 16}},
+         {LANTERN_BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+          {slot.arena.get(), a.instanceOffset, a.size - a.instanceOffset}}});
     // The per-triangle flat records; a frame without them points the bindings at the arena
     // (never read).
     const FlatSlot& f = slot.flat;

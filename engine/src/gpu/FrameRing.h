@@ -1,5 +1,5 @@
 // FrameRing.h: the ring of frame slots. Each slot owns its command buffer, fence, uniform
-// arena (materials, then per view a FrameBlock and its lights), descriptor set, timestamp
+// arena (materials, then per view a FrameBlock and its lights, the instances), descriptor set, timestamp
 // queries, render targets and readback buffers, so frame i+1 records and renders while frame
 // i is still being read back. submit() records a DrawList into the next slot
 // (gpu/Recorder.cpp) and submits it; collect() waits for a slot and reads it back
@@ -84,6 +84,7 @@ public:
     struct ArenaLayout {
         std::vector<VkDeviceSize> frameOffsets, lightOffsets;
         VkDeviceSize materialBytes = 0, lightRange = 0, guardOffset = 0, size = 0;
+        VkDeviceSize instanceOffset = 0, instanceBytes = 0;
     };
 
 private:

@@ -107,6 +107,14 @@ static_assert(offsetof(DrawBlock, flatJob) == 124);
 
 inline constexpr std::uint32_t kDrawFlagVertexColor = 1u;
 
+// One instance of an instanced draw (shaders/include/instance.glsl): DrawBlock's transforms.
+struct InstanceData {
+    float viewFromModel[16];
+    float normalMatrix[12];  // three vec4 columns (w unused)
+};
+static_assert(sizeof(InstanceData) == 112);
+static_assert(offsetof(InstanceData, normalMatrix) == 64);
+
 // Push constants of shaders/deform.comp: one deformation job (offsets in 32-bit words).
 struct DeformJob {
     std::uint32_t count = 0, flatMode = 0, vertexCount = 0;

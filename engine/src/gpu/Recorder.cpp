@@ -125,11 +125,13 @@ void FrameRecorder::bindStreams(const DrawCommand& d, std::uint32_t flatJob) con
     stream(LANTERN_LOC_TANGENT, ds ? kNoStream : gp.tangent, scene.defaultTangentOffset(), 16);
     stream(LANTERN_LOC_TEXCOORD1, gp.texcoord1, scene.defaultTexcoordOffset(), 8);
     vkCmdBindVertexBuffers2(cmd, 0, kBindings, buffers, offsets, nullptr, strides);
+    // An instanced draw's instances read their transforms at gl_InstanceIndex, which starts at
+    // firstInstance (shaders/include/instance.glsl).
     if (gp.indexCount > 0) {
         vkCmdBindIndexBuffer(cmd, geometry, gp.index, VK_INDEX_TYPE_UINT32);
-        vkCmdDrawIndexed(cmd, gp.indexCount, 1, 0, 0, 0);
+        vkCmdDrawIndexed(cmd, gp.indexCount, d.instanceCount, 0, 0, d.firstInstance);
     } else {
-        vkCmdDraw(cmd, gp.vertexCount, 1, 0, 0);
+        vkCmdDraw(cmd, gp.vertexCount, d.instanceCount, 0, d.firstInstance);
     }
 }
 

@@ -4,6 +4,7 @@
 #include "render/Variants.h"
 
 #include <algorithm>
+#include <iterator>
 #include <map>
 #include <tuple>
 
@@ -52,6 +53,12 @@ gpu::DrawBlock packDraw(const frame::Draw& d) {
     return b;
 }
 
+// What the draws of one instanced draw share besides their pipeline.
+auto instanceKey(const gpu::DrawCommand& c) {
+    return std::tuple{c.mesh, c.primitive, c.textureSet, c.cullBack, c.frontClockwise,
+                      c.block.materialIndex, c.block.flags};
+}
+
 gpu::ViewCommands packView(const frame::Frame& frame, std::size_t vi, const RenderOptions& o) {
     const frame::View& v = frame.views[vi];
     gpu::ViewCommands out;
@@ -73,8 +80,10 @@ gpu::ViewCommands packView(const frame::Frame& frame, std::size_t vi, const Rend
         c.block = packDraw(d);
         out.draws.push_back(c);
     }
-    // Opaque draws grouped by variant (fewer pipeline binds), order otherwise kept (stable, so
-    // frames are deterministic); the frame keeps blended draws last, far to near.
+    // Opaque draws grouped by variant (fewer pipeline binds), then by what an instanced draw
+    // shares (so the draws one can cover are neighbours, and merging them changes no order),
+    // order otherwise kept (stable, so frames are deterministic); the frame keeps blended draws
+    // last, far to near.
     const auto firstBlended = std::stable_partition(
         out.draws.begin(), out.draws.end(), [](const gpu::DrawCommand& c) { return !c.pipeline.blend; });
     std::stable_sort(out.draws.begin(), firstBlended,
@@ -83,9 +92,54 @@ gpu::ViewCommands packView(const frame::Frame& frame, std::size_t vi, const Rend
                              return a.pipeline.program < b.pipeline.program;
                          if (a.pipeline.topology != b.pipeline.topology)
                              return a.pipeline.topology < b.pipeline.topology;
-                         return a.pipeline.constants < b.pipeline.constants;
+                         if (a.pipeline.constants != b.pipeline.constants)
+                             return a.pipeline.constants < b.pipeline.constants;
+                         return instanceKey(a) < instanceKey(b);
                      });
     return out;
+}
+
+// Whether a draw may be one instance of an instanced draw: opaque (blended draws keep their
+// own far-to-near places), undeformed (each pose has its own streams) and not flat (flat
+// shading's per-triangle pass lights each draw's triangles on their own: gpu/FlatLight.h).
+bool instanceable(const frame::Frame& frame, const gpu::DrawCommand& c) {
+    if (c.pipeline.blend || c.pipeline.program == frame::Program::Flat) return false;
+    const frame::Draw* d = frame.draw(c.block.drawIndex);
+    return d && !d->deformed;
+}
+
+gpu::InstanceData instanceData(const gpu::DrawBlock& b) {
+    gpu::InstanceData i;
+    std::copy(std::begin(b.viewFromModel), std::end(b.viewFromModel), i.viewFromModel);
+    std::copy(std::begin(b.normalMatrix), std::end(b.normalMatrix), i.normalMatrix);
+    return i;
+}
+
+// Neighbouring draws of one primitive that differ only in their transforms become one
+// instanced draw (shaders/include/instance.glsl): EXT_mesh_gpu_instancing's instances, and any
+// nodes that share a mesh. Their order is kept, so the picture is the one the separate draws
+// make.
+void mergeInstances(const frame::Frame& frame, std::vector<gpu::DrawCommand>& draws,
+                    std::vector<gpu::InstanceData>& instances) {
+    std::vector<gpu::DrawCommand> merged;
+    merged.reserve(draws.size());
+    for (std::size_t i = 0; i < draws.size();) {
+        std::size_t end = i + 1;
+        if (instanceable(frame, draws[i]))
+            while (end < draws.size() && draws[end].pipeline == draws[i].pipeline &&
+                   instanceKey(draws[end]) == instanceKey(draws[i]) && instanceable(frame, draws[end]))
+                ++end;
+        gpu::DrawCommand c = draws[i];
+        if (end - i > 1) {
+            c.pipeline.constants[LANTERN_SC_INSTANCED] = 1;
+            c.firstInstance = std::uint32_t(instances.size());
+            c.instanceCount = std::uint32_t(end - i);
+            for (std::size_t k = i; k < end; ++k) instances.push_back(instanceData(draws[k].block));
+        }
+        merged.push_back(c);
+        i = end;
+    }
+    draws = std::move(merged);
 }
 
 // The deformation pre-pass: one command per (node, primitive, flat) that a draw deforms, with
@@ -192,10 +246,15 @@ gpu::DrawList buildDrawList(const Scene& scene, const frame::Frame& frame,
     gpu::DrawList list;
     list.target = targetFor(o);
     for (const Material& m : frame.materials) list.materials.push_back(packMaterial(m));
-    for (std::size_t vi = 0; vi < frame.views.size(); ++vi)
-        list.views.push_back(packView(frame, vi, o));
-    addDeforms(scene, frame, list);
     list.overlays = overlaysFor(scene, frame, o);
+    // Frames that read the draw ids back (the probe, id AOVs, Cryptomatte) or draw the overlays
+    // (which follow each draw's transform) keep one draw per instance.
+    const bool instancing = o.instancing && !list.target.readIds() && !list.overlays.any();
+    for (std::size_t vi = 0; vi < frame.views.size(); ++vi) {
+        list.views.push_back(packView(frame, vi, o));
+        if (instancing) mergeInstances(frame, list.views.back().draws, list.instances);
+    }
+    addDeforms(scene, frame, list);
     return list;
 }
 

@@ -26,7 +26,8 @@ double drawnVertices(const Scene& scene, const gpu::DrawList& list) {
     for (const gpu::ViewCommands& v : list.views)
         for (const gpu::DrawCommand& d : v.draws) {
             const Primitive& p = scene.meshes[d.mesh].primitives[d.primitive];
-            vertices += double(p.indices.empty() ? p.positions.size() : p.indices.size());
+            vertices += double(d.instanceCount) *
+                        double(p.indices.empty() ? p.positions.size() : p.indices.size());
         }
     return vertices;
 }

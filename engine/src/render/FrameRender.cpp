@@ -123,9 +123,10 @@ Result<FeatureReport> explain(const Scene& scene, const RenderOptions& options, 
     FeatureReport report;
     report.features = frame::describeFeatures(*f, options);
     std::set<std::string> seen;
-    for (const frame::View& v : f->views)
-        for (const frame::Draw& d : v.draws) {
-            const std::string line = describe(pipelineKey(*f, d, options));
+    const gpu::DrawList list = buildDrawList(scene, *f, options);
+    for (const gpu::ViewCommands& v : list.views)
+        for (const gpu::DrawCommand& d : v.draws) {
+            const std::string line = describe(d.pipeline);
             if (seen.insert(line).second) report.variants.push_back(line);
         }
     return report;
@@ -143,11 +144,11 @@ Result<ProbeReport> probe(gpu::Device& device, const std::shared_ptr<gpu::SceneB
     // One sample per pixel: the probe explains the surface at the pixel centre.
     RenderOptions single = options;
     single.msaa = 1;
-    single.aovs.depth = single.aovs.normal = true;
+    // The primitive plane reads the draw ids back, so every instance is drawn on its own
+    // (render/DrawLists.cpp) and its id names its node.
+    single.aovs.depth = single.aovs.normal = single.aovs.primitive = true;
     LANTERN_TRY(checkOptions(device, single));
-    FrameEdits edits;
-    edits.list = [](gpu::DrawList& list) { list.target.ids = true; };
-    auto f = renderFrame(device, scene, sceneData, single, time, stats, edits);
+    auto f = renderFrame(device, scene, sceneData, single, time, stats);
     if (!f) return std::move(f).error();
     return ref::probePixel(sceneData, f->frame, f->readback.image, f->readback.ids, x, y);
 }

@@ -121,6 +121,7 @@ std::string describe(const gpu::PipelineKey& k) {
     flag(LANTERN_SC_UNLIT, "unlit");
     flag(LANTERN_SC_AMBIENT_FOLLOWS_DIFFUSE, "ambient=diffuse");
     flag(LANTERN_SC_LIGHTS_UNIFORM, "uniform-lights");
+    flag(LANTERN_SC_INSTANCED, "instanced");
     const std::uint32_t maps = k.constants[LANTERN_SC_MAPS];
     for (auto [bit, name] : {std::pair{LANTERN_MAP_METALLIC_ROUGHNESS, "metallic-roughness-map"},
                              std::pair{LANTERN_MAP_NORMAL, "normal-map"},

@@ -72,7 +72,7 @@ const std::vector<FeatureUse>& fidelityKeys() {
         row("KHR_mesh_quantization"),
         row("EXT_meshopt_compression"),
         row("KHR_draco_mesh_compression"),
-        row("EXT_mesh_gpu_instancing", F::Approximated, "instances-as-nodes"),
+        row("EXT_mesh_gpu_instancing"),
         row("EXT_texture_webp"),
         row("KHR_texture_basisu", F::Supported, "png-jpeg-fallback"),
         row("lantern-extensions"),
