@@ -248,11 +248,6 @@ TEST(RayCaster, RefusesWhatItDoesNotModel) {
              sc.materials[0].baseColorTexture = 0;
          },
          ErrorCode::Unsupported, "textured"},
-        {"blend",
-         [](RenderOptions&, ReferenceOptions&, Scene& sc) {
-             sc.materials[0].alphaMode = AlphaMode::Blend;
-         },
-         ErrorCode::Unsupported, "alpha-blended"},
         {"box samples", [](RenderOptions&, ReferenceOptions& r, Scene&) { r.boxSamples = 0; },
          ErrorCode::InvalidInput, "box samples"},
         {"empty image", [](RenderOptions& o, ReferenceOptions&, Scene&) { o.width = 0; },

@@ -336,7 +336,7 @@ Runner addAccuracyBench(CLI::App& bench) {
     CLI::App* cmd = bench.add_subcommand(
         "accuracy", "Sweep shading mode x tessellation x MSAA x resolution: ms per frame against "
                     "the error from an exact ray-cast reference (CSV, markdown summary, plot)");
-    cmd->add_option("--scenes", a->scenes, "Analytic scenes: sphere (S1), spot (S2)")
+    cmd->add_option("--scenes", a->scenes, "Analytic scenes: sphere (S1), spot (S2); transparency: crossing (T1), nested (T2), beside (T3)")
         ->delimiter(',')
         ->capture_default_str();
     cmd->add_option("--shininess", a->shininess, "Material shininess values")

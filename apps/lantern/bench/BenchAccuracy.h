@@ -20,7 +20,8 @@ struct BenchScene {
     std::size_t triangles = 0;
 };
 
-/// The scene names makeBenchScene() knows: "sphere" (S1) and "spot" (S2).
+/// The scene names makeBenchScene() knows: "sphere" (S1), "spot" (S2) and the transparency
+/// scenes "crossing" (T1), "nested" (T2) and "beside" (T3).
 const std::vector<std::string>& benchSceneNames();
 
 /// S1 "sphere": a unit sphere 4 units in front of a 40-degree camera, one point light at
@@ -28,6 +29,11 @@ const std::vector<std::string>& benchSceneNames();
 /// material ambient 0.2, diffuse 0.8, specular 1 with the given shininess.
 /// S2 "spot": an 8 x 8 plane seen from above at an angle, lit by a GL spot 2 units above it
 /// (cutoff 30 degrees, exponent 16, attenuation (1, 0.1, 0.01)), the same material.
+/// T1 "crossing": two blended 2 x 2 squares (alpha 0.5) turned +-0.6 rad about Y through the
+/// origin. T2 "nested": an opaque sphere (radius 0.4) inside blended spheres of radius 0.7
+/// (alpha 0.5) and 1 (alpha 0.3). T3 "beside": a blended 6 x 6 floor (alpha 0.4) at y = -0.5
+/// and a blended sphere (radius 0.5, alpha 0.6) standing on its far half. Blended materials are
+/// double-sided; the same light as S1, the camera looking at the origin.
 /// `segments`: sphere segments around (segments / 2 rings), or plane subdivisions per side.
 BenchScene makeBenchScene(const std::string& name, double shininess, int segments);
 

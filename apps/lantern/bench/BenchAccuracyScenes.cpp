@@ -1,6 +1,8 @@
 // The analytic scenes of the accuracy benchmark (numerics.md section 7.1): S1, a lit sphere
 // (tessellation against shading mode, highlight loss), and S2, a spot on a plane (Gouraud's
-// classic failure: the cone falls between vertices). Built in code from the public API.
+// classic failure: the cone falls between vertices); and the transparency scenes T1-T3, where
+// sorting blended objects by their centres is wrong somewhere. Built in code from the public
+// API.
 #include "bench/BenchAccuracy.h"
 
 #include <glm/gtc/quaternion.hpp>
@@ -20,6 +22,20 @@ Material benchMaterial(double shininess) {
     return m;
 }
 
+// The camera (40 degrees, no far plane) at `lookAt`, and the root holding every node.
+void addCameraAndRoot(Scene& s, const std::string& name, const LookAt& lookAt) {
+    Camera camera;
+    camera.name = "bench camera";
+    camera.projection = Projection::makePerspective(40.0 * kPi / 180.0, 0.0, 0.1, kInfinity);
+    camera.lookAt = lookAt;
+    s.cameras.push_back(camera);
+    SceneRoot root;
+    root.name = name;
+    for (int i = 0; i < int(s.nodes.size()); ++i) root.nodes.push_back(i);
+    root.lighting = LightingModel{};
+    s.roots.push_back(root);
+}
+
 // One mesh (the shape at `segments`), one light, one camera; every node in the root.
 BenchScene assemble(const std::string& name, const AnalyticShape& shape, int segments,
                     double shininess, const Node& object, const Light& light, const Node& lightNode,
@@ -34,29 +50,98 @@ BenchScene assemble(const std::string& name, const AnalyticShape& shape, int seg
     s.materials.push_back(benchMaterial(shininess));
     s.lights.push_back(light);
     s.nodes = {object, lightNode};
-    Camera camera;
-    camera.name = "bench camera";
-    camera.projection = Projection::makePerspective(40.0 * kPi / 180.0, 0.0, 0.1, kInfinity);
-    camera.lookAt = lookAt;
-    s.cameras.push_back(camera);
-    SceneRoot root;
-    root.name = name;
-    root.nodes = {0, 1};
-    root.lighting = LightingModel{};
-    s.roots.push_back(root);
+    addCameraAndRoot(s, name, lookAt);
     b.shapes = {shape};
     b.shapes[0].mesh = 0;
     return b;
 }
 
+// One blended (or, with alpha 1, opaque) surface of a layered scene.
+struct Layer {
+    AnalyticShape shape;
+    glm::dvec4 colour;  ///< diffuse and alpha
+    Node node;
+};
+
+// The transparency scenes: each layer a mesh of its own with its material (blended and
+// double-sided where alpha < 1, so a glass's far side is drawn too), the point light and
+// camera of S1 looking at the origin from `eye`.
+BenchScene layered(const std::string& name, const std::vector<Layer>& layers, int segments,
+                   double shininess, const glm::dvec3& eye) {
+    BenchScene b;
+    Scene& s = b.scene;
+    s.sourcePath = "bench:" + name;
+    Light light;
+    light.name = "point";
+    s.lights.push_back(light);
+    Node lightNode;
+    lightNode.name = "point";
+    lightNode.light = 0;
+    lightNode.translation = {2.0, 2.0, 4.0};
+    s.nodes.push_back(lightNode);
+    for (const Layer& l : layers) {
+        Primitive prim = tessellate(l.shape, segments);
+        prim.material = int(s.materials.size());
+        b.triangles += prim.triangleCount();
+        Material m = benchMaterial(shininess);
+        m.front.diffuse = l.colour;
+        if (l.colour.a < 1.0) {
+            m.alphaMode = AlphaMode::Blend;
+            m.doubleSided = true;
+        }
+        s.materials.push_back(m);
+        b.shapes.push_back(l.shape);
+        b.shapes.back().mesh = int(s.meshes.size());
+        s.meshes.push_back(Mesh{name, {std::move(prim)}});
+        Node n = l.node;
+        n.mesh = b.shapes.back().mesh;
+        s.nodes.push_back(n);
+    }
+    addCameraAndRoot(s, name, LookAt{eye, {0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}});
+    return b;
+}
+
+Node placed(const glm::dvec3& translation, const glm::dquat& rotation = glm::dquat(1, 0, 0, 0)) {
+    Node n;
+    n.translation = translation;
+    n.rotation = rotation;
+    return n;
+}
+
+// T1 "crossing": two blended squares that cross (each is in front on one side of the line
+// where they meet). T2 "nested": an opaque sphere inside two blended glass spheres. T3
+// "beside": a large blended floor and a small blended sphere standing on its far half (the
+// floor's centre is nearer the eye than the sphere's, though the sphere hides the floor behind
+// it: pyrender issue 206).
+BenchScene transparencyScene(const std::string& name, double shininess, int segments) {
+    const glm::dvec3 up(0, 1, 0), right(1, 0, 0);
+    if (name == "crossing")
+        return layered(name,
+                       {{AnalyticShape::plane(0, 2.0), {0.9, 0.2, 0.1, 0.5}, placed({}, glm::angleAxis(0.6, up))},
+                        {AnalyticShape::plane(0, 2.0), {0.1, 0.3, 0.9, 0.5}, placed({}, glm::angleAxis(-0.6, up))}},
+                       segments, shininess, {0.0, 0.6, 4.0});
+    if (name == "nested")
+        return layered(name,
+                       {{AnalyticShape::sphere(0, 1.0), {0.6, 0.8, 0.9, 0.3}, placed({})},
+                        {AnalyticShape::sphere(0, 0.7), {0.9, 0.7, 0.2, 0.5}, placed({})},
+                        {AnalyticShape::sphere(0, 0.4), {0.8, 0.2, 0.2, 1.0}, placed({})}},
+                       segments, shininess, {0.0, 0.0, 4.0});
+    return layered(name,
+                   {{AnalyticShape::plane(0, 6.0), {0.3, 0.8, 0.4, 0.4}, placed({0, -0.5, 0}, glm::angleAxis(-kPi / 2, right))},
+                    {AnalyticShape::sphere(0, 0.5), {0.9, 0.6, 0.2, 0.6}, placed({0.3, 0.0, -1.5})}},
+                   segments, shininess, {0.0, 1.5, 4.0});
+}
+
 } // namespace
 
 const std::vector<std::string>& benchSceneNames() {
-    static const std::vector<std::string> names{"sphere", "spot"};
+    static const std::vector<std::string> names{"sphere", "spot", "crossing", "nested", "beside"};
     return names;
 }
 
 BenchScene makeBenchScene(const std::string& name, double shininess, int segments) {
+    if (name == "crossing" || name == "nested" || name == "beside")
+        return transparencyScene(name, shininess, segments);
     Node object;
     object.name = name;
     object.mesh = 0;

@@ -50,6 +50,12 @@ struct ReferenceOptions {
     /// corners included, all meet the same surface (>= 2).
     int edgeProbes = 4;
     int threads = 0; ///< worker threads; 0: one per core
+    /// Every light casts exact shadows: a shadow ray from each shaded point to each light
+    /// (unbounded towards a directional light); every surface it crosses, both faces, lets
+    /// through what its material lets through (an opaque one nothing, a blended one 1 - alpha,
+    /// a masked one all where the mask cuts it away). A shadow scales the light's diffuse and
+    /// specular terms; its ambient term is not shadowed.
+    bool shadows = false;
 };
 
 /// The reference pictures of one frame. Both images are premultiplied linear RGBA like a
@@ -58,8 +64,10 @@ struct ReferenceOptions {
 struct ReferenceImage {
     Image centre; ///< one ray through each pixel centre: what a one-sample rasteriser samples
     Image box;    ///< the pixel's area average: the ideal anti-aliased picture
-    /// One per pixel: 1 where a single surface covers the whole pixel (the shading-only
-    /// comparison), 0 on silhouettes, on edges between surfaces and on the background.
+    /// One per pixel: 1 where the same surfaces, in the same order, cover the whole pixel (a
+    /// single surface, or blended layers over one: the shading-only comparison), 0 on
+    /// silhouettes, on edges between surfaces (a blended layer's included) and on the
+    /// background.
     std::vector<std::uint8_t> interior;
     std::size_t rays = 0; ///< rays cast, all kinds
 };
@@ -68,9 +76,12 @@ struct ReferenceImage {
 /// same camera (RenderOptions::camera, resolved as the renderer resolves it), the lights and
 /// the lighting model (shading switches that change the equation: specular model, local
 /// viewer, two-sided, clamp), the materials and back-face culling. The shading mode is ignored:
-/// the reference is exact everywhere. Refused: InvalidInput for a drawn mesh without an
-/// AnalyticShape, a bad shape or bad options; Unsupported for what the reference does not
-/// model (several views, GL compatibility, textures, alpha blending).
+/// the reference is exact everywhere. Blended materials are composited exactly: every layer
+/// along the ray in front of the nearest opaque surface, in depth order, as if each pixel's
+/// fragments were sorted (the picture an order-independent method converges to). With
+/// ReferenceOptions::shadows every light casts exact shadows. Refused: InvalidInput for a
+/// drawn mesh without an AnalyticShape, a bad shape or bad options; Unsupported for what the
+/// reference does not model (several views, GL compatibility, textures).
 LANTERN_API Result<ReferenceImage> raycastReference(const Scene& scene,
                                                     const RenderOptions& options,
                                                     double timeSeconds,

@@ -49,7 +49,7 @@ struct FrameStats {
     double gpuMs = -1.0;    ///< render-pass time from GPU timestamps (-1: not available)
     double cpuMs = 0.0;     ///< planning, recording and submission on the CPU
     double waitMs = 0.0;    ///< waiting for the GPU and reading the image back
-    std::size_t draws = 0;
+    std::size_t draws = 0;  ///< draw calls (an instanced draw counts once)
     std::size_t pipelinesCreated = 0;  ///< variants compiled for this frame (first use)
     /// NaN/Inf values found at readback (always 0 unless a bug). render() and renderSequence()
     /// refuse such a frame (ErrorCode::Internal, naming the first pixel's object); the

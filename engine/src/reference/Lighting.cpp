@@ -58,7 +58,8 @@ glm::dvec3 viewVector(const glm::dvec3& V, bool localViewer) {
 
 LightSums evaluateLighting(const glm::dvec3& V, const glm::dvec3& n, const MaterialSide& m,
                            const std::vector<EyeLight>& lights, const Settings& st,
-                           std::vector<LightContribution>* contributions) {
+                           std::vector<LightContribution>* contributions,
+                           const std::vector<double>* visibility) {
     LightSums s;
     if (st.unlit) {
         s.diffuse = glm::dvec3(1.0);
@@ -67,7 +68,8 @@ LightSums evaluateLighting(const glm::dvec3& V, const glm::dvec3& n, const Mater
     s.emissiveSpecular = m.emission;
     s.ambient = st.globalAmbient;
     const glm::dvec3 v = viewVector(V, st.localViewer);
-    for (const EyeLight& L : lights) {
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+        const EyeLight& L = lights[i];
         LightContribution c;
         glm::dvec3 l;
         if (L.type == LightType::Directional) {
@@ -100,14 +102,16 @@ LightSums evaluateLighting(const glm::dvec3& V, const glm::dvec3& n, const Mater
             }
         }
         const double k = c.attenuation * c.spot;
+        // A shadow dims the light's diffuse and specular terms, not its ambient one.
+        const double lit = visibility ? (*visibility)[i] * k : k;
         c.nDotL = glm::dot(n, l);
         s.ambient += k * L.ambient;
-        s.diffuse += (k * std::max(c.nDotL, 0.0)) * L.diffuse;
+        s.diffuse += (lit * std::max(c.nDotL, 0.0)) * L.diffuse;
         c.ambient = k * L.ambient;
-        c.diffuse = (k * std::max(c.nDotL, 0.0)) * L.diffuse;
+        c.diffuse = (lit * std::max(c.nDotL, 0.0)) * L.diffuse;
         if (c.nDotL > 0.0) {
             c.specularTerm = specularTerm(n, l, v, m.shininess, st.specular);
-            c.specular = (k * c.specularTerm) * (m.specular * L.specular);
+            c.specular = (lit * c.specularTerm) * (m.specular * L.specular);
             s.emissiveSpecular += c.specular;
         }
         if (contributions) contributions->push_back(c);

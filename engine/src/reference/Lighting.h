@@ -59,9 +59,12 @@ double specularTerm(const glm::dvec3& n, const glm::dvec3& l, const glm::dvec3& 
 glm::dvec3 viewVector(const glm::dvec3& V, bool localViewer);
 
 /// The sums at eye-space point V with unit (or zero) normal n for material side m.
+/// `visibility`, one per light: the share of the light that reaches V (0 in its shadow), which
+/// scales the light's diffuse and specular terms (its ambient term is not shadowed); null: 1.
 LightSums evaluateLighting(const glm::dvec3& V, const glm::dvec3& n, const MaterialSide& m,
                            const std::vector<EyeLight>& lights, const Settings& settings,
-                           std::vector<LightContribution>* contributions = nullptr);
+                           std::vector<LightContribution>* contributions = nullptr,
+                           const std::vector<double>* visibility = nullptr);
 
 /// The material's ambient and diffuse colours and alpha at a point (materialColours in the
 /// shaders): a vertex colour replaces ambient and diffuse, or scales them when `scales` (unlit

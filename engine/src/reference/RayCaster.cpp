@@ -1,6 +1,7 @@
 // The reference ray caster: exact spheres and planes in double precision, the renderer's own
 // camera resolution and light placement, and the lighting equation of reference/Lighting
-// (the shaders' twin) at every sample. Ground truth for the accuracy benchmark.
+// (the shaders' twin) at every sample, with blended layers composited in exact depth order and
+// (when asked) exact shadow rays. Ground truth for the accuracy benchmark.
 #include "frame/Frame.h"
 #include "reference/Lighting.h"
 
@@ -73,15 +74,33 @@ bool sphereRoots(const glm::dvec3& o, const glm::dvec3& d, double r, double root
     return true;
 }
 
+// The roots of a ray (model-space origin o, direction d) with a surface: 0, 1 or 2 of them.
+int surfaceRoots(const AnalyticShape& shape, const glm::dvec3& o, const glm::dvec3& d, double ts[2]) {
+    if (shape.kind == AnalyticKind::Sphere) return sphereRoots(o, d, shape.radius, ts) ? 2 : 0;
+    if (d.z == 0.0) return 0;
+    ts[0] = -o.z / d.z;
+    const glm::dvec3 p = o + ts[0] * d;
+    const double h = 0.5 * shape.size;
+    return std::abs(p.x) <= h && std::abs(p.y) <= h ? 1 : 0;
+}
+
+// What a hit lets through of what lies behind it: a blended material its 1 - alpha, a masked
+// one where the mask cuts it away, an opaque one nothing.
+double transmittance(const Material& mat, const MaterialSide& side) {
+    if (mat.alphaMode == AlphaMode::Blend) return 1.0 - std::clamp(side.diffuse.a, 0.0, 1.0);
+    if (mat.alphaMode == AlphaMode::Mask && side.diffuse.a < mat.alphaCutoff) return 1.0;
+    return 0.0;
+}
+
 class Caster {
 public:
     Caster(std::vector<Surface> surfaces, const frame::ViewCamera& camera,
            std::vector<ref::EyeLight> lights, const ref::Settings& settings,
-           const RenderOptions& options)
+           const RenderOptions& options, bool shadows)
         : m_surfaces(std::move(surfaces)), m_lights(std::move(lights)), m_settings(settings),
           m_options(options), m_clipFromView(camera.clipFromView),
           m_viewFromClip(glm::inverse(camera.clipFromView)),
-          m_nearDepth(options.depth == DepthMode::ReversedZ ? 1.0 : 0.0) {}
+          m_nearDepth(options.depth == DepthMode::ReversedZ ? 1.0 : 0.0), m_shadows(shadows) {}
 
     // The ray through framebuffer point (fx, fy): x from the left, y from the top, in pixels.
     Ray rayAt(double fx, double fy) const {
@@ -94,41 +113,65 @@ public:
         return r;
     }
 
-    // The nearest surface the rasteriser would keep: in front of the near plane, before the
-    // far plane, not culled, not cut away by the alpha mask.
-    Hit trace(const Ray& ray) const {
-        Hit best;
+    // Every surface the rasteriser would keep along the ray (in front of the near plane, before
+    // the far plane, not culled, not cut away by the alpha mask), nearest first, up to the
+    // nearest opaque one: the layers a blended pixel composites.
+    void trace(const Ray& ray, std::vector<Hit>& hits) const {
+        hits.clear();
         for (std::size_t i = 0; i < m_surfaces.size(); ++i) {
             const Surface& s = m_surfaces[i];
             const glm::dvec3 o(s.modelFromView * glm::dvec4(ray.origin, 1.0));
             const glm::dvec3 d(s.modelFromView * glm::dvec4(ray.direction, 0.0));
             double ts[2];
-            int count = 0;
-            if (s.shape.kind == AnalyticKind::Sphere) {
-                if (sphereRoots(o, d, s.shape.radius, ts)) count = 2;
-            } else if (d.z != 0.0) {
-                ts[0] = -o.z / d.z;
-                const glm::dvec3 p = o + ts[0] * d;
-                const double h = 0.5 * s.shape.size;
-                if (std::abs(p.x) <= h && std::abs(p.y) <= h) count = 1;
+            const int count = surfaceRoots(s.shape, o, d, ts);
+            for (int k = 0; k < count; ++k) {
+                Hit h;
+                if (ts[k] >= 0.0 && drawn(s, o + ts[k] * d, ray, ts[k], int(i), h)) hits.push_back(h);
             }
-            for (int k = 0; k < count; ++k)
-                if (ts[k] >= 0.0 && ts[k] < best.t)
-                    keepIfDrawn(s, o + ts[k] * d, ray, ts[k], int(i), best);
         }
-        return best;
+        std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) {
+            return a.t != b.t ? a.t < b.t : a.surface < b.surface;
+        });
+        const auto opaque = std::find_if(hits.begin(), hits.end(), [&](const Hit& h) {
+            return m_surfaces[std::size_t(h.surface)].material->alphaMode != AlphaMode::Blend;
+        });
+        if (opaque != hits.end()) hits.erase(opaque + 1, hits.end());
     }
 
-    // Premultiplied RGBA of a sample.
-    glm::dvec4 shade(const Hit& hit) const {
-        if (hit.surface < 0) return glm::dvec4(m_options.background);
-        const Material& mat = *m_surfaces[hit.surface].material;
+    // Premultiplied RGBA of a sample: its layers composited front to back over the background,
+    // as blending them far to near in exact depth order would (colour = alpha c + (1 - alpha)
+    // behind; alpha = alpha + (1 - alpha) behind).
+    glm::dvec4 shade(const std::vector<Hit>& hits) const {
+        glm::dvec3 colour(0.0);
+        double alpha = 0.0, through = 1.0;
+        for (const Hit& h : hits) {
+            const glm::dvec4 c = shadeLayer(h);
+            colour += (through * c.a) * glm::dvec3(c);
+            alpha += through * c.a;
+            through *= 1.0 - c.a;
+            if (!(through > 0.0)) break;
+        }
+        const glm::dvec4 background(m_options.background);
+        return glm::dvec4(colour + through * glm::dvec3(background), alpha + through * background.a);
+    }
+
+    void setLighting(const frame::Lighting& lighting) { m_lighting = lighting; }
+
+private:
+    // One layer's straight colour and alpha (1 unless blended).
+    glm::dvec4 shadeLayer(const Hit& hit) const {
+        const Material& mat = *m_surfaces[std::size_t(hit.surface)].material;
         const bool useBack = frame::twoSidedLighting(m_lighting, mat) && !hit.front;
         const MaterialSide& side = mat.side(useBack);
         ref::Settings st = m_settings;
         st.unlit = mat.unlit;
         const glm::dvec3 n = useBack ? -hit.normal : hit.normal;
-        const ref::LightSums sums = ref::evaluateLighting(hit.point, n, side, m_lights, st);
+        std::vector<double> visible;
+        if (m_shadows)
+            for (const ref::EyeLight& light : m_lights)
+                visible.push_back(visibility(hit.point, light, hit.surface));
+        const ref::LightSums sums = ref::evaluateLighting(hit.point, n, side, m_lights, st, nullptr,
+                                                          m_shadows ? &visible : nullptr);
         const ref::MaterialColours mc = ref::materialColours(side, nullptr, false);
         const ref::SplitColour split =
             ref::splitColour(sums, mc.ambient, mc.diffuse, mat.ambientFollowsDiffuse, false);
@@ -136,34 +179,58 @@ public:
         if (m_options.clamp)
             for (int k = 0; k < 3; ++k)
                 if (std::isfinite(c[k])) c[k] = std::clamp(c[k], 0.0, 1.0);
-        return glm::dvec4(c, 1.0);
+        return glm::dvec4(c, mat.alphaMode == AlphaMode::Blend ? std::clamp(mc.alpha, 0.0, 1.0) : 1.0);
     }
 
-    void setLighting(const frame::Lighting& lighting) { m_lighting = lighting; }
+    // The share of `light` that reaches eye-space point p on surface `self`: the product of
+    // what every surface between them lets through (transmittance), both faces of each
+    // counted. A directional light's ray is unbounded; a positional light's ends at the light.
+    // The point's own surface is skipped within a millionth of its extent of the point.
+    double visibility(const glm::dvec3& p, const ref::EyeLight& light, int self) const {
+        const bool directional = light.type == LightType::Directional;
+        const glm::dvec3 dir = directional ? light.toLight : light.position - p;
+        const double tMax = directional ? kNoHit : 1.0;
+        double through = 1.0;
+        for (std::size_t i = 0; i < m_surfaces.size() && through > 0.0; ++i) {
+            const Surface& s = m_surfaces[i];
+            const glm::dvec3 o(s.modelFromView * glm::dvec4(p, 1.0));
+            const glm::dvec3 d(s.modelFromView * glm::dvec4(dir, 0.0));
+            const double extent = s.shape.kind == AnalyticKind::Sphere ? s.shape.radius : s.shape.size;
+            const double tMin = int(i) == self ? 1e-6 * extent / std::max(glm::length(d), 1e-300) : 0.0;
+            double ts[2];
+            const int count = surfaceRoots(s.shape, o, d, ts);
+            for (int k = 0; k < count; ++k) {
+                if (!(ts[k] > tMin && ts[k] < tMax)) continue;
+                const glm::dvec3 model = o + ts[k] * d;
+                const bool front = glm::dot(s.normalFromModel * modelNormal(s, model), dir) < 0.0;
+                const Material& mat = *s.material;
+                through *= transmittance(mat, mat.side(frame::twoSidedLighting(m_lighting, mat) && !front));
+            }
+        }
+        return through;
+    }
 
-private:
-    // Records a candidate hit at model point p if the rasteriser would draw it there.
-    void keepIfDrawn(const Surface& s, const glm::dvec3& p, const Ray& ray, double t, int index,
-                     Hit& best) const {
+    static glm::dvec3 modelNormal(const Surface& s, const glm::dvec3& p) {
+        return s.shape.kind == AnalyticKind::Sphere ? p / s.shape.radius : glm::dvec3(0, 0, 1);
+    }
+
+    // Whether the rasteriser draws surface s at model point p (t along the ray), and the hit.
+    bool drawn(const Surface& s, const glm::dvec3& p, const Ray& ray, double t, int index,
+               Hit& hit) const {
         const glm::dvec3 eye = ray.origin + t * ray.direction;
         const glm::dvec4 clip = m_clipFromView * glm::dvec4(eye, 1.0);
-        if (!(clip.w > 0.0)) return;
+        if (!(clip.w > 0.0)) return false;
         const double depth = clip.z / clip.w;
-        if (depth < 0.0 || depth > 1.0) return;
-        const glm::dvec3 modelNormal =
-            s.shape.kind == AnalyticKind::Sphere ? p / s.shape.radius : glm::dvec3(0, 0, 1);
-        const glm::dvec3 n = ref::safeNormalize(s.normalFromModel * modelNormal);
+        if (depth < 0.0 || depth > 1.0) return false;
+        const glm::dvec3 n = ref::safeNormalize(s.normalFromModel * modelNormal(s, p));
         const bool front = glm::dot(n, ray.direction) < 0.0;
         const Material& mat = *s.material;
-        if (!front && !mat.doubleSided) return; // back-face culling
+        if (!front && !mat.doubleSided) return false; // back-face culling
         if (mat.alphaMode == AlphaMode::Mask &&
             mat.side(frame::twoSidedLighting(m_lighting, mat) && !front).diffuse.a < mat.alphaCutoff)
-            return;
-        best.t = t;
-        best.surface = index;
-        best.point = eye;
-        best.normal = n;
-        best.front = front;
+            return false;
+        hit = Hit{t, index, eye, n, front};
+        return true;
     }
 
     std::vector<Surface> m_surfaces;
@@ -172,6 +239,7 @@ private:
     RenderOptions m_options;
     glm::dmat4 m_clipFromView, m_viewFromClip;
     double m_nearDepth;
+    bool m_shadows;
     frame::Lighting m_lighting;
 };
 
@@ -271,9 +339,6 @@ Result<std::vector<Surface>> placeSurfaces(const Scene& scene, const Pose& pose,
         if (mat.baseColorTexture >= 0)
             return refuse(ErrorCode::Unsupported,
                           "textured materials are not modelled by the reference", matObject);
-        if (mat.alphaMode == AlphaMode::Blend)
-            return refuse(ErrorCode::Unsupported,
-                          "alpha-blended materials are not modelled by the reference", matObject);
         Surface s;
         s.shape = *shape;
         const glm::dmat4 viewFromModel = viewFromWorld * pose.worldFromNode[ni];
@@ -288,26 +353,34 @@ Result<std::vector<Surface>> placeSurfaces(const Scene& scene, const Pose& pose,
     return surfaces;
 }
 
+// The surfaces a ray meets, in order (-1: none): what the edge probes compare.
+std::vector<int> layers(const std::vector<Hit>& hits) {
+    std::vector<int> ids;
+    for (const Hit& h : hits) ids.push_back(h.surface);
+    if (ids.empty()) ids.push_back(-1);
+    return ids;
+}
+
 // One pixel: the centre sample, the average of N x N box samples, and whether K x K probes
-// across the pixel (its edges included) all hit the same surface.
+// across the pixel (its edges included) all meet the same surfaces in the same order.
 void renderPixel(const Caster& caster, int x, int y, int N, int K, ReferenceImage& out) {
-    const Ray c = caster.rayAt(x + 0.5, y + 0.5);
-    const glm::dvec4 centre = caster.shade(caster.trace(c));
+    std::vector<Hit> hits;
+    caster.trace(caster.rayAt(x + 0.5, y + 0.5), hits);
+    const glm::dvec4 centre = caster.shade(hits);
     glm::dvec4 sum(0.0);
     for (int j = 0; j < N; ++j)
         for (int i = 0; i < N; ++i) {
-            const Ray r = caster.rayAt(x + (i + 0.5) / N, y + (j + 0.5) / N);
-            sum += caster.shade(caster.trace(r));
+            caster.trace(caster.rayAt(x + (i + 0.5) / N, y + (j + 0.5) / N), hits);
+            sum += caster.shade(hits);
         }
-    int first = -2;
+    std::vector<int> first;
     bool same = true;
     for (int j = 0; j < K && same; ++j)
         for (int i = 0; i < K && same; ++i) {
-            const int id =
-                caster.trace(caster.rayAt(x + double(i) / (K - 1), y + double(j) / (K - 1)))
-                    .surface;
-            if (first == -2) first = id;
-            same = id == first;
+            caster.trace(caster.rayAt(x + double(i) / (K - 1), y + double(j) / (K - 1)), hits);
+            std::vector<int> ids = layers(hits);
+            if (first.empty()) first = std::move(ids);
+            else same = ids == first;
         }
     const glm::dvec4 box = sum / double(N * N);
     float* pc = out.centre.pixel(x, y);
@@ -316,7 +389,7 @@ void renderPixel(const Caster& caster, int x, int y, int N, int K, ReferenceImag
         pc[k] = float(centre[k]);
         pb[k] = float(box[k]);
     }
-    out.interior[std::size_t(y) * out.centre.width + x] = same && first >= 0 ? 1 : 0;
+    out.interior[std::size_t(y) * out.centre.width + x] = same && first[0] >= 0 ? 1 : 0;
 }
 
 // Calls renderRow(y) for rows 0..rows-1 on `threads` threads (this one among them), each thread
@@ -356,7 +429,8 @@ Result<ReferenceImage> raycastReference(const Scene& scene, const RenderOptions&
     settings.localViewer = lit.model.localViewer;
     settings.specular = lit.model.specular;
     Caster caster(std::move(*surfaces), *camera,
-                  frame::placeLights(scene, pose, camera->viewFromWorld, false), settings, options);
+                  frame::placeLights(scene, pose, camera->viewFromWorld, false), settings, options,
+                  reference.shadows);
     caster.setLighting(lit);
 
     const int W = options.width, H = options.height;
