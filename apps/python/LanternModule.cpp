@@ -169,7 +169,7 @@ void defineRenderer(py::module_& m) {
                std::vector<std::string> aov, bool unlitExact, py::object intrinsics,
                std::optional<std::vector<std::vector<double>>> worldToCamera,
                std::optional<std::vector<std::vector<double>>> cameraToWorld,
-               std::optional<double> znear, std::optional<double> zfar) {
+               std::optional<double> znear, std::optional<double> zfar, bool shadows) {
                 RenderArgs a{time,       width,   height,      std::move(shading),
                              std::move(specular), msaa, std::move(background), std::move(lookAt),
                              std::move(perspective), std::move(ortho), std::nullopt, twoSided,
@@ -186,6 +186,7 @@ void defineRenderer(py::module_& m) {
                 a.cameraToWorld = std::move(cameraToWorld);
                 a.znear = znear;
                 a.zfar = zfar;
+                a.shadows = shadows;
                 return r.render(scene, a);
             },
             py::arg("scene"), py::kw_only(), py::arg("time") = 0.0, py::arg("width") = 1280,
@@ -200,14 +201,15 @@ void defineRenderer(py::module_& m) {
             py::arg("aov") = std::vector<std::string>{}, py::arg("unlit_exact") = false,
             py::arg("intrinsics") = py::none(), py::arg("world_to_camera") = py::none(),
             py::arg("camera_to_world") = py::none(), py::arg("near") = py::none(),
-            py::arg("far") = py::none(),
+            py::arg("far") = py::none(), py::arg("shadows") = false,
             "Renders `scene` at `time` seconds: a (height, width, 4) float32 array of linear, "
             "premultiplied RGBA; with depth=True and/or normal=True a tuple (rgba, depth, "
             "normal) of the planes asked for; with aov=[names] (docs/aovs.md) a tuple (rgba, "
             "dict) of float32 data planes and uint32 id planes by name. Computer-vision cameras: "
             "intrinsics=(fx, fy, cx, cy) or a 3x3 K in OpenCV pixels (centres at integers), "
             "near/far, world_to_camera (OpenCV axes) or camera_to_world (glTF axes) as 4x4 "
-            "matrices, or camera=\"FILE.json\" (docs/cameras.md)");
+            "matrices, or camera=\"FILE.json\" (docs/cameras.md). shadows=True: every light casts "
+            "shadows (docs/shadows.md)");
 }
 
 } // namespace

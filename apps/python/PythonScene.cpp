@@ -259,6 +259,7 @@ RenderOptions renderOptions(const RenderArgs& a) {
     if (a.unlitExact && a.msaa != 1)
         throw py::value_error("unlit_exact: needs msaa=1 (no anti-aliasing)");
     o.unlitExact = a.unlitExact;
+    o.shadows.all = a.shadows;
     return o;
 }
 

@@ -15,6 +15,8 @@
 #define LANTERN_BINDING_LIGHTS_UNIFORM 6  // uniform: the same lights as LIGHTS, for up to
                                           // LANTERN_UNIFORM_LIGHTS of them (SC_LIGHTS_UNIFORM)
 #define LANTERN_BINDING_INSTANCES 7     // buffer: the instanced draws' transforms (instance.glsl)
+#define LANTERN_BINDING_SHADOW_MAP 8    // sampler2DArrayShadow: the frame's shadow maps (shadows.glsl)
+#define LANTERN_BINDING_SHADOWS 9       // buffer: per view and map, its clip-from-view (shadows.glsl)
 #define LANTERN_SET_TEXTURE 1
 #define LANTERN_BINDING_BASE_COLOR 0 // sampler2D, the material's base-colour texture
 #define LANTERN_BINDING_METALLIC_ROUGHNESS 1  // sampler2D: B metallic, G roughness (linear)
@@ -82,7 +84,12 @@
 #define LANTERN_SC_LIGHT_KINDS 16    // with n lights unrolled: light i's kind in bits 4i..4i+3
 #define LANTERN_SC_LIGHTS_UNIFORM 17  // 1: the lights are read from LIGHTS_UNIFORM, not LIGHTS
 #define LANTERN_SC_INSTANCED 18      // 1: the draw's transforms are per instance (instance.glsl)
-#define LANTERN_SC_COUNT 19
+#define LANTERN_SC_SHADOWS 19        // LANTERN_SHADOW_*: how shadow maps are read (none: no light casts)
+#define LANTERN_SC_COUNT 20
+
+#define LANTERN_SHADOW_NONE 0u
+#define LANTERN_SHADOW_HARDWARE 1u     // one comparison with the device's 2 x 2 filter
+#define LANTERN_SHADOW_PCF 2u          // kernel x kernel filtered comparisons
 
 // Material maps (MaterialData.params.y holds the material's, as a float).
 #define LANTERN_MAP_METALLIC_ROUGHNESS 1u

@@ -13,6 +13,7 @@
 #include "lantern_shared.h"
 #include "specialization.glsl"
 #include "uniforms.glsl"
+#include "shadows.glsl"
 
 struct LightSums {
     vec3 emissiveSpecular;  // e_m + sum att spot f spec s_m s_i
@@ -149,11 +150,17 @@ void addLight(inout LightSums s, uint i, uint kind, vec3 V, vec3 n, vec3 v,
     float k = att * spot;
     float ndotl = dot(n, l);
     s.ambient += k * LIGHT(i, ambient).rgb;
-    s.diffuse += (k * max(ndotl, 0.0)) * LIGHT(i, diffuse).rgb;
+    // A shadow dims the light's diffuse and specular terms, not its ambient one.
+    float lit = k;
+    if (SC_SHADOWS != LANTERN_SHADOW_NONE && ndotl > 0.0 && k > 0.0) {
+        uvec4 info = LIGHT(i, info);
+        if (info.z != 0u) lit *= shadowVisibility(info.z - 1u, info.w, V, n, LIGHT(i, position).xyz);
+    }
+    s.diffuse += (lit * max(ndotl, 0.0)) * LIGHT(i, diffuse).rgb;
     // f_i selects rather than multiplies, so a non-finite term on the dark side cannot leak.
     if (SC_SPECULAR != LANTERN_SPECULAR_NONE && ndotl > 0.0) {
         float spec = specularTerm(n, l, v, shininess);
-        s.emissiveSpecular += (k * spec) * (specularM * lightSpecular.rgb);
+        s.emissiveSpecular += (lit * spec) * (specularM * lightSpecular.rgb);
     }
 }
 

@@ -27,5 +27,6 @@ layout(constant_id = LANTERN_SC_UNROLLED_LIGHTS) const uint SC_UNROLLED_LIGHTS =
 layout(constant_id = LANTERN_SC_LIGHT_KINDS) const uint SC_LIGHT_KINDS = 0u;
 layout(constant_id = LANTERN_SC_LIGHTS_UNIFORM) const bool SC_LIGHTS_UNIFORM = false;
 layout(constant_id = LANTERN_SC_INSTANCED) const bool SC_INSTANCED = false;
+layout(constant_id = LANTERN_SC_SHADOWS) const uint SC_SHADOWS = 0u;
 
 #endif

@@ -13,7 +13,8 @@ layout(set = LANTERN_SET_FRAME, binding = LANTERN_BINDING_FRAME, std140) uniform
     uint lightCount;
     uint viewIndex;
     float pointSize;      // gl_PointSize of point draws (pixels)
-    uint pad1;
+    uint shadowMaps;      // shadow maps per view (shadows.glsl)
+    vec4 shadowParams;    // x: a map texel in uv (1 / resolution), y: PCF kernel, z: normal offset (texels)
 } frame;
 
 struct LightData {

@@ -55,6 +55,16 @@ def test_options_change_the_picture(renderer, teapot):
         assert np.abs(other - base).max() > 1e-3, options
 
 
+def test_shadows_only_darken(renderer, teapot):
+    # The teapot's spout and handle shadow its body: shadows=True darkens some pixels and
+    # brightens none (a shadow takes a light's diffuse and specular terms away).
+    lit = renderer.render(teapot, width=128, height=96)
+    shadowed = renderer.render(teapot, width=128, height=96, shadows=True)
+    assert np.isfinite(shadowed).all()
+    assert (shadowed[..., :3] <= lit[..., :3] + 1e-5).all()
+    assert (shadowed[..., :3] < lit[..., :3] - 0.02).any(), "no pixel is in a shadow"
+
+
 def test_bad_keywords_raise_value_error(renderer, teapot):
     with pytest.raises(ValueError, match="shading"):
         renderer.render(teapot, shading="toon", **SIZE)

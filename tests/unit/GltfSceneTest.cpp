@@ -484,6 +484,29 @@ TEST(GltfScene, PunctualLightsMapToGltfFalloffOrToGlWithTheExtension) {
     EXPECT_EQ(s->nodes[5].light, 4);
 }
 
+// LANTERN_lights_shadow: present, the light casts shadows unless castShadows is false; a value
+// that is not a boolean is refused with its path.
+TEST(GltfScene, LightsCastShadowsWithTheExtension) {
+    auto shadow = [](json value) {
+        return json{{"type", "point"}, {"extensions", {{"LANTERN_lights_shadow", value}}}};
+    };
+    auto s = loadLights(json::array({shadow(json::object()), shadow({{"castShadows", false}}),
+                                     shadow({{"castShadows", true}}), {{"type", "directional"}}}));
+    ASSERT_TRUE(s) << s.error().describe();
+    ASSERT_EQ(s->lights.size(), 4u);
+    EXPECT_TRUE(s->lights[0].castShadows);
+    EXPECT_FALSE(s->lights[1].castShadows);
+    EXPECT_TRUE(s->lights[2].castShadows);
+    EXPECT_FALSE(s->lights[3].castShadows) << "no extension: no shadows";
+    GltfBuilder b;
+    b.addTriangle();
+    b.doc["extensions"]["KHR_lights_punctual"]["lights"] = json::array({shadow({{"castShadows", 1}})});
+    b.addNode({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    EXPECT_TRUE(refusedWith(loadCapturing(b.write(testOutputDir(), "bad-shadow")),
+                            "extensions.KHR_lights_punctual.lights[0].extensions.LANTERN_lights_shadow.castShadows",
+                            "must be true or false"));
+}
+
 TEST(GltfScene, BadLightValuesAreRefusedWithTheReason) {
     const std::string ext = "extensions.KHR_lights_punctual.lights[0].extensions.LANTERN_lights_phong";
     struct Case {

@@ -25,6 +25,8 @@ struct SpeedArgs {
     std::vector<std::string> shading{"flat", "gouraud", "phong"};
     std::vector<int> lights{1, 2, 4, 8, 16, 32, 64, 128, 256};
     std::vector<double> triangles{1e3, 1e4, 1e5, 1e6, 1e7};
+    bool shadows = false;        ///< --shadows: the lights section also with every light casting
+    int shadowResolution = 1024; ///< --shadow-resolution
     TimingOptions timing;
     DeviceOptions device;
     CLI::Option *widthOption = nullptr, *heightOption = nullptr, *lightsOption = nullptr,
@@ -144,19 +146,22 @@ public:
     // Adds a configuration; its floor index is filled in by the caller.
     SpeedRow& add(Section& s, std::size_t scene, const std::string& sceneName,
                   const std::string& section, std::optional<ShadingMode> mode,
-                  FeatureMode features) {
+                  FeatureMode features, bool shadows = false) {
         TimedConfig c;
         c.options.width = m_a.width;
         c.options.height = m_a.height;
         c.options.msaa = m_a.msaa;
         c.options.shading = mode;
         c.options.features = features;
+        c.options.shadows.all = shadows;
+        c.options.shadows.resolution = m_a.shadowResolution;
         SpeedRow row;
         row.section = section;
         row.scene = sceneName;
         row.shading = features == FeatureMode::Floor ? "floor" : mode ? toString(*mode) : "scene";
         row.features = features == FeatureMode::AllFeatures ? "all-features"
                        : features == FeatureMode::Floor     ? "floor"
+                       : shadows                            ? "specialised+shadows"
                                                             : "specialised";
         row.lights = drawnLights(*s.scenes[scene]);
         row.triangles = drawnTriangles(*s.scenes[scene]);
@@ -196,8 +201,11 @@ public:
                 floor = add(s, *i, m_a.scene, "lights", std::nullopt, FeatureMode::Floor).config;
                 s.rows.back().floor = floor;
             }
-            for (ShadingMode m : m_modes)
+            for (ShadingMode m : m_modes) {
                 add(s, *i, m_a.scene, "lights", m, FeatureMode::Specialised).floor = floor;
+                if (m_a.shadows)
+                    add(s, *i, m_a.scene, "lights", m, FeatureMode::Specialised, true).floor = floor;
+            }
         }
         return s;
     }
@@ -269,14 +277,18 @@ void sectionMarkdown(std::ostringstream& md, const Section& s, const std::string
            << ")\n\n"
            << "ms per frame (multiple of the floor of the same geometry and pixels).\n\n| "
            << (lights ? "lights" : "triangles") << " | floor |";
+        const bool shadows = lights && find(s, toString(modes.front()), "specialised+shadows",
+                                            first.lights, first.triangles);
         for (ShadingMode m : modes)
             md << ' ' << toString(m) << " |";
+        if (shadows)
+            for (ShadingMode m : modes) md << ' ' << toString(m) << " + shadows (x unshadowed) |";
         md << (lights ? "" : " phong Mtri/s |") << "\n|---|---|";
-        for (std::size_t i = 0; i < modes.size(); ++i)
+        for (std::size_t i = 0; i < modes.size() * (shadows ? 2 : 1); ++i)
             md << "---|";
         md << (lights ? "" : "---|") << "\n";
         for (const SpeedRow& r : s.rows) {
-            if (r.shading != toString(modes.front())) continue;
+            if (r.shading != toString(modes.front()) || r.features != "specialised") continue;
             md << "| " << (lights ? r.lights : r.triangles) << " | "
                << num(s.configs[r.floor].ms(), "%.2f") << " |";
             const SpeedRow* phong = nullptr;
@@ -284,6 +296,13 @@ void sectionMarkdown(std::ostringstream& md, const Section& s, const std::string
                 const SpeedRow* x = find(s, toString(m), "specialised", r.lights, r.triangles);
                 if (m == ShadingMode::Phong) phong = x;
                 md << ' ' << cell(s, x) << " |";
+            }
+            for (ShadingMode m : shadows ? modes : std::vector<ShadingMode>{}) {
+                const SpeedRow* x = find(s, toString(m), "specialised", r.lights, r.triangles);
+                const SpeedRow* y = find(s, toString(m), "specialised+shadows", r.lights, r.triangles);
+                md << ' ' << cell(s, y) << " ("
+                   << (x && y ? num(s.configs[y->config].ms() / s.configs[x->config].ms(), "%.2f") : "-")
+                   << "x) |";
             }
             if (!lights)
                 md << ' '
@@ -403,6 +422,12 @@ Runner addSpeedBench(CLI::App& bench) {
         cmd->add_option("--triangles", a->triangles, "Triangle counts (approximate)")
             ->delimiter(',')
             ->capture_default_str();
+    cmd->add_flag("--shadows", a->shadows,
+                  "The lights section also with every light casting shadows, side by side");
+    cmd->add_option("--shadow-resolution", a->shadowResolution,
+                    "Texels per side of each shadow map (--shadows)")
+        ->capture_default_str()
+        ->check(CLI::Range(16, 16384));
     a->timing.output = "bench-speed";
     a->timing.add(*cmd,
                   "Reduced run: 640x360, lights 1,8,64, up to 1e5 triangles, 2 rounds of 3 frames",

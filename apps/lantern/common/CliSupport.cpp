@@ -301,65 +301,6 @@ std::vector<View> quadLayout(int width, int height, const CameraSpec& perspectiv
     };
 }
 
-void ShadingOptions::add(CLI::App& app) {
-    app.add_option("--shading", shading, help::kShading)
-        ->check(CLI::IsMember({"flat", "gouraud", "phong"}));
-    app.add_option("--specular", specular, help::kSpecular)
-        ->check(CLI::IsMember({"blinn", "phong"}));
-    app.add_flag("--local-viewer", localViewer,
-                 "View vector towards the eye (GL_LIGHT_MODEL_LOCAL_VIEWER)");
-    app.add_flag("--two-sided", twoSided,
-                 "Light back faces with the back material (GL_LIGHT_MODEL_TWO_SIDE)");
-    app.add_flag("--clamp", clamp, "Clamp lit colours to [0,1]");
-    app.add_flag("--gl-compat", glCompat,
-                 "Reproduce OpenGL's fixed-function pipeline (provoking-vertex flat, per-vertex "
-                 "clamp, limits)");
-    app.add_option("--msaa", msaa, help::kMsaa)->capture_default_str()->check(CLI::IsMember({1, 2, 4, 8}));
-    app.add_option("--point-size", pointSize,
-                   "Pixels across a point (glTF POINTS, GL_POINTS), 1 to 255; above 1 the device "
-                   "needs largePoints")
-        ->capture_default_str()
-        ->check(CLI::Range(1.0, 255.0));
-    app.add_option("--line-width", lineWidth,
-                   "Pixels across a line (glTF LINES, LINE_STRIP, LINE_LOOP; GL_LINES), 1 to 255; "
-                   "above 1 the device needs wideLines")
-        ->capture_default_str()
-        ->check(CLI::Range(1.0, 255.0));
-    app.add_flag("--no-instancing", noInstancing,
-                 "Draw every node on its own, not nodes that share a mesh as one instanced draw "
-                 "(the same picture; to measure what instancing buys)");
-}
-
-Result<void> ShadingOptions::apply(RenderOptions& o) const {
-    if (!shading.empty()) o.shading = parseShadingMode(shading);
-    if (!specular.empty()) o.specular = parseSpecularModel(specular);
-    if (localViewer) o.localViewer = true;
-    if (twoSided) o.twoSided = true;
-    o.clamp = clamp;
-    o.glCompat = glCompat;
-    o.msaa = msaa;
-    o.pointSize = pointSize;
-    o.lineWidth = lineWidth;
-    o.instancing = !noInstancing;
-    return {};
-}
-
-Result<void> ShadingOptions::checkDevice(const DeviceInfo& device) const {
-    return checkMsaa(msaa, device);
-}
-
-Result<void> checkMsaa(int msaa, const DeviceInfo& device) {
-    const auto& counts = device.msaaSampleCounts;
-    if (std::find(counts.begin(), counts.end(), msaa) != counts.end()) return {};
-    std::string supported;
-    for (int c : counts)
-        supported += (supported.empty() ? "" : ", ") + std::to_string(c);
-    return makeError(ErrorCode::Usage,
-                     std::to_string(msaa) + " samples per pixel: " + device.name + " supports " +
-                         supported,
-                     "--msaa");
-}
-
 std::pair<CLI::Option*, CLI::Option*> addSizeOptions(CLI::App& app, int& width, int& height) {
     return {app.add_option("--width", width, help::kWidth)->capture_default_str()->check(CLI::Range(1, 16384)),
             app.add_option("--height", height, help::kHeight)->capture_default_str()->check(CLI::Range(1, 16384))};

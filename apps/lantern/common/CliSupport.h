@@ -130,6 +130,10 @@ struct ShadingOptions {
     std::string shading, specular;
     bool localViewer = false, twoSided = false, clamp = false, glCompat = false;
     bool noInstancing = false;
+    bool shadows = false;
+    int shadowResolution = 2048, shadowKernel = 3;
+    std::string shadowFilter = "pcf";
+    double shadowBias = 2.0, shadowNormalOffset = 1.5;
     int msaa = 1;
     double pointSize = 1.0, lineWidth = 1.0;
 

@@ -136,7 +136,7 @@ bool editLightPosition(Scene& scene, int index) {
 
 bool editLight(Scene& scene, int index) {
     Light& l = scene.lights[std::size_t(index)];
-    bool changed = false;
+    bool changed = ImGui::Checkbox("casts shadows", &l.castShadows);
     int type = int(l.type);
     const char* types[] = {"directional", "point", "spot"};
     if (ImGui::Combo("type", &type, types, 3)) {
@@ -325,6 +325,15 @@ void shadingSection(ViewerState& st) {
     ImGui::Checkbox("wireframe", &o.wireframe);
     ImGui::SameLine();
     ImGui::Checkbox("normals", &o.normals);
+    // Shadows: every light (as --shadows), or each light's own switch under Lights.
+    ImGui::Checkbox("shadows (every light)", &o.shadows.all);
+    int filter = int(o.shadows.filter);
+    pressed = ImGui::RadioButton("hardware", &filter, int(ShadowFilter::Hardware));
+    ImGui::SameLine();
+    pressed |= ImGui::RadioButton("pcf", &filter, int(ShadowFilter::Pcf));
+    if (pressed) o.shadows.filter = ShadowFilter(filter);
+    ImGui::SliderInt("shadow kernel", &o.shadows.kernel, 1, 9);
+    o.shadows.kernel |= 1;  // odd
 }
 
 void lightsSection(ViewerState& st) {

@@ -94,6 +94,23 @@ struct View {
     CameraSpec camera;
 };
 
+/// How a shadow map is filtered: the device's 2 x 2 comparison (Hardware), or percentage
+/// closer filtering over kernel x kernel comparisons a texel apart (Pcf).
+enum class ShadowFilter { Hardware, Pcf };
+
+/// Shadow maps (docs/shadows.md): a light casts shadows when the scene says so
+/// (LANTERN_lights_shadow, Light::castShadows) or when `all` is set; a frame without such a
+/// light renders as it did without shadows, with the same pipeline variants. Under GL
+/// compatibility only `all` casts them (GL has no shadows).
+struct ShadowOptions {
+    bool all = false;           ///< every light casts shadows (--shadows)
+    int resolution = 2048;      ///< texels per side of each map (a cube face for point lights)
+    ShadowFilter filter = ShadowFilter::Pcf;
+    int kernel = 3;             ///< Pcf: comparisons per side, odd, 1 to 9
+    double slopeBias = 2.0;     ///< depth bias, in units of the depth's slope (texels)
+    double normalOffset = 1.5;  ///< the lookup point moves this many texels along the normal
+};
+
 /// Which pipeline features are compiled in: only those the scene needs (the default), or all
 /// of them (for measuring what specialisation saves). Floor draws the same geometry with a
 /// trivial shader (constant white, no lighting): the cost of rasterising alone, the floor that
@@ -133,6 +150,7 @@ struct RenderOptions {
     /// false: one draw per node. The picture is the same either way (docs/performance.md,
     /// "Instanced draws"); the switch is there to measure what instancing buys.
     bool instancing = true;
+    ShadowOptions shadows;
     /// Linear, premultiplied. Opaque black by default, as `lantern render` and `lantern view`
     /// (one rule, docs/cli.md); {0, 0, 0, 0} for a transparent background, whose alpha is then
     /// each pixel's coverage (for compositing).

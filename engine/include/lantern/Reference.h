@@ -50,7 +50,8 @@ struct ReferenceOptions {
     /// corners included, all meet the same surface (>= 2).
     int edgeProbes = 4;
     int threads = 0; ///< worker threads; 0: one per core
-    /// Every light casts exact shadows: a shadow ray from each shaded point to each light
+    /// Every light casts exact shadows (as RenderOptions::shadows.all asks; a light whose
+    /// Light::castShadows is set casts them either way): a shadow ray from each shaded point to each light
     /// (unbounded towards a directional light); every surface it crosses, both faces, lets
     /// through what its material lets through (an opaque one nothing, a blended one 1 - alpha,
     /// a masked one all where the mask cuts it away). A shadow scales the light's diffuse and

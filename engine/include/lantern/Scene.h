@@ -145,6 +145,9 @@ struct Light {
     double range = kInfinity;        ///< > 0; +inf: unlimited
     double innerConeAngle = 0.0;     ///< radians, [0, outer)
     double outerConeAngle = 0.7853981633974483;  ///< radians, (inner, pi/2]
+    /// The light casts shadows (LANTERN_lights_shadow; RenderOptions::shadows.all makes every
+    /// light cast them).
+    bool castShadows = false;
 };
 
 // --- Meshes ---------------------------------------------------------------------------------

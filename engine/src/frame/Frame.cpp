@@ -239,6 +239,7 @@ Result<Frame> buildFrame(const Scene& scene, const RenderOptions& o, double time
         for (Draw& d : view->draws) d.index = index++;
         frame.views.push_back(std::move(*view));
     }
+    frame.shadows = planShadows(scene, frame, o);
     return frame;
 }
 

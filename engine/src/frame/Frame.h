@@ -105,6 +105,8 @@ struct EyeLight {
     double exponent = 0.0;            ///< GL spot exponent (<= 128 with GL compatibility)
     double cosOuter = 0.0;            ///< glTF spot: cos(outer cone angle)
     double coneScale = 1.0;           ///< glTF spot: 1 / max(cos inner - cos outer, 1e-6)
+    double coneAngle = 0.0;           ///< spot: the cone's half-angle, radians (GL cutoff, glTF outer)
+    bool castShadows = false;         ///< Light::castShadows (never under GL compatibility)
 };
 
 /// The lights of a pose in the eye space of `viewFromWorld`, in node order: the one place
@@ -168,6 +170,23 @@ struct View {
     std::vector<Draw> draws;       ///< opaque in node order, then blended far to near
 };
 
+/// One shadow map of a frame (a layer of the frame's shadow-map array): the depths a light
+/// sees, in its own Vulkan clip space with reversed Z (frame/Shadows.cpp).
+struct ShadowMap {
+    std::size_t light = 0;          ///< index into every view's lights
+    glm::dmat4 clipFromWorld{1.0};
+    bool perspective = false;
+    /// A texel's world size: at unit distance from the light (perspective), or anywhere.
+    double texel = 0.0;
+};
+
+/// The frame's shadow maps: none unless a light casts shadows (then the frame pays nothing).
+struct Shadows {
+    std::vector<ShadowMap> maps;
+    std::vector<int> firstMap;  ///< per light: its first map (a point light has six), -1: none
+    bool any() const { return !maps.empty(); }
+};
+
 struct Frame {
     int root = 0;
     double time = 0.0;
@@ -178,6 +197,7 @@ struct Frame {
     std::vector<Material> materials;
     LightFeatures lightFeatures;
     std::vector<View> views;
+    Shadows shadows;
 
     std::size_t drawCount() const;
     /// The draw numbered `index` and its view, or null.
@@ -187,6 +207,12 @@ struct Frame {
 /// Builds the frame. InvalidInput for a root, time, view or camera the options name wrongly;
 /// the scene must have passed Scene::validate().
 Result<Frame> buildFrame(const Scene& scene, const RenderOptions& options, double time);
+
+/// The shadow maps of a frame whose views are built: for each light that casts shadows
+/// (ShadowOptions::all, or Light::castShadows), fitted to the bounds of what the frame draws:
+/// a directional light's orthographic box around them, a spot light's cone, a point light's
+/// six cube faces along the world axes.
+Shadows planShadows(const Scene& scene, const Frame& frame, const RenderOptions& options);
 
 /// The features a frame uses, one line each (e.g. "light:point x2", "shading:phong"), for
 /// --explain and `lantern info`.

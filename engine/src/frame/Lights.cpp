@@ -40,6 +40,10 @@ EyeLight place(const Light& l, const std::string& fallbackName, const glm::dmat4
     e.exponent = glCompat ? std::min(l.spotExponent, 128.0) : l.spotExponent;
     e.cosOuter = std::cos(l.outerConeAngle);
     e.coneScale = 1.0 / std::max(std::cos(l.innerConeAngle) - e.cosOuter, 1e-6);
+    e.castShadows = l.castShadows && !glCompat;
+    // The cone's half-angle: a GL cutoff or glTF's outer angle.
+    e.coneAngle = l.falloff == LightFalloff::Gl ? std::min(l.spotCutoffDeg, 90.0) * kPi / 180.0
+                                                : l.outerConeAngle;
     return e;
 }
 

@@ -97,6 +97,16 @@ struct Overlays {
     bool any() const { return wireframe || normals; }
 };
 
+/// The frame's shadow maps (frame/Shadows.cpp, gpu/Shadows.h): one depth-only pass per map
+/// over the first view's opaque triangles, and what the lighting reads of them.
+struct ShadowCommands {
+    std::uint32_t resolution = 0;
+    std::vector<FrameBlock> passes;   ///< per map: the block its pass draws with (the map's clip space)
+    std::vector<ShadowData> lookups;  ///< per view, per map (ShadowBlock in shadows.glsl)
+    float slopeBias = 0.0f;           ///< the passes' depth-bias slope factor (reversed Z: negative)
+    bool any() const { return !passes.empty(); }
+};
+
 enum class OutputGuard { Auto, Always, Never };
 
 struct DrawList {
@@ -106,6 +116,7 @@ struct DrawList {
     std::vector<DeformCommand> deforms;  ///< skinned and morphing primitives (usually none)
     /// The instanced draws' per-instance transforms, every view's (render/DrawLists.cpp).
     std::vector<InstanceData> instances;
+    ShadowCommands shadows;
     Overlays overlays;
     /// Which draws check their colours where they are made (shaders/include/guard.glsl):
     /// Auto weighs the vertex stage's check against the host's (gpu/FrameRing.cpp); tests

@@ -106,12 +106,13 @@ Result<void> FrameRing::createSlot(Slot& s, std::size_t index) {
     LANTERN_VK_TRY(vkCreateFence(dev, &fci, nullptr, &fence));
     s.fence = UniqueFence(dev, fence);
 
-    VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 2},
+    VkDescriptorPoolSize sizes[4] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 2},
                                      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, 1},
-                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5}};
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 6},
+                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}};
     VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     dpci.maxSets = 1;
-    dpci.poolSizeCount = 3;
+    dpci.poolSizeCount = 4;
     dpci.pPoolSizes = sizes;
     VkDescriptorPool dp = VK_NULL_HANDLE;
     LANTERN_VK_TRY(vkCreateDescriptorPool(dev, &dpci, nullptr, &dp));
@@ -213,12 +214,17 @@ Result<void> FrameRing::preparePrePasses(Slot& slot, const DrawList& list,
     if (m_flatLighter)
         LANTERN_TRY(m_flatLighter->prepare(slot.flat, list, scene,
                                            slot.deforming ? &slot.deform : nullptr, flatPerTriangle));
-    return {};
+    if (!m_shadowPass) {
+        auto shadows = ShadowPass::create(m_ctx, m_pipelines);
+        if (!shadows) return std::move(shadows).error();
+        m_shadowPass = std::move(*shadows);
+    }
+    return m_shadowPass->prepare(slot.shadow, list);
 }
 
 // The uniform arena: materials, then per view its FrameBlock and its lights, at the device's
-// offset alignments (the frame set points into them with dynamic offsets), the output guard
-// and the instanced draws' transforms.
+// offset alignments (the frame set points into them with dynamic offsets), the output guard,
+// the instanced draws' transforms, the shadow passes' FrameBlocks and the shadow lookups.
 Result<FrameRing::ArenaLayout> FrameRing::fillArena(Slot& slot, const DrawList& list) {
     const auto& lim = m_ctx.properties().limits;
     const VkDeviceSize uboAlign = std::max<VkDeviceSize>(lim.minUniformBufferOffsetAlignment, 16);
@@ -244,7 +250,15 @@ Result<FrameRing::ArenaLayout> FrameRing::fillArena(Slot& slot, const DrawList& 
                             ssboAlign);
     a.instanceOffset = a.guardOffset + ssboAlign;
     a.instanceBytes = list.instances.size() * sizeof(InstanceData);
-    a.size = a.instanceOffset + std::max<VkDeviceSize>(a.instanceBytes, sizeof(InstanceData));
+    size = a.instanceOffset + std::max<VkDeviceSize>(a.instanceBytes, sizeof(InstanceData));
+    for (std::size_t i = 0; i < list.shadows.passes.size(); ++i) {
+        size = alignUp(size, uboAlign);
+        a.shadowFrameOffsets.push_back(size);
+        size += sizeof(FrameBlock);
+    }
+    a.shadowOffset = alignUp(size, ssboAlign);
+    a.shadowBytes = list.shadows.lookups.size() * sizeof(ShadowData);
+    a.size = a.shadowOffset + std::max<VkDeviceSize>(a.shadowBytes, sizeof(ShadowData));
     if (slot.arena.size < a.size) {
         auto arena = createBuffer(m_ctx, a.size * 2,
                                   VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT |
@@ -263,9 +277,18 @@ Result<FrameRing::ArenaLayout> FrameRing::fillArena(Slot& slot, const DrawList& 
     std::memset(base + a.guardOffset, 0, 16);  // the output guard, cleared (guard.glsl)
     if (a.instanceBytes > 0)
         std::memcpy(base + a.instanceOffset, list.instances.data(), a.instanceBytes);
+    for (std::size_t i = 0; i < a.shadowFrameOffsets.size(); ++i)
+        std::memcpy(base + a.shadowFrameOffsets[i], &list.shadows.passes[i], sizeof(FrameBlock));
+    if (a.shadowBytes > 0)
+        std::memcpy(base + a.shadowOffset, list.shadows.lookups.data(), a.shadowBytes);
     slot.guardOffset = a.guardOffset;
     LANTERN_TRY(flush(m_ctx, slot.arena));
+    writeFrameSet(slot, a);
+    return a;
+}
 
+// Points the slot's frame set at this frame's arena, shadow maps and flat records.
+void FrameRing::writeFrameSet(Slot& slot, const ArenaLayout& a) {
     writeBufferDescriptors(
         m_ctx, slot.frameSet,
         {{LANTERN_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC,
@@ -279,7 +302,18 @@ Result<FrameRing::ArenaLayout> FrameRing::fillArena(Slot& slot, const DrawList& 
          {LANTERN_BINDING_GUARD, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
           {slot.arena.get(), a.guardOffset, 16}},
          {LANTERN_BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-          {slot.arena.get(), a.instanceOffset, a.size - a.instanceOffset}}});
+          {slot.arena.get(), a.instanceOffset, a.shadowOffset - a.instanceOffset}},
+         {LANTERN_BINDING_SHADOWS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+          {slot.arena.get(), a.shadowOffset, a.size - a.shadowOffset}}});
+    const VkDescriptorImageInfo shadowMap{m_shadowPass->sampler(), slot.shadow.image.view.get(),
+                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstSet = slot.frameSet;
+    write.dstBinding = LANTERN_BINDING_SHADOW_MAP;
+    write.descriptorCount = 1;
+    write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    write.pImageInfo = &shadowMap;
+    vkUpdateDescriptorSets(m_ctx.device(), 1, &write, 0, nullptr);
     // The per-triangle flat records; a frame without them points the bindings at the arena
     // (never read).
     const FlatSlot& f = slot.flat;
@@ -292,7 +326,6 @@ Result<FrameRing::ArenaLayout> FrameRing::fillArena(Slot& slot, const DrawList& 
     writeBufferDescriptors(m_ctx, slot.frameSet,
                            {{LANTERN_BINDING_FLAT_COLORS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, colors},
                             {LANTERN_BINDING_FLAT_NORMALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, normals}});
-    return a;
 }
 
 Result<void> FrameRing::queueSubmit(Slot& slot, const SubmitHooks& hooks) {
@@ -372,8 +405,8 @@ Result<std::uint32_t> FrameRing::submit(const DrawList& list,
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     LANTERN_VK_TRY(vkBeginCommandBuffer(slot.cmd, &bi));
-    recordFrame(m_pipelines.layout(), m_overlays.get(), m_deformer.get(), m_flatLighter.get(), slot,
-                *scene, list, *arena, pipelines, aovPipelines, hooks);
+    recordFrame(m_pipelines.layout(), m_overlays.get(), m_deformer.get(), m_flatLighter.get(),
+                *m_shadowPass, slot, *scene, list, *arena, pipelines, aovPipelines, hooks);
     LANTERN_VK_TRY(vkEndCommandBuffer(slot.cmd));
     LANTERN_TRY(queueSubmit(slot, hooks));
     m_submittedOnce = true;

@@ -15,6 +15,7 @@
 #include "gpu/Overlays.h"
 #include "gpu/Pipelines.h"
 #include "gpu/SceneBuffers.h"
+#include "gpu/Shadows.h"
 #include "gpu/Targets.h"
 
 #include <functional>
@@ -73,6 +74,7 @@ public:
         DeformSlot deform;      ///< skinned and morphing streams (frames with deforms only)
         bool deforming = false; ///< this frame records the deformation pre-pass
         FlatSlot flat;          ///< flat triangles lit once per triangle (gpu/FlatLight.h)
+        ShadowSlot shadow;      ///< the shadow maps (a 1 x 1 layer when the frame has none)
         /// Every colour this frame writes comes from a guarded fragment variant or the clear
         /// colour (within LANTERN_GUARD_BOUND): unless the guard word at `guardOffset` of the
         /// arena is set, the host skips its NaN/Inf check of the picture (gpu/Readback.cpp).
@@ -85,6 +87,8 @@ public:
         std::vector<VkDeviceSize> frameOffsets, lightOffsets;
         VkDeviceSize materialBytes = 0, lightRange = 0, guardOffset = 0, size = 0;
         VkDeviceSize instanceOffset = 0, instanceBytes = 0;
+        std::vector<VkDeviceSize> shadowFrameOffsets;  ///< per map: its pass's FrameBlock
+        VkDeviceSize shadowOffset = 0, shadowBytes = 0;  ///< the lookups (ShadowBlock)
     };
 
 private:
@@ -96,6 +100,7 @@ private:
     Result<void> preparePrePasses(Slot& slot, const DrawList& list, const SceneBuffers& scene,
                                   bool flatPerTriangle);
     Result<ArenaLayout> fillArena(Slot& slot, const DrawList& list);
+    void writeFrameSet(Slot& slot, const ArenaLayout& arena);
     Result<void> queueSubmit(Slot& slot, const SubmitHooks& hooks);
 
     Context& m_ctx;
@@ -104,6 +109,7 @@ private:
     std::unique_ptr<Deformer> m_deformer;          ///< made on first use
     std::unique_ptr<FlatLighter> m_flatLighter;    ///< made on first use
     std::unique_ptr<ClearDraw> m_clearDraw;        ///< made on first use
+    std::unique_ptr<ShadowPass> m_shadowPass;      ///< made on first use
     std::vector<Slot> m_slots;
     std::uint32_t m_next = 0;
     bool m_timestamps = false;
@@ -119,10 +125,12 @@ private:
 };
 
 /// Records a frame into `slot.cmd` (begun): the deformation pre-pass (when the slot deforms),
-/// the per-triangle flat lighting (when it has flat triangle draws), barriers, the render pass(es) with every view's
-/// draws and overlays, the copies into the readback buffers, then `hooks.afterRender`.
+/// the shadow maps (when it has them), the per-triangle flat lighting (when it has flat
+/// triangle draws), barriers, the render pass(es) with every view's draws and overlays, the
+/// copies into the readback buffers, then `hooks.afterRender`.
 void recordFrame(VkPipelineLayout layout, const OverlayPipelines* overlays,
-                 const Deformer* deformer, const FlatLighter* flatLighter, FrameRing::Slot& slot,
+                 const Deformer* deformer, const FlatLighter* flatLighter,
+                 const ShadowPass& shadowPass, FrameRing::Slot& slot,
                  const SceneBuffers& scene, const DrawList& list,
                  const FrameRing::ArenaLayout& arena, const std::vector<VkPipeline>& pipelines,
                  const std::vector<VkPipeline>& aovPipelines, const SubmitHooks& hooks);

@@ -29,9 +29,12 @@ struct FrameBlock {
     std::uint32_t lightCount = 0;
     std::uint32_t viewIndex = 0;
     float pointSize = 1.0f;  ///< gl_PointSize of point draws
-    std::uint32_t pad1 = 0;
+    std::uint32_t shadowMaps = 0;  ///< shadow maps per view
+    Vec4 shadowParams;  ///< x: a map texel in uv, y: PCF kernel, z: normal offset (texels)
 };
-static_assert(sizeof(FrameBlock) == 96);
+static_assert(sizeof(FrameBlock) == 112);
+static_assert(offsetof(FrameBlock, shadowMaps) == 92);
+static_assert(offsetof(FrameBlock, shadowParams) == 96);
 static_assert(offsetof(FrameBlock, clipFromView) == 0);
 static_assert(offsetof(FrameBlock, globalAmbient) == 64);
 static_assert(offsetof(FrameBlock, lightCount) == 80);
@@ -88,6 +91,15 @@ static_assert(offsetof(MaterialData, uvRow0) == 144);
 static_assert(offsetof(MaterialData, uvRow1) == 160);
 static_assert(offsetof(MaterialData, pbrBase) == 176);
 static_assert(offsetof(MaterialData, mapUv) == 208);
+
+// std430 array element, set 0 binding LANTERN_BINDING_SHADOWS: map k of view v at
+// v * FrameBlock::shadowMaps + k (shaders/include/shadows.glsl).
+struct ShadowData {
+    Mat4 clipFromView;
+    Vec4 params;  ///< x: a texel's world size (per unit distance when y = 1), y: perspective
+};
+static_assert(sizeof(ShadowData) == 80);
+static_assert(offsetof(ShadowData, params) == 64);
 
 // Push constants (std430): 124 bytes of the 128 every device guarantees.
 struct DrawBlock {

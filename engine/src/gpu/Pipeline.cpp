@@ -149,7 +149,7 @@ Result<UniquePipeline> createGraphicsPipeline(Context& ctx, const GraphicsPipeli
     rendering.depthAttachmentFormat = d.depthFormat;
 
     VkGraphicsPipelineCreateInfo pci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
-    pci.stageCount = 2;
+    pci.stageCount = d.fragment != VK_NULL_HANDLE ? 2 : 1;  // none: depth only
     pci.pStages = stages.data();
     pci.pVertexInputState = &vi;
     pci.pInputAssemblyState = &ia;

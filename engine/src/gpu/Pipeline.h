@@ -19,7 +19,7 @@ Result<UniqueShaderModule> createShaderModule(Context& ctx, std::span<const std:
 struct GraphicsPipelineDesc {
     VkPipelineLayout layout = VK_NULL_HANDLE;
     VkShaderModule vertex = VK_NULL_HANDLE;
-    VkShaderModule fragment = VK_NULL_HANDLE;
+    VkShaderModule fragment = VK_NULL_HANDLE;  ///< none: a depth-only pipeline
     /// Specialisation constants, applied to both stages: entries index into `specData`.
     std::vector<VkSpecializationMapEntry> specEntries;
     std::vector<std::uint32_t> specData;

@@ -128,7 +128,9 @@ Result<Pipelines> Pipelines::create(Context& ctx) {
               {LANTERN_BINDING_LIGHTS_UNIFORM, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1, all,
                nullptr},
               {LANTERN_BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
-               VK_SHADER_STAGE_VERTEX_BIT, nullptr}});
+               VK_SHADER_STAGE_VERTEX_BIT, nullptr},
+              {LANTERN_BINDING_SHADOW_MAP, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, all, nullptr},
+              {LANTERN_BINDING_SHADOWS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr}});
     if (!frameLayout) return std::move(frameLayout).error();
     p.m_frameLayout = std::move(*frameLayout);
     std::vector<VkDescriptorSetLayoutBinding> textureBindings;

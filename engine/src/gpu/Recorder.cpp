@@ -1,5 +1,5 @@
-// Recording one frame with Vulkan 1.3 dynamic rendering and synchronization2: attachment
-// barriers, the scene pass (and, with MSAA and AOVs, a single-sampled AOV pass), one viewport
+// Recording one frame with Vulkan 1.3 dynamic rendering and synchronization2: the shadow maps'
+// passes, attachment barriers, the scene pass (and, with MSAA and AOVs, a single-sampled AOV pass), one viewport
 // per view, one draw per DrawCommand, the overlays, then the copies into the readback buffers
 // (or, for planes read in place, only the transition that hands them to the host).
 #include "gpu/FrameRing.h"
@@ -23,6 +23,8 @@ struct FrameRecorder {
 
     void beginAttachments() const;
     void bindStreams(const DrawCommand& d, std::uint32_t flatJob) const;
+    void shadowMaps(const ShadowPass& shadows) const;
+    void drawDepth(const DrawCommand& d) const;
     void drawViews(const std::vector<VkPipeline>& pipelines) const;
     void pass(const std::vector<VkRenderingAttachmentInfo>& colors, const Image& depthImage,
               VkPipeline clear, const std::vector<VkPipeline>& pipelines) const;
@@ -129,6 +131,73 @@ void FrameRecorder::bindStreams(const DrawCommand& d, std::uint32_t flatJob) con
     // firstInstance (shaders/include/instance.glsl).
     if (gp.indexCount > 0) {
         vkCmdBindIndexBuffer(cmd, geometry, gp.index, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(cmd, gp.indexCount, d.instanceCount, 0, 0, d.firstInstance);
+    } else {
+        vkCmdDraw(cmd, gp.vertexCount, d.instanceCount, 0, d.firstInstance);
+    }
+}
+
+// The shadow maps: one depth-only pass per map over the first view's opaque triangles (both
+// faces: an open mesh casts too), with the map's frame block bound and a slope-scaled depth
+// bias; then every layer to the lighting's reads.
+void FrameRecorder::shadowMaps(const ShadowPass& shadows) const {
+    const ShadowSlot& s = slot.shadow;
+    ShadowPass::transition(cmd, s, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+    const VkViewport viewport{0.0f, 0.0f, float(s.resolution), float(s.resolution), 0.0f, 1.0f};
+    const VkRect2D area{{0, 0}, {s.resolution, s.resolution}};
+    for (std::size_t k = 0; k < list.shadows.passes.size(); ++k) {
+        VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        depth.imageView = s.layerViews[k].get();
+        depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+        depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        depth.clearValue.depthStencil.depth = 0.0f;  // reversed Z: infinitely far
+        VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        ri.renderArea = area;
+        ri.layerCount = 1;
+        ri.pDepthAttachment = &depth;
+        vkCmdBeginRendering(cmd, &ri);
+        vkCmdSetViewport(cmd, 0, 1, &viewport);
+        vkCmdSetScissor(cmd, 0, 1, &area);
+        const FrameSetOffsets offsets = frameSetOffsets(arena.shadowFrameOffsets[k], arena.lightOffsets[0]);
+        VkPipeline bound = VK_NULL_HANDLE;
+        for (const DrawCommand& d : list.views[0].draws) {
+            if (d.pipeline.blend || d.pipeline.topology != Topology::Triangles) continue;
+            const VkPipeline p = shadows.pipeline(d.pipeline.constants[LANTERN_SC_INSTANCED] != 0);
+            if (p != bound) {
+                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
+                if (bound == VK_NULL_HANDLE) {
+                    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, LANTERN_SET_FRAME,
+                                            1, &slot.frameSet, std::uint32_t(offsets.size()), offsets.data());
+                    vkCmdSetCullMode(cmd, VK_CULL_MODE_NONE);
+                    vkCmdSetFrontFace(cmd, VK_FRONT_FACE_COUNTER_CLOCKWISE);
+                    vkCmdSetDepthBias(cmd, -1.0f, 0.0f, list.shadows.slopeBias);
+                }
+                bound = p;
+            }
+            vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                               0, sizeof(DrawBlock), &d.block);
+            drawDepth(d);
+        }
+        vkCmdEndRendering(cmd);
+    }
+    ShadowPass::transition(cmd, s, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+}
+
+// A draw's positions alone, from its own streams or this frame's deformation (per corner for
+// flat draws, whose deformation writes their de-indexed streams).
+void FrameRecorder::drawDepth(const DrawCommand& d) const {
+    const PrimitiveBuffers& gp = scene.primitive(d.mesh, d.primitive);
+    const bool deformed = d.deform >= 0 && slot.deforming;
+    const DeformStreams* ds = deformed ? &slot.deform.streams[std::size_t(d.deform)] : nullptr;
+    const VkBuffer buffer = ds ? slot.deform.output.get() : scene.geometry();
+    const VkDeviceSize offset = ds ? ds->position : gp.position, stride = 12;
+    vkCmdBindVertexBuffers2(cmd, LANTERN_LOC_POSITION, 1, &buffer, &offset, nullptr, &stride);
+    if (ds && d.pipeline.program == frame::Program::Flat) {
+        vkCmdDraw(cmd, gp.flatVertexCount, d.instanceCount, 0, d.firstInstance);
+    } else if (gp.indexCount > 0) {
+        vkCmdBindIndexBuffer(cmd, scene.geometry(), gp.index, VK_INDEX_TYPE_UINT32);
         vkCmdDrawIndexed(cmd, gp.indexCount, d.instanceCount, 0, 0, d.firstInstance);
     } else {
         vkCmdDraw(cmd, gp.vertexCount, d.instanceCount, 0, d.firstInstance);
@@ -292,7 +361,8 @@ void aovAttachments(const Target& t, bool drawn, std::vector<VkRenderingAttachme
 } // namespace
 
 void recordFrame(VkPipelineLayout layout, const OverlayPipelines* overlays,
-                 const Deformer* deformer, const FlatLighter* flatLighter, FrameRing::Slot& slot,
+                 const Deformer* deformer, const FlatLighter* flatLighter,
+                 const ShadowPass& shadowPass, FrameRing::Slot& slot,
                  const SceneBuffers& scene, const DrawList& list,
                  const FrameRing::ArenaLayout& arena, const std::vector<VkPipeline>& pipelines,
                  const std::vector<VkPipeline>& aovPipelines, const SubmitHooks& hooks) {
@@ -303,6 +373,13 @@ void recordFrame(VkPipelineLayout layout, const OverlayPipelines* overlays,
     r.beginAttachments();
     if (slot.queries) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, slot.queries, 0);
     if (slot.deforming && deformer) deformer->record(cmd, slot.deform);
+    // The maps before anything that lights (the flat pass and the scene pass read them); a
+    // frame without them makes its 1 x 1 stand-in readable, never read.
+    if (slot.shadow.rendering)
+        r.shadowMaps(shadowPass);
+    else
+        ShadowPass::transition(cmd, slot.shadow, VK_IMAGE_LAYOUT_UNDEFINED,
+                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     if (slot.flat.any() && flatLighter)
         flatLighter->record(cmd, slot.flat, slot.frameSet, arena.frameOffsets, arena.lightOffsets);
 

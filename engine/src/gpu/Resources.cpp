@@ -119,7 +119,7 @@ Result<Image> createImage(Context& ctx, const ImageDesc& desc) {
     ici.format = desc.format;
     ici.extent = {desc.width, desc.height, 1};
     ici.mipLevels = desc.mipLevels;
-    ici.arrayLayers = 1;
+    ici.arrayLayers = desc.layers;
     ici.samples = desc.samples;
     ici.tiling = desc.hostReadable ? VK_IMAGE_TILING_LINEAR : VK_IMAGE_TILING_OPTIMAL;
     ici.usage = desc.usage;
@@ -153,9 +153,9 @@ Result<Image> createImage(Context& ctx, const ImageDesc& desc) {
 
     VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     vci.image = image;
-    vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    vci.viewType = desc.arrayView ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
     vci.format = desc.format;
-    vci.subresourceRange = {desc.aspect, 0, desc.mipLevels, 0, 1};
+    vci.subresourceRange = {desc.aspect, 0, desc.mipLevels, 0, desc.layers};
     VkImageView view = VK_NULL_HANDLE;
     LANTERN_VK_TRY(vkCreateImageView(ctx.device(), &vci, nullptr, &view));
     img.view = UniqueImageView(ctx.device(), view);

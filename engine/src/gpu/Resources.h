@@ -41,6 +41,8 @@ Result<void> invalidate(Context& ctx, const Buffer& buffer);
 struct ImageDesc {
     VkFormat format = VK_FORMAT_R32G32B32A32_SFLOAT;
     std::uint32_t width = 1, height = 1, mipLevels = 1;
+    std::uint32_t layers = 1;  ///< array layers (the view covers them all)
+    bool arrayView = false;    ///< the view is a 2D array (also for one layer)
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
     VkImageUsageFlags usage = 0;
     VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;

@@ -167,11 +167,14 @@ private:
         st.unlit = mat.unlit;
         const glm::dvec3 n = useBack ? -hit.normal : hit.normal;
         std::vector<double> visible;
-        if (m_shadows)
-            for (const ref::EyeLight& light : m_lights)
-                visible.push_back(visibility(hit.point, light, hit.surface));
+        bool anyShadow = false;
+        for (const ref::EyeLight& light : m_lights) {
+            const bool casts = m_shadows || light.castShadows;
+            visible.push_back(casts ? visibility(hit.point, light, hit.surface) : 1.0);
+            anyShadow |= casts;
+        }
         const ref::LightSums sums = ref::evaluateLighting(hit.point, n, side, m_lights, st, nullptr,
-                                                          m_shadows ? &visible : nullptr);
+                                                          anyShadow ? &visible : nullptr);
         const ref::MaterialColours mc = ref::materialColours(side, nullptr, false);
         const ref::SplitColour split =
             ref::splitColour(sums, mc.ambient, mc.diffuse, mat.ambientFollowsDiffuse, false);
@@ -430,7 +433,7 @@ Result<ReferenceImage> raycastReference(const Scene& scene, const RenderOptions&
     settings.specular = lit.model.specular;
     Caster caster(std::move(*surfaces), *camera,
                   frame::placeLights(scene, pose, camera->viewFromWorld, false), settings, options,
-                  reference.shadows);
+                  reference.shadows || options.shadows.all);
     caster.setLighting(lit);
 
     const int W = options.width, H = options.height;

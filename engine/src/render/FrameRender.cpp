@@ -21,9 +21,29 @@ double msSince(Clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
+Result<void> checkShadowOptions(const ShadowOptions& s) {
+    if (s.resolution < 16 || s.resolution > 16384)
+        return makeError(ErrorCode::InvalidInput,
+                         "shadow map resolution " + std::to_string(s.resolution) +
+                             " is not in [16, 16384]",
+                         "--shadow-resolution");
+    if (s.kernel < 1 || s.kernel > 9 || s.kernel % 2 == 0)
+        return makeError(ErrorCode::InvalidInput,
+                         "PCF kernel " + std::to_string(s.kernel) + " is not odd in [1, 9]",
+                         "--shadow-kernel");
+    if (!(s.slopeBias >= 0.0 && s.slopeBias <= 1e3))
+        return makeError(ErrorCode::InvalidInput, "the shadow slope bias is not in [0, 1000]",
+                         "--shadow-bias");
+    if (!(s.normalOffset >= 0.0 && s.normalOffset <= 1e3))
+        return makeError(ErrorCode::InvalidInput, "the shadow normal offset is not in [0, 1000]",
+                         "--shadow-normal-offset");
+    return {};
+}
+
 } // namespace
 
 Result<void> checkOptions(const gpu::Device& device, const RenderOptions& o) {
+    LANTERN_TRY(checkShadowOptions(o.shadows));
     if (o.normals && !(o.normalLength >= 0.0 && o.normalLength < 1e300))
         return makeError(ErrorCode::InvalidInput, "the normal length must be finite and >= 0",
                          "options.normalLength");

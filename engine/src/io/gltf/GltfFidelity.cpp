@@ -26,7 +26,7 @@ bool notedWhereUsed(const std::string& e) {
         "KHR_mesh_quantization", "EXT_meshopt_compression", "KHR_meshopt_compression",
         "KHR_draco_mesh_compression", "EXT_mesh_gpu_instancing", "EXT_texture_webp",
         "KHR_texture_basisu", "KHR_animation_pointer", "LANTERN_materials_phong",
-        "LANTERN_lights_phong", "LANTERN_lighting", "LANTERN_camera"};
+        "LANTERN_lights_phong", "LANTERN_lights_shadow", "LANTERN_lighting", "LANTERN_camera"};
     return others.count(e) > 0;
 }
 
@@ -123,10 +123,11 @@ void noteNodesAndRest(const tinygltf::Model& model, const RawFacts& raw, Scene& 
             noteFeature(scene, "lantern-extensions", at("scenes", i) + ".extensions.LANTERN_lighting");
     }
     for (std::size_t i = 0; i < model.lights.size(); ++i)
-        if (extension(model.lights[i].extensions, "LANTERN_lights_phong"))
-            noteFeature(scene, "lantern-extensions",
-                        "extensions.KHR_lights_punctual.lights[" + std::to_string(i) +
-                            "].extensions.LANTERN_lights_phong");
+        for (const char* name : {"LANTERN_lights_phong", "LANTERN_lights_shadow"})
+            if (extension(model.lights[i].extensions, name))
+                noteFeature(scene, "lantern-extensions",
+                            "extensions.KHR_lights_punctual.lights[" + std::to_string(i) +
+                                "].extensions." + name);
     for (std::size_t i = 0; i < model.bufferViews.size(); ++i)
         for (const char* name : kMeshoptExtensions)
             if (extension(model.bufferViews[i].extensions, name))

@@ -112,7 +112,8 @@ glm::dmat3 textureTransform(const glm::dvec2& offset, double rotation, const glm
 /// listed only in extensionsUsed, it is ignored with a warning).
 inline constexpr const char* kSupportedExtensions[] = {
     "KHR_lights_punctual",     "KHR_materials_unlit",     "KHR_materials_emissive_strength",
-    "LANTERN_materials_phong", "LANTERN_lights_phong",    "LANTERN_lighting",
+    "LANTERN_materials_phong", "LANTERN_lights_phong",    "LANTERN_lights_shadow",
+    "LANTERN_lighting",
     "LANTERN_camera",          "KHR_mesh_quantization",   "EXT_meshopt_compression",
     "KHR_meshopt_compression", "KHR_draco_mesh_compression", "KHR_texture_transform",
     "EXT_texture_webp",        "KHR_materials_variants",  "KHR_materials_specular",

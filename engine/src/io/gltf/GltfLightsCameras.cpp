@@ -137,6 +137,13 @@ Result<Light> convertLight(const tinygltf::Light& src, std::size_t index, const 
         l.innerConeAngle = inner;
         l.outerConeAngle = outer;
     }
+    // LANTERN_lights_shadow: the light casts shadows ("castShadows", true by default).
+    if (const tinygltf::Value* e = extension(src.extensions, "LANTERN_lights_shadow")) {
+        ExtensionReader r(*e, obj + ".extensions.LANTERN_lights_shadow", diag);
+        r.warnUnknown({"castShadows"});
+        l.castShadows = r.boolean("castShadows", true);
+        LANTERN_TRY(r.status());
+    }
     if (const tinygltf::Value* e = extension(src.extensions, "LANTERN_lights_phong")) {
         ExtensionReader r(*e, obj + ".extensions.LANTERN_lights_phong", diag);
         r.warnUnknown(

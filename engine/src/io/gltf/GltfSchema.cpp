@@ -74,6 +74,7 @@ constexpr const char* kReadExtensions[] = {
     "extensions.KHR_lights_punctual",
     "extensions.KHR_materials_variants",
     "extensions.KHR_lights_punctual.lights[].extensions.LANTERN_lights_phong",
+    "extensions.KHR_lights_punctual.lights[].extensions.LANTERN_lights_shadow",
     "scenes[].extensions.LANTERN_lighting",
     "cameras[].extensions.LANTERN_camera",
     "buffers[].extensions.EXT_meshopt_compression",

@@ -1,0 +1,95 @@
+// The shading options every rendering subcommand shares (render, view, bench frame): the
+// lighting model's switches, anti-aliasing, point and line sizes, shadows and instancing.
+#include "common/CliSupport.h"
+
+#include <algorithm>
+#include <string>
+
+namespace lantern::cli {
+
+void ShadingOptions::add(CLI::App& app) {
+    app.add_option("--shading", shading, help::kShading)
+        ->check(CLI::IsMember({"flat", "gouraud", "phong"}));
+    app.add_option("--specular", specular, help::kSpecular)
+        ->check(CLI::IsMember({"blinn", "phong"}));
+    app.add_flag("--local-viewer", localViewer,
+                 "View vector towards the eye (GL_LIGHT_MODEL_LOCAL_VIEWER)");
+    app.add_flag("--two-sided", twoSided,
+                 "Light back faces with the back material (GL_LIGHT_MODEL_TWO_SIDE)");
+    app.add_flag("--clamp", clamp, "Clamp lit colours to [0,1]");
+    app.add_flag("--gl-compat", glCompat,
+                 "Reproduce OpenGL's fixed-function pipeline (provoking-vertex flat, per-vertex "
+                 "clamp, limits)");
+    app.add_option("--msaa", msaa, help::kMsaa)->capture_default_str()->check(CLI::IsMember({1, 2, 4, 8}));
+    app.add_option("--point-size", pointSize,
+                   "Pixels across a point (glTF POINTS, GL_POINTS), 1 to 255; above 1 the device "
+                   "needs largePoints")
+        ->capture_default_str()
+        ->check(CLI::Range(1.0, 255.0));
+    app.add_option("--line-width", lineWidth,
+                   "Pixels across a line (glTF LINES, LINE_STRIP, LINE_LOOP; GL_LINES), 1 to 255; "
+                   "above 1 the device needs wideLines")
+        ->capture_default_str()
+        ->check(CLI::Range(1.0, 255.0));
+    app.add_flag("--shadows", shadows,
+                 "Every light casts shadows (without it, only lights with LANTERN_lights_shadow)");
+    app.add_option("--shadow-resolution", shadowResolution,
+                   "Texels per side of each shadow map (a cube face for point lights)")
+        ->capture_default_str()
+        ->check(CLI::Range(16, 16384));
+    app.add_option("--shadow-filter", shadowFilter,
+                   "How shadow maps are filtered: hardware (the device's 2 x 2 comparison) or pcf")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"hardware", "pcf"}));
+    app.add_option("--shadow-kernel", shadowKernel, "PCF comparisons per side (odd, 1 to 9)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({1, 3, 5, 7, 9}));
+    app.add_option("--shadow-bias", shadowBias, "Shadow depth bias, in units of the depth's slope")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 1000.0));
+    app.add_option("--shadow-normal-offset", shadowNormalOffset,
+                   "Texels the shadow lookup moves along the surface normal")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 1000.0));
+    app.add_flag("--no-instancing", noInstancing,
+                 "Draw every node on its own, not nodes that share a mesh as one instanced draw "
+                 "(the same picture; to measure what instancing buys)");
+}
+
+Result<void> ShadingOptions::apply(RenderOptions& o) const {
+    if (!shading.empty()) o.shading = parseShadingMode(shading);
+    if (!specular.empty()) o.specular = parseSpecularModel(specular);
+    if (localViewer) o.localViewer = true;
+    if (twoSided) o.twoSided = true;
+    o.clamp = clamp;
+    o.glCompat = glCompat;
+    o.msaa = msaa;
+    o.pointSize = pointSize;
+    o.lineWidth = lineWidth;
+    o.instancing = !noInstancing;
+    o.shadows.all = shadows;
+    o.shadows.resolution = shadowResolution;
+    o.shadows.filter = shadowFilter == "hardware" ? ShadowFilter::Hardware : ShadowFilter::Pcf;
+    o.shadows.kernel = shadowKernel;
+    o.shadows.slopeBias = shadowBias;
+    o.shadows.normalOffset = shadowNormalOffset;
+    return {};
+}
+
+Result<void> ShadingOptions::checkDevice(const DeviceInfo& device) const {
+    return checkMsaa(msaa, device);
+}
+
+Result<void> checkMsaa(int msaa, const DeviceInfo& device) {
+    const auto& counts = device.msaaSampleCounts;
+    if (std::find(counts.begin(), counts.end(), msaa) != counts.end()) return {};
+    std::string supported;
+    for (int c : counts)
+        supported += (supported.empty() ? "" : ", ") + std::to_string(c);
+    return makeError(ErrorCode::Usage,
+                     std::to_string(msaa) + " samples per pixel: " + device.name + " supports " +
+                         supported,
+                     "--msaa");
+}
+
+} // namespace lantern::cli
