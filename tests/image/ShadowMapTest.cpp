@@ -109,6 +109,30 @@ TEST_F(ShadowMaps, EveryLightTypeMatchesTheExactShadowOutsideItsEdge) {
     }
 }
 
+// The probe names, per light, whether the pixel is shadowed and by which node (the
+// reference's exact shadow ray), and its colour then includes the shadow as the render does.
+TEST_F(ShadowMaps, TheProbeNamesTheShadowAndWhatCastsIt) {
+    const Scene scene = sphereOverPlane(LightType::Point, true);
+    RenderOptions o = test::optionsFor(64, 64, ShadingMode::Phong);
+    // (-1.25, 0) is pixel (12, 32): inside the shadow; (56, 8) in the light.
+    auto inside = renderer().probe(scene, o, 0.0, 12, 32);
+    ASSERT_TRUE(inside) << inside.error().describe();
+    ASSERT_TRUE(inside->hit);
+    ASSERT_EQ(inside->evaluations.size(), 1u);
+    ASSERT_EQ(inside->evaluations[0].lights.size(), 1u);
+    const ProbeLight& l = inside->evaluations[0].lights[0];
+    EXPECT_TRUE(l.castsShadows);
+    EXPECT_EQ(l.visibility, 0.0);
+    EXPECT_EQ(l.occluderName, "object 1");
+    EXPECT_EQ(l.diffuse, glm::dvec3(0.0));
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(inside->colour[k], inside->pixel[k], 1e-4) << k;
+    auto outside = renderer().probe(scene, o, 0.0, 56, 8);
+    ASSERT_TRUE(outside && outside->hit);
+    EXPECT_EQ(outside->evaluations[0].lights[0].visibility, 1.0);
+    EXPECT_EQ(outside->evaluations[0].lights[0].occluderNode, -1);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(outside->colour[k], outside->pixel[k], 1e-4) << k;
+}
+
 TEST_F(ShadowMaps, AFrameWithoutThemKeepsItsVariantsAndPicture) {
     const Scene scene = sphereOverPlane(LightType::Point, false);
     const RenderOptions o = test::optionsFor(64, 64, ShadingMode::Phong);

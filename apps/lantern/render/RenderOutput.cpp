@@ -108,6 +108,13 @@ void printProbe(std::ostream& out, const ProbeReport& r) {
                 << ", specular term " << l.specularTerm << "\n";
             out << "      ambient " << triple(l.ambient) << ", diffuse " << triple(l.diffuse)
                 << ", specular " << triple(l.specular) << "\n";
+            if (l.castsShadows)
+                out << "      shadow: " << (l.visibility > 0.0 ? "lit" : "shadowed")
+                    << (l.occluderNode >= 0 ? " by nodes[" + std::to_string(l.occluderNode) + "]" +
+                                                  (l.occluderName.empty() ? std::string()
+                                                                          : " \"" + l.occluderName + "\"")
+                                            : std::string())
+                    << " (exact shadow ray; visibility " << l.visibility << ")\n";
         }
         out << "    colour:                " << triple(e.colour) << " alpha " << e.alpha << "\n";
     }

@@ -24,7 +24,15 @@ struct ProbeLight {
     double specularTerm = 0.0; ///< spec_i: the Blinn or Phong lobe (0 on the dark side)
     glm::dvec3 ambient{0.0};   ///< att spot a_m a_i
     glm::dvec3 diffuse{0.0};   ///< att spot max(n.l, 0) d_m d_i
-    glm::dvec3 specular{0.0};  ///< att spot f_i spec_i s_m s_i
+    glm::dvec3 specular{0.0};  ///< att spot f_i spec_i s_m s_i (after the shadow)
+    /// Shadows (docs/shadows.md): whether the light casts them in this frame; if so the share
+    /// of it the reference's exact shadow ray from the point lets through (1 lit, 0 in the
+    /// shadow; diffuse and specular above include it), and the node whose opaque triangle
+    /// the ray meets first.
+    bool castsShadows = false;
+    double visibility = 1.0;
+    int occluderNode = -1;     ///< Scene::nodes index; -1: nothing between the point and the light
+    std::string occluderName;
 };
 
 /// One evaluation of the lighting equation that a probed pixel's colour is made of: at the

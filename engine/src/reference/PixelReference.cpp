@@ -3,6 +3,8 @@
 // it (shaders/mesh.vert + phong.frag, pervertex.vert + pervertex.frag are the rules mirrored).
 #include "reference/PixelReference.h"
 
+#include <functional>
+
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
@@ -113,19 +115,46 @@ DrawRules rulesOf(const Material& mat, const Primitive& prim, const frame::Light
     return r;
 }
 
+// One light's exact shadow at a point (the probe's shadow ray).
+struct Shadow {
+    bool casts = false;
+    double visibility = 1.0;
+    int occluder = -1;  ///< node
+};
+
+// Whether the segment origin + t dir, tMin < t < tMax, crosses triangle (a, b, c)
+// (Moller-Trumbore, both faces).
+bool crosses(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+             const glm::dvec3& origin, const glm::dvec3& dir, double tMin, double tMax) {
+    const glm::dvec3 e1 = b - a, e2 = c - a, p = glm::cross(dir, e2);
+    const double det = glm::dot(e1, p);
+    if (det == 0.0 || !std::isfinite(det)) return false;
+    const glm::dvec3 s = origin - a;
+    const double u = glm::dot(s, p) / det;
+    if (!(u >= 0.0 && u <= 1.0)) return false;
+    const glm::dvec3 q = glm::cross(s, e1);
+    const double v = glm::dot(dir, q) / det;
+    if (!(v >= 0.0 && u + v <= 1.0)) return false;
+    const double t = glm::dot(e2, q) / det;
+    return t > tMin && t < tMax;
+}
+
 // One evaluation of the equation (evaluateLighting + materialColours + splitColour).
 ProbeEvaluation evaluate(const std::string& where, double weight, const glm::dvec3& V,
                          const glm::dvec3& n, const MaterialSide& side,
                          const glm::dvec4* vertexColor, const std::vector<EyeLight>& lights,
-                         const DrawRules& rules, bool perLight) {
+                         const DrawRules& rules, bool perLight, const std::vector<Shadow>& shadows) {
     ProbeEvaluation e;
     e.where = where;
     e.weight = weight;
     e.position = V;
     e.normal = n;
     std::vector<LightContribution> terms;
-    const LightSums sums =
-        evaluateLighting(V, n, side, lights, rules.settings, perLight ? &terms : nullptr);
+    std::vector<double> visibility;
+    for (const Shadow& sh : shadows) visibility.push_back(sh.visibility);
+    const LightSums sums = evaluateLighting(V, n, side, lights, rules.settings,
+                                            perLight ? &terms : nullptr,
+                                            shadows.empty() ? nullptr : &visibility);
     const MaterialColours mc = materialColours(side, vertexColor, rules.colorScales);
     e.ambientM = mc.ambient;
     e.diffuseM = mc.diffuse;
@@ -146,6 +175,11 @@ ProbeEvaluation evaluate(const std::string& where, double weight, const glm::dve
         p.ambient = c.ambient * mc.ambient;
         p.diffuse = c.diffuse * mc.diffuse;
         p.specular = c.specular;
+        if (i < shadows.size()) {
+            p.castsShadows = shadows[i].casts;
+            p.visibility = shadows[i].visibility;
+            p.occluderNode = shadows[i].occluder;
+        }
         e.lights.push_back(std::move(p));
     }
     const SplitColour split =
@@ -200,6 +234,45 @@ Triangle eyeTriangle(const Vertices& vs, const frame::Draw& d, std::uint32_t ele
     return t;
 }
 
+// The exact shadow of each light of view `vi` at eye-space point V: for a light that casts
+// shadows in the frame, the segment towards it (unbounded towards a directional light) against
+// every opaque triangle the view draws; the first met names its node. Blended draws, lines and
+// points cast none, as with the maps (gpu/Shadows.h). Empty when no light casts.
+std::vector<Shadow> exactShadows(const Scene& scene, const frame::Frame& frame, std::size_t vi,
+                                 const glm::dvec3& V,
+                                 const std::function<const DeformedPrimitive&(const frame::Draw&)>& deformed) {
+    std::vector<Shadow> out;
+    const frame::View& view = frame.views[vi];
+    if (!frame.shadows.any()) return out;
+    out.resize(view.lights.size());
+    for (std::size_t i = 0; i < view.lights.size() && i < frame.shadows.firstMap.size(); ++i) {
+        if (frame.shadows.firstMap[i] < 0) continue;
+        const EyeLight& l = view.lights[i];
+        Shadow& sh = out[i];
+        sh.casts = true;
+        const bool directional = l.type == LightType::Directional;
+        const glm::dvec3 dir = directional ? l.toLight : l.position - V;
+        // Off the point's own surface: a millionth of the way to the light (of |V| for a
+        // directional light).
+        const double tMin = directional ? 1e-6 * (1.0 + glm::length(V)) : 1e-6;
+        const double tMax = directional ? kInfinity : 1.0;
+        for (const frame::Draw& d : view.draws) {
+            if (d.features.blend || d.topology != Topology::Triangles) continue;
+            const Primitive& prim = scene.meshes[d.mesh].primitives[d.primitive];
+            const Vertices vs{prim, d.deformed ? &deformed(d) : nullptr};
+            for (std::uint32_t k = 0; k < prim.elementCount() && sh.occluder < 0; ++k) {
+                const Triangle t = eyeTriangle(vs, d, k);
+                if (crosses(t.eye[0], t.eye[1], t.eye[2], V, dir, tMin, tMax)) {
+                    sh.visibility = 0.0;
+                    sh.occluder = int(d.node);
+                }
+            }
+            if (sh.occluder >= 0) break;
+        }
+    }
+    return out;
+}
+
 // The ray through pixel (x, y)'s centre in eye space: two depths of the centre unprojected
 // through the view's viewport (Vulkan framebuffer: origin top-left; the view's rectangle is
 // GL's, origin bottom-left).
@@ -230,13 +303,15 @@ struct RuleEvaluator {
     const std::vector<EyeLight>& lights;
     bool perLight;
     double sign;  ///< -1 when the back material (and the negated normal) is used
+    /// The lights' exact shadows at a point (null: no light casts).
+    std::function<std::vector<Shadow>(const glm::dvec3&)> shadows;
 
     glm::dvec4 colorAt(std::uint32_t v) const { return glm::dvec4(prim.colors[v]); }
     void add(ProbeReport& r, const std::string& where, double weight, const glm::dvec3& point,
              const glm::dvec3& normal, const glm::dvec4& color) const {
         r.evaluations.push_back(evaluate(where, weight, point, normal, r.materialSide,
                                          rules.vertexColor ? &color : nullptr, lights, rules,
-                                         perLight));
+                                         perLight, shadows ? shadows(point) : std::vector<Shadow>{}));
     }
     void perFragment(ProbeReport& r) const {
         const glm::dvec3& bc = hit.barycentric;
@@ -364,8 +439,18 @@ ProbeReport PixelReference::explain(int x, int y, std::uint32_t drawId, std::uin
     r.specularPresent = !r.unlit && lightSpecular && nonZero(r.materialSide.specular);
     r.normal = sign * safeNormalize(interpolate(hit.barycentric, t.normal[0], t.normal[1], t.normal[2]));
 
-    const RuleEvaluator evaluator{prim, vertices, *d, t, hit, rules, view.lights, perLight, sign};
+    RuleEvaluator evaluator{prim, vertices, *d, t, hit, rules, view.lights, perLight, sign, {}};
+    if (m_frame.shadows.any())
+        evaluator.shadows = [this, vi](const glm::dvec3& V) {
+            return exactShadows(m_scene, m_frame, vi, V,
+                                [this](const frame::Draw& other) -> const DeformedPrimitive& {
+                                    return deformed(other);
+                                });
+        };
     evaluator.evaluateAll(r, lit.program);
+    for (ProbeEvaluation& e : r.evaluations)
+        for (ProbeLight& l : e.lights)
+            if (l.occluderNode >= 0) l.occluderName = m_scene.nodes[std::size_t(l.occluderNode)].name;
 
     glm::dvec3 colour(0.0);
     double alpha = 0.0;
