@@ -370,6 +370,19 @@ struct RuleEvaluator {
     }
 };
 
+// The pixel's colour and alpha: its evaluations weighted, clamped as the frame clamps.
+void sumEvaluations(ProbeReport& r, const DrawRules& rules) {
+    glm::dvec3 colour(0.0);
+    double alpha = 0.0;
+    for (const ProbeEvaluation& e : r.evaluations) {
+        colour += e.weight * e.colour;
+        alpha += e.weight * e.alpha;
+    }
+    if (rules.fragmentClamp) colour = glm::clamp(colour, 0.0, 1.0);
+    r.materialAlpha = alpha;
+    r.colour = glm::dvec4(colour, rules.opaque ? 1.0 : alpha);
+}
+
 void describeSwitches(ProbeReport& r, const frame::Lighting& lit) {
     r.shading = lit.model.shading;
     r.specular = lit.model.specular;
@@ -452,15 +465,7 @@ ProbeReport PixelReference::explain(int x, int y, std::uint32_t drawId, std::uin
         for (ProbeLight& l : e.lights)
             if (l.occluderNode >= 0) l.occluderName = m_scene.nodes[std::size_t(l.occluderNode)].name;
 
-    glm::dvec3 colour(0.0);
-    double alpha = 0.0;
-    for (const ProbeEvaluation& e : r.evaluations) {
-        colour += e.weight * e.colour;
-        alpha += e.weight * e.alpha;
-    }
-    if (rules.fragmentClamp) colour = glm::clamp(colour, 0.0, 1.0);
-    r.materialAlpha = alpha;
-    r.colour = glm::dvec4(colour, rules.opaque ? 1.0 : alpha);
+    sumEvaluations(r, rules);
     return r;
 }
 
