@@ -132,6 +132,30 @@ void BM_RenderFrame(benchmark::State& state) {
 }
 BENCHMARK(BM_RenderFrame)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// A 64 x 32 sphere with GL's default material under one directional light, seen from (0, 0, 3).
+Scene litSphereScene() {
+    Scene scene;
+    scene.materials.push_back(Material{});
+    Primitive sphere = makeSphere(1.0, 64, 32);
+    sphere.material = 0;
+    scene.meshes.push_back(Mesh{"sphere", {sphere}});
+    Node node;
+    node.mesh = 0;
+    scene.nodes.push_back(node);
+    Light light;
+    light.type = LightType::Directional;
+    scene.lights.push_back(light);
+    Node sun;
+    sun.light = 0;
+    scene.nodes.push_back(sun);
+    Camera camera;
+    camera.projection = Projection::makePerspective(0.8, 0.0, 0.1, kInfinity);
+    camera.lookAt = LookAt{{0, 0, 3}, {0, 0, 0}, {0, 1, 0}};
+    scene.cameras.push_back(camera);
+    scene.roots.push_back(SceneRoot{"", {0, 1}, {}});
+    return scene;
+}
+
 // One sphere under one directional light at 1920x1080 (issue 18's frame), its float pixels
 // read back: arg 0 staged (LANTERN_TEST_READBACK=staged: copied into a buffer on the device,
 // then into the Image), arg 1 in place where the device allows it (the Image filled straight
@@ -162,26 +186,7 @@ void BM_Readback1080p(benchmark::State& state) {
         }
         m.renderer.emplace(std::move(*r));
     }
-    Scene scene;
-    scene.materials.push_back(Material{});
-    Primitive sphere = makeSphere(1.0, 64, 32);
-    sphere.material = 0;
-    scene.meshes.push_back(Mesh{"sphere", {sphere}});
-    Node node;
-    node.mesh = 0;
-    scene.nodes.push_back(node);
-    Light light;
-    light.type = LightType::Directional;
-    scene.lights.push_back(light);
-    Node sun;
-    sun.light = 0;
-    scene.nodes.push_back(sun);
-    Camera camera;
-    camera.projection = Projection::makePerspective(0.8, 0.0, 0.1, kInfinity);
-    camera.lookAt = LookAt{{0, 0, 3}, {0, 0, 0}, {0, 1, 0}};
-    scene.cameras.push_back(camera);
-    scene.roots.push_back(SceneRoot{"", {0, 1}, {}});
-    auto prepared = m.renderer->prepare(std::make_shared<const Scene>(std::move(scene)));
+    auto prepared = m.renderer->prepare(std::make_shared<const Scene>(litSphereScene()));
     if (!prepared) {
         state.SkipWithError(prepared.error().describe().c_str());
         return;
