@@ -133,6 +133,31 @@ TEST_F(ShadowMaps, TheProbeNamesTheShadowAndWhatCastsIt) {
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(outside->colour[k], outside->pixel[k], 1e-4) << k;
 }
 
+// 64 point lights at 16384 texels would be 384 GiB of maps: refused before anything is
+// allocated, naming the option, and the renderer goes on rendering.
+TEST_F(ShadowMaps, MapsTheDeviceCannotHoldAreRefusedBeforeAllocating) {
+    Scene scene = sphereOverPlane(LightType::Point, true);
+    for (int i = 0; i < 63; ++i) {
+        scene.lights.push_back(scene.lights[0]);
+        Node n;
+        n.light = int(scene.lights.size()) - 1;
+        n.translation = {0.05 * i - 1.5, 0.0, 3.0};
+        scene.roots[0].nodes.push_back(int(scene.nodes.size()));
+        scene.nodes.push_back(n);
+    }
+    RenderOptions o = test::optionsFor(32, 32, ShadingMode::Phong);
+    o.shadows.resolution = 16384;
+    auto refused = renderer().render(scene, o, 0.0);
+    ASSERT_FALSE(refused);
+    EXPECT_EQ(refused.error().code, ErrorCode::OutOfMemory);
+    EXPECT_EQ(refused.error().object, "--shadow-resolution") << refused.error().describe();
+    EXPECT_NE(refused.error().describe().find("384 shadow maps of 16384x16384"), std::string::npos)
+        << refused.error().describe();
+    o.shadows.resolution = 64;
+    auto image = renderer().render(scene, o, 0.0);
+    EXPECT_TRUE(image) << image.error().describe();
+}
+
 TEST_F(ShadowMaps, AFrameWithoutThemKeepsItsVariantsAndPicture) {
     const Scene scene = sphereOverPlane(LightType::Point, false);
     const RenderOptions o = test::optionsFor(64, 64, ShadingMode::Phong);

@@ -6,7 +6,48 @@
 
 #include "ShaderBlobs.h"
 
+#include <algorithm>
+#include <cmath>
+#include <string>
+
 namespace lantern::gpu {
+
+namespace {
+
+// Refuses, before anything is allocated, maps the device cannot hold: more layers than an image
+// may have, a side longer than it allows, or more than half its largest device-local heap (each
+// frame slot holds its own maps).
+Result<void> checkFits(const Context& ctx, std::uint32_t layers, std::uint32_t resolution) {
+    const auto& lim = ctx.properties().limits;
+    const std::string what = std::to_string(layers) + " shadow map" + (layers == 1 ? "" : "s") +
+                             " of " + std::to_string(resolution) + "x" + std::to_string(resolution);
+    if (layers > lim.maxImageArrayLayers)
+        return makeError(ErrorCode::OutOfMemory,
+                         what + ": the device holds at most " +
+                             std::to_string(lim.maxImageArrayLayers) +
+                             " (a point light has six; fewer lights cast shadows)",
+                         "--shadows");
+    if (resolution > lim.maxImageDimension2D)
+        return makeError(ErrorCode::OutOfMemory,
+                         what + ": the device's images are at most " +
+                             std::to_string(lim.maxImageDimension2D) + " texels a side",
+                         "--shadow-resolution");
+    VkDeviceSize heap = 0;
+    const auto& mem = ctx.memoryProperties();
+    for (std::uint32_t i = 0; i < mem.memoryHeapCount; ++i)
+        if (mem.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+            heap = std::max(heap, mem.memoryHeaps[i].size);
+    const double bytes = double(layers) * double(resolution) * double(resolution) * 4.0;
+    if (heap > 0 && bytes > 0.5 * double(heap))
+        return makeError(ErrorCode::OutOfMemory,
+                         what + " need " + std::to_string(std::llround(bytes / 1048576.0)) +
+                             " MiB of device memory; the device has " +
+                             std::to_string(heap / 1048576) + " MiB: lower --shadow-resolution",
+                         "--shadow-resolution");
+    return {};
+}
+
+} // namespace
 
 Result<std::unique_ptr<ShadowPass>> ShadowPass::create(Context& ctx, Pipelines& pipelines) {
     std::unique_ptr<ShadowPass> p(new ShadowPass(ctx, pipelines));
@@ -60,6 +101,7 @@ Result<void> ShadowPass::prepare(ShadowSlot& slot, const DrawList& list) {
     const std::uint32_t layers = slot.rendering ? std::uint32_t(s.passes.size()) : 1u;
     const std::uint32_t resolution = slot.rendering ? s.resolution : 1u;
     if (slot.image.get() && slot.layers == layers && slot.resolution == resolution) return {};
+    LANTERN_TRY(checkFits(m_ctx, layers, resolution));
     slot.layerViews.clear();
     slot.image = Image{};
     ImageDesc d;
