@@ -35,6 +35,10 @@ def read_rows(path):
     return rows
 
 
+# The transparency methods' markers (scenes without blended surfaces: circles).
+METHOD_MARKERS = {"sorted": "s", "exact": "o", "weighted": "^"}
+
+
 def group_of(row):
     return f"{row['scene']}, shininess {row['shininess']}, {row['width']}x{row['height']}"
 
@@ -42,13 +46,15 @@ def group_of(row):
 def draw_panel(ax, rows, error, front_flag, title):
     curves = {}
     for r in rows:
-        curves.setdefault((r["shading"], r["msaa"]), []).append(r)
-    for (mode, msaa), points in sorted(curves.items()):
+        # Transparency scenes: one curve per method too (marker), the method in the label.
+        curves.setdefault((r["shading"], r["msaa"], r.get("transparency") or ""), []).append(r)
+    for (mode, msaa, method), points in sorted(curves.items()):
         points.sort(key=lambda r: r["segments"])
         ax.plot([max(r["ms_per_frame"], 1e-3) for r in points],
                 [max(r[error], ERROR_FLOOR) for r in points],
                 color=MODE_COLOURS.get(mode, "black"), linestyle=MSAA_STYLES.get(msaa, "-"),
-                marker="o", markersize=3, linewidth=1.2, label=f"{mode}, {msaa}x MSAA")
+                marker=METHOD_MARKERS.get(method, "o"), markersize=3, linewidth=1.2,
+                label=f"{mode}, {msaa}x MSAA" + (f", {method}" if method else ""))
     front = sorted((r for r in rows if r[front_flag]), key=lambda r: r["ms_per_frame"])
     if front:
         xs, ys = [], []

@@ -260,6 +260,13 @@ RenderOptions renderOptions(const RenderArgs& a) {
         throw py::value_error("unlit_exact: needs msaa=1 (no anti-aliasing)");
     o.unlitExact = a.unlitExact;
     o.shadows.all = a.shadows;
+    if (a.transparency) {
+        const std::string& t = *a.transparency;
+        if (t == "sorted") o.transparency = TransparencyMethod::Sorted;
+        else if (t == "exact") o.transparency = TransparencyMethod::Exact;
+        else if (t == "weighted") o.transparency = TransparencyMethod::Weighted;
+        else throw py::value_error("transparency \"" + t + "\": sorted, exact or weighted");
+    }
     return o;
 }
 

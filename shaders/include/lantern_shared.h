@@ -17,6 +17,9 @@
 #define LANTERN_BINDING_INSTANCES 7     // buffer: the instanced draws' transforms (instance.glsl)
 #define LANTERN_BINDING_SHADOW_MAP 8    // sampler2DArrayShadow: the frame's shadow maps (shadows.glsl)
 #define LANTERN_BINDING_SHADOWS 9       // buffer: per view and map, its clip-from-view (shadows.glsl)
+#define LANTERN_BINDING_FRAGMENT_LISTS 10  // buffer: exact transparency's per-pixel lists (oit.glsl)
+#define LANTERN_BINDING_WEIGHTED_ACCUM 11  // image2D rgba32f: weighted transparency's sums (oit.glsl)
+#define LANTERN_BINDING_WEIGHTED_REVEAL 12 // image2D r32f: weighted transparency's revealage
 #define LANTERN_SET_TEXTURE 1
 #define LANTERN_BINDING_BASE_COLOR 0 // sampler2D, the material's base-colour texture
 #define LANTERN_BINDING_METALLIC_ROUGHNESS 1  // sampler2D: B metallic, G roughness (linear)
@@ -148,6 +151,23 @@
 // The metallic-roughness mapping's shininess range (scene-format-support.md, Materials).
 #define LANTERN_PBR_MIN_SHININESS 1.0
 #define LANTERN_PBR_MAX_SHININESS 1e4
+
+// Exact transparency's fragment lists (shaders/include/oit.glsl, gpu/Transparency.h): a
+// header of LANTERN_OIT_HEADER_WORDS words, one head word per pixel, then nodes of
+// LANTERN_OIT_NODE_WORDS words (next, depth, r, g, b, alpha, sample mask). The resolve composites at most
+// LANTERN_OIT_MAX_LAYERS fragments a pixel, the nearest.
+#define LANTERN_OIT_HEADER_WORDS 8
+#define LANTERN_OIT_NODE_WORDS 7
+#define LANTERN_OIT_MAX_LAYERS 32
+#define LANTERN_OIT_END 0xFFFFFFFFu
+// Header words.
+#define LANTERN_OIT_WIDTH 0        // the target's width in pixels (heads are row-major)
+#define LANTERN_OIT_CAPACITY 1     // nodes the buffer holds
+#define LANTERN_OIT_COUNT 2        // nodes asked for this frame (above CAPACITY: some were lost)
+#define LANTERN_OIT_TRUNCATED 3    // pixels with more than LANTERN_OIT_MAX_LAYERS fragments
+#define LANTERN_OIT_NEARER_GREATER 4  // 1: reversed Z (a nearer fragment has the greater depth)
+#define LANTERN_OIT_SAMPLES 5      // samples per pixel (each composites the fragments covering it)
+#define LANTERN_OIT_NODES 6        // the word where the nodes start (after the heads)
 
 // Limits.
 #define LANTERN_MAX_LIGHTS 65536

@@ -7,8 +7,16 @@
 #define LANTERN_OUTPUT_GLSL
 
 #include "lighting.glsl"
+#include "oit.glsl"
 
+#ifdef LANTERN_WEIGHTED
+// The weighted pass's attachments: the weighted sums (premultiplied colour, alpha) and the
+// revealage (the product of 1 - alpha, by the blend state). No AOV: they have passes of their own.
+layout(location = 0) out vec4 outAccum;
+layout(location = 1) out float outReveal;
+#else
 layout(location = LANTERN_OUT_COLOR) out vec4 outColor;
+#endif
 #ifdef LANTERN_AOV
 layout(location = LANTERN_OUT_NORMAL_DEPTH) out uvec4 outNormalDepth;  // float bits: N.x, N.y, N.z, Z (= -z_eye)
 layout(location = LANTERN_OUT_ID) out uvec2 outId;           // draw index + 1, gl_PrimitiveID
@@ -19,7 +27,16 @@ layout(location = LANTERN_OUT_SURFACE) out uvec4 outSurface;  // float bits: u, 
 // eyePosition: the eye-space point; uv: TEXCOORD_0 as the mesh holds it (0 without one).
 void writeOutputs(vec3 c, float alpha, vec3 n, vec3 eyePosition, vec2 uv) {
     if (SC_CLAMP != LANTERN_CLAMP_NONE) c = clampVisible(c);
+#if defined(LANTERN_WEIGHTED)
+    const float w = weightedWeight(alpha);
+    outAccum = vec4(c * alpha, alpha) * w;
+    outReveal = alpha;
+#elif defined(LANTERN_OIT)
+    storeFragment(c, alpha);
+    outColor = vec4(0.0);  // the pipeline writes no colour here (gpu/Pipelines.cpp)
+#else
     outColor = vec4(c, SC_OPAQUE ? 1.0 : alpha);
+#endif
 #ifdef LANTERN_AOV
     vec3 visible = safeNormalize(n);
     if (!gl_FrontFacing) visible = -visible;

@@ -65,6 +65,16 @@ def test_shadows_only_darken(renderer, teapot):
     assert (shadowed[..., :3] < lit[..., :3] - 0.02).any(), "no pixel is in a shadow"
 
 
+def test_transparency_methods(renderer, teapot):
+    # The teapot blends nothing: every method gives the same picture (it pays for none);
+    # tests/image/TransparencyTest.cpp holds where they differ.
+    base = renderer.render(teapot, **SIZE)
+    for method in ("sorted", "exact", "weighted"):
+        assert np.array_equal(renderer.render(teapot, transparency=method, **SIZE), base), method
+    with pytest.raises(ValueError, match="transparency"):
+        renderer.render(teapot, transparency="depth-peeling", **SIZE)
+
+
 def test_bad_keywords_raise_value_error(renderer, teapot):
     with pytest.raises(ValueError, match="shading"):
         renderer.render(teapot, shading="toon", **SIZE)

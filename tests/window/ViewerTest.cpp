@@ -217,6 +217,30 @@ TEST_F(ViewerTest, ShadingAndProjectionKeysChangeThePictureAsRenderWould) {
     expectCleanExit(viewer);
 }
 
+// O cycles the transparency method live (exact, the default, then weighted, then sorted), on
+// Blender's alpha-blend export; each screenshot is what `lantern render` with the printed
+// --transparency gives (the file's blended objects do not overlap, so the three agree to
+// rounding; tests/image/TransparencyTest.cpp holds where they differ).
+TEST_F(ViewerTest, TransparencyKeyCyclesTheMethodsAsRenderWould) {
+    const fs::path file = lantern::test::sharedDir() / "assets/gltf-samples/BlenderIO_01_alpha_blend/01_alpha_blend.gltf";
+    if (!fs::exists(file)) GTEST_SKIP() << "no " << file << " (../shared beside the checkout)";
+    ViewerRun viewer(*m_server, m_dir);
+    ASSERT_TRUE(viewer.start({file.string(), "--width", "200", "--height", "120", "--no-panel"}));
+    const std::pair<std::vector<std::string>, const char*> steps[] = {
+        {{}, nullptr}, {{"o"}, "--transparency weighted"}, {{"o"}, "--transparency sorted"},
+        {{"o"}, "--transparency exact"}};
+    std::vector<Image> shots;
+    for (const auto& [keys, expect] : steps) {
+        auto shot = viewer.screenshot(keys);
+        ASSERT_TRUE(shot) << viewer.err();
+        if (expect) EXPECT_NE(shot->second.find(expect), std::string::npos) << shot->second;
+        expectSameAsRender(shot->first, shot->second);
+        shots.push_back(readImage(shot->first));
+    }
+    EXPECT_EQ(maxAbsDifference(shots[0], shots[3]), 0.0f) << "exact, then exact again";
+    expectCleanExit(viewer);
+}
+
 TEST_F(ViewerTest, OrbitPanZoomAndQuadViewMoveTheCameraAsPrinted) {
     ViewerRun viewer(*m_server, m_dir);
     ASSERT_TRUE(viewer.start({"builtin:spheres", "--width", "200", "--height", "140", "--no-panel"}));

@@ -26,7 +26,8 @@ std::string AccuracyRow::group() const {
 
 std::string AccuracyRow::setting() const {
     return std::string(toString(shading)) + ", " + std::to_string(segments) +
-           (scene == "spot" ? " subdivisions" : " segments") + ", " + std::to_string(msaa) + "x";
+           (scene == "spot" ? " subdivisions" : " segments") + ", " + std::to_string(msaa) + "x" +
+           (transparency.empty() ? "" : ", " + transparency);
 }
 
 void markParetoFronts(std::vector<AccuracyRow>& rows) {
@@ -57,6 +58,7 @@ struct AccuracyArgs {
     std::vector<std::string> shading{"flat", "gouraud", "phong"};
     std::vector<int> segments{8, 16, 32, 64, 128, 256, 512};
     std::vector<int> msaa{1, 4};
+    std::vector<std::string> transparency{"sorted", "exact", "weighted"};
     std::vector<int> widths{960, 1920}, heights{540, 1080};
     TimingOptions timing;
     int referenceSamples = 8;
@@ -167,9 +169,11 @@ struct Sweep {
     std::map<std::tuple<std::string, int, int, int, int>, std::size_t> floorConfig;
 };
 
-// The shading modes of one scene, shininess, tessellation, size and sample count.
+// The shading modes of one scene, shininess, tessellation, size, sample count and
+// transparency method (empty: a scene without blended surfaces).
 void addModes(Sweep& sweep, const std::vector<ShadingMode>& modes, const std::string& name,
-              double s, int seg, int w, int h, int m, const Prepared& p) {
+              double s, int seg, int w, int h, int m, const std::string& transparency,
+              const Prepared& p) {
     for (ShadingMode mode : modes) {
         AccuracyRow row;
         row.scene = name;
@@ -180,6 +184,7 @@ void addModes(Sweep& sweep, const std::vector<ShadingMode>& modes, const std::st
         row.segments = seg;
         row.triangles = p.bench.triangles;
         row.msaa = m;
+        row.transparency = transparency;
         TimedConfig c;
         c.label = row.group() + ", " + row.setting();
         c.scene = &p.prepared;
@@ -187,6 +192,7 @@ void addModes(Sweep& sweep, const std::vector<ShadingMode>& modes, const std::st
         c.options.height = h;
         c.options.msaa = m;
         c.options.shading = mode;
+        if (!transparency.empty()) c.options.transparency = parseTransparencyMethod(transparency);
         sweep.rowOfConfig.push_back(int(sweep.rows.size()));
         sweep.rows.push_back(row);
         sweep.configs.push_back(std::move(c));
@@ -220,8 +226,13 @@ Sweep makeSweep(const AccuracyArgs& a, const PreparedScenes& scenes, const Refer
         for (int m : msaa)
             for (const std::string& name : a.scenes)
                 for (int seg : a.segments) {
+                    // Only the transparency scenes have blended surfaces to composite.
+                    const bool blended = name == "crossing" || name == "nested" || name == "beside";
+                    const std::vector<std::string> methods =
+                        blended ? a.transparency : std::vector<std::string>{""};
                     for (double s : a.shininess)
-                        addModes(sweep, modes, name, s, seg, w, h, m, *scenes.at({name, s, seg}));
+                        for (const std::string& t : methods)
+                            addModes(sweep, modes, name, s, seg, w, h, m, t, *scenes.at({name, s, seg}));
                     if (!a.noFloor)
                         addFloor(sweep, name, seg, w, h, m,
                                  scenes.at({name, a.shininess[0], seg})->prepared);
@@ -350,6 +361,11 @@ Runner addAccuracyBench(CLI::App& bench) {
                             ->delimiter(',')
                             ->capture_default_str();
     cmd->add_option("--msaa", a->msaa, help::kMsaaList)->delimiter(',')->capture_default_str();
+    cmd->add_option("--transparency", a->transparency,
+                    "Transparency methods for the transparency scenes: sorted, exact, weighted")
+        ->delimiter(',')
+        ->capture_default_str()
+        ->check(CLI::IsMember({"sorted", "exact", "weighted"}));
     a->widthOption = cmd->add_option("--width", a->widths, help::kWidthList)
                          ->delimiter(',')
                          ->capture_default_str();

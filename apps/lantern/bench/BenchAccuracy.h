@@ -46,6 +46,8 @@ struct AccuracyRow {
     int segments = 0;
     std::size_t triangles = 0;
     int msaa = 1;
+    /// The transparency scenes: "sorted", "exact" or "weighted" (--transparency); else empty.
+    std::string transparency;
     double ms = 0.0;           ///< median of the rounds' median frame times
     double msMin = 0.0;        ///< fastest timed frame
     double msWall = 0.0;       ///< median render() wall time, readback included
@@ -60,7 +62,7 @@ struct AccuracyRow {
 
     /// The comparable set: same scene, shininess and resolution.
     std::string group() const;
-    /// "phong, 64 segments, 1x" for tables.
+    /// "phong, 64 segments, 1x" for tables (", exact" after it for a transparency scene).
     std::string setting() const;
 };
 

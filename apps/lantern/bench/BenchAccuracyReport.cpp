@@ -15,7 +15,7 @@ std::string csvHeader() {
            "db,max_error,"
            "interior_pixels,interior_rmse,interior_max,interior_p99,silhouette_pixels,"
            "silhouette_rmse,silhouette_max,silhouette_p99,peak_ratio,nonfinite,pareto_interior,"
-           "pareto_whole\n";
+           "pareto_whole,transparency\n";
 }
 
 std::string csvRow(const AccuracyRow& r) {
@@ -32,7 +32,7 @@ std::string csvRow(const AccuracyRow& r) {
       << e.silhouette.pixels << ',' << num(e.silhouette.rmse) << ',' << num(e.silhouette.max) << ','
       << num(e.silhouette.p99) << ',' << num(e.peakRatio) << ','
       << (e.nonFinite + r.replacedNonFinite) << ',' << (r.paretoInterior ? 1 : 0) << ','
-      << (r.paretoWhole ? 1 : 0) << '\n';
+      << (r.paretoWhole ? 1 : 0) << ',' << r.transparency << '\n';
     return s.str();
 }
 

@@ -133,6 +133,7 @@ struct ShadingOptions {
     bool shadows = false;
     int shadowResolution = 2048, shadowKernel = 3;
     std::string shadowFilter = "pcf";
+    std::string transparency;  ///< empty: exact (sorted under --gl-compat)
     double shadowBias = 2.0, shadowNormalOffset = 1.5;
     int msaa = 1;
     double pointSize = 1.0, lineWidth = 1.0;
@@ -143,6 +144,10 @@ struct ShadingOptions {
     /// does; checked before anything is rendered.
     Result<void> checkDevice(const DeviceInfo& device) const;
 };
+
+/// "sorted", "exact" or "weighted" (checked by the option) as the method, and back.
+TransparencyMethod parseTransparencyMethod(const std::string& text);
+const char* transparencyName(TransparencyMethod method);
 
 /// Refuses (Usage) a sample count the device lacks: "--msaa 8: DEVICE supports 1, 4".
 Result<void> checkMsaa(int msaa, const DeviceInfo& device);

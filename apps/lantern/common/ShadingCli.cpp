@@ -1,5 +1,6 @@
 // The shading options every rendering subcommand shares (render, view, bench frame): the
-// lighting model's switches, anti-aliasing, point and line sizes, shadows and instancing.
+// lighting model's switches, anti-aliasing, point and line sizes, shadows, transparency and
+// instancing.
 #include "common/CliSupport.h"
 
 #include <algorithm>
@@ -51,6 +52,11 @@ void ShadingOptions::add(CLI::App& app) {
                    "Texels the shadow lookup moves along the surface normal")
         ->capture_default_str()
         ->check(CLI::Range(0.0, 1000.0));
+    app.add_option("--transparency", transparency,
+                   "How blended materials are composited: exact (per-pixel fragment lists sorted "
+                   "by depth; the default), sorted (by object, far to near, as GL programs do; the "
+                   "default with --gl-compat) or weighted (weighted blended OIT, approximate)")
+        ->check(CLI::IsMember({"sorted", "exact", "weighted"}));
     app.add_flag("--no-instancing", noInstancing,
                  "Draw every node on its own, not nodes that share a mesh as one instanced draw "
                  "(the same picture; to measure what instancing buys)");
@@ -73,7 +79,23 @@ Result<void> ShadingOptions::apply(RenderOptions& o) const {
     o.shadows.kernel = shadowKernel;
     o.shadows.slopeBias = shadowBias;
     o.shadows.normalOffset = shadowNormalOffset;
+    if (!transparency.empty()) o.transparency = parseTransparencyMethod(transparency);
     return {};
+}
+
+TransparencyMethod parseTransparencyMethod(const std::string& text) {
+    return text == "sorted" ? TransparencyMethod::Sorted
+           : text == "weighted" ? TransparencyMethod::Weighted
+                                : TransparencyMethod::Exact;
+}
+
+const char* transparencyName(TransparencyMethod m) {
+    switch (m) {
+    case TransparencyMethod::Sorted: return "sorted";
+    case TransparencyMethod::Exact: return "exact";
+    case TransparencyMethod::Weighted: return "weighted";
+    }
+    return "exact";
 }
 
 Result<void> ShadingOptions::checkDevice(const DeviceInfo& device) const {

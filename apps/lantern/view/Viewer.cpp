@@ -144,6 +144,18 @@ std::string Viewer::renderCommand(const std::string& output) const {
     if (o.clamp) s += " --clamp";
     if (o.glCompat) s += " --gl-compat";
     if (o.msaa > 1) s += " --msaa " + std::to_string(o.msaa);
+    if (o.shadows.all) s += " --shadows";
+    const ShadowOptions defaults;
+    if (o.shadows.filter != defaults.filter)
+        s += std::string(" --shadow-filter ") + (o.shadows.filter == ShadowFilter::Hardware ? "hardware" : "pcf");
+    if (o.shadows.kernel != defaults.kernel) s += " --shadow-kernel " + std::to_string(o.shadows.kernel);
+    if (o.shadows.resolution != defaults.resolution)
+        s += " --shadow-resolution " + std::to_string(o.shadows.resolution);
+    if (o.shadows.slopeBias != defaults.slopeBias) s += " --shadow-bias " + number(o.shadows.slopeBias);
+    if (o.shadows.normalOffset != defaults.normalOffset)
+        s += " --shadow-normal-offset " + number(o.shadows.normalOffset);
+    if (o.transparency) s += std::string(" --transparency ") + transparencyName(*o.transparency);
+    if (!o.instancing) s += " --no-instancing";
     s += " --background " + backgroundText(); // the text it was parsed from: the same floats
     if (m_st.quad) s += " --layout quad";
     s += m_st.camera.commandLine(perspectiveAspect());

@@ -120,6 +120,14 @@ bool ViewerInput::shadingKey(int key) {
     case GLFW_KEY_T:
         o.twoSided = !o.twoSided.value_or(false);
         return true;
+    case GLFW_KEY_O: {  // sorted -> exact -> weighted -> sorted
+        const TransparencyMethod now =
+            o.transparency.value_or(o.glCompat ? TransparencyMethod::Sorted : TransparencyMethod::Exact);
+        o.transparency = now == TransparencyMethod::Sorted  ? TransparencyMethod::Exact
+                         : now == TransparencyMethod::Exact ? TransparencyMethod::Weighted
+                                                            : TransparencyMethod::Sorted;
+        return true;
+    }
     case GLFW_KEY_Z:
         o.wireframe = !o.wireframe;
         return true;

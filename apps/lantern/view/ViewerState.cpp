@@ -128,6 +128,7 @@ const std::vector<KeyHelp>& viewerKeys() {
         {"P", "perspective / orthographic projection"},
         {"L", "local viewer on/off"},
         {"T", "two-sided lighting on/off"},
+        {"O", "transparency: sorted, exact, weighted"},
         {"Z", "wireframe overlay on/off"},
         {"N", "normals display on/off"},
         {"V", "quad view (top, front, side, perspective)"},

@@ -334,6 +334,15 @@ void shadingSection(ViewerState& st) {
     if (pressed) o.shadows.filter = ShadowFilter(filter);
     ImGui::SliderInt("shadow kernel", &o.shadows.kernel, 1, 9);
     o.shadows.kernel |= 1;  // odd
+    // Transparency (--transparency): how blended materials are composited.
+    int transparency = int(
+        o.transparency.value_or(o.glCompat ? TransparencyMethod::Sorted : TransparencyMethod::Exact));
+    pressed = ImGui::RadioButton("sorted", &transparency, int(TransparencyMethod::Sorted));
+    ImGui::SameLine();
+    pressed |= ImGui::RadioButton("exact", &transparency, int(TransparencyMethod::Exact));
+    ImGui::SameLine();
+    pressed |= ImGui::RadioButton("weighted", &transparency, int(TransparencyMethod::Weighted));
+    if (pressed) o.transparency = TransparencyMethod(transparency);
 }
 
 void lightsSection(ViewerState& st) {

@@ -111,6 +111,19 @@ struct ShadowOptions {
     double normalOffset = 1.5;  ///< the lookup point moves this many texels along the normal
 };
 
+/// How blended surfaces (glTF alphaMode BLEND) are composited (docs/transparency.md).
+enum class TransparencyMethod {
+    /// Each draw blended over what is behind it, far to near by the eye depth of its bounds'
+    /// centre (what GL programs do): wrong where surfaces cross or a mesh overlaps itself.
+    Sorted,
+    /// Every blended fragment stored in a per-pixel list, then sorted by depth and composited
+    /// per pixel: exact where surfaces cross (up to LANTERN_OIT_MAX_LAYERS layers a pixel).
+    Exact,
+    /// Weighted blended order-independent transparency (McGuire and Bavoil 2013): one pass,
+    /// no sorting, no per-pixel memory; an approximation whose error depends on the depths.
+    Weighted,
+};
+
 /// Which pipeline features are compiled in: only those the scene needs (the default), or all
 /// of them (for measuring what specialisation saves). Floor draws the same geometry with a
 /// trivial shader (constant white, no lighting): the cost of rasterising alone, the floor that
@@ -151,6 +164,10 @@ struct RenderOptions {
     /// "Instanced draws"); the switch is there to measure what instancing buys.
     bool instancing = true;
     ShadowOptions shadows;
+    /// How blended surfaces are composited; default: Exact (Sorted under glCompat, as GL
+    /// programs draw), docs/transparency.md has the measurements behind it. A frame without
+    /// blended draws pays nothing for either.
+    std::optional<TransparencyMethod> transparency;
     /// Linear, premultiplied. Opaque black by default, as `lantern render` and `lantern view`
     /// (one rule, docs/cli.md); {0, 0, 0, 0} for a transparent background, whose alpha is then
     /// each pixel's coverage (for compositing).

@@ -192,6 +192,9 @@ VkPhysicalDeviceFeatures Context::readOptionalFeatures() {
     // The id AOV reads gl_PrimitiveID in fragment shaders: SPIR-V's Geometry capability.
     core.geometryShader = supported.features.geometryShader;
     core.vertexPipelineStoresAndAtomics = supported.features.vertexPipelineStoresAndAtomics;
+    core.fragmentStoresAndAtomics = supported.features.fragmentStoresAndAtomics;
+    m_caps.fragmentStores = core.fragmentStoresAndAtomics;
+    m_caps.independentBlend = core.independentBlend;
     m_caps.primitiveIdInFragment = core.geometryShader;
     m_caps.vertexStores = core.vertexPipelineStoresAndAtomics;
     m_caps.fillModeNonSolid = core.fillModeNonSolid;
@@ -259,6 +262,8 @@ Result<std::shared_ptr<Context>> Context::adopt(const ExternalDevice& e, bool sw
     ctx->m_caps.largePoints = f.core.largePoints;
     ctx->m_caps.shaderFloat64 = f.core.shaderFloat64;
     ctx->m_caps.vertexStores = f.core.vertexPipelineStoresAndAtomics;
+    ctx->m_caps.fragmentStores = f.core.fragmentStoresAndAtomics;
+    ctx->m_caps.independentBlend = f.core.independentBlend;
     ctx->m_caps.provokingVertexLast =
         f.provokingVertexLast && extensionEnabled(e, VK_EXT_PROVOKING_VERTEX_EXTENSION_NAME);
     LANTERN_TRY(ctx->finishSetup(pipelineCache));

@@ -46,6 +46,10 @@ struct Capabilities {
     bool debugUtils = false;           ///< object names and the messenger
     /// vertexPipelineStoresAndAtomics: the guarded vertex variants (shaders/include/guard.glsl)
     bool vertexStores = false;
+    /// fragmentStoresAndAtomics: exact transparency's fragment lists (shaders/include/oit.glsl)
+    bool fragmentStores = false;
+    /// independentBlend: weighted transparency's two attachments blend differently
+    bool independentBlend = false;
     std::uint32_t colorDepthSampleCounts = VK_SAMPLE_COUNT_1_BIT;  ///< float colour & depth
 };
 

@@ -77,6 +77,11 @@ struct FrameReadback {
     /// When the frame asked for them (TargetDesc::ids, the probe): per pixel (draw index + 1,
     /// primitive id); 0: no draw.
     std::vector<std::uint32_t> ids;
+    /// Exact transparency (gpu/Transparency.h): the blended fragments the frame stored, the
+    /// lists' capacity (more fragments than that: the frame lost some and is rendered again
+    /// with room for them) and the pixels with more than LANTERN_OIT_MAX_LAYERS.
+    std::uint64_t listFragments = 0, listCapacity = 0, listTruncatedPixels = 0;
+    bool listsGrow = false;  ///< the lists overflowed and the next frame's hold more
 };
 
 class Device {

@@ -17,6 +17,13 @@
 
 namespace lantern::gpu {
 
+/// Where a blended draw's colour goes (render/Variants.cpp, from RenderOptions::transparency).
+enum class BlendPath : std::uint8_t {
+    Over,      ///< blended over the colour attachment, in draw order (sorted transparency)
+    List,      ///< stored in its pixel's fragment list, composited after the pass (exact)
+    Weighted,  ///< added into the weighted sums of the weighted pass (weighted)
+};
+
 /// Everything that selects a pipeline: the program, the specialisation constants (indexed by
 /// LANTERN_SC_* of lantern_shared.h) and the fixed-function state that cannot be dynamic.
 struct PipelineKey {
@@ -24,6 +31,7 @@ struct PipelineKey {
     Topology topology = Topology::Triangles;
     std::array<std::uint32_t, LANTERN_SC_COUNT> constants{};
     bool blend = false;
+    BlendPath blendPath = BlendPath::Over;  ///< with blend: where the colour goes
     bool aov = false;  ///< the fragment stage also writes the AOV attachments
     bool aovSurface = false;  ///< with aov: the surface attachment (uv, range) exists
     std::uint32_t samples = 1;
@@ -35,6 +43,9 @@ struct PipelineKey {
     /// variant, the flat pre-pass, or a constant: shaders/include/guard.glsl), so that the
     /// host need not check the picture (gpu/Readback.cpp).
     bool guard = false;
+    /// Set by gpu/: the variant for weighted transparency's own pass (blendPath Weighted), whose
+    /// attachments are the weighted sums and the revealage.
+    bool weightedPass = false;
 
     bool operator==(const PipelineKey&) const = default;
 };
@@ -84,6 +95,10 @@ struct TargetDesc {
     /// The draw and primitive ids are read back: the probe's, or an id plane asked for.
     bool readIds() const { return ids || aovs.anyId(); }
     bool reversedZ = true;    ///< depth clears to 0 (far) instead of 1
+    /// Exact: the frame's blended draws go to fragment lists, resolved after the scene pass;
+    /// Weighted: into the weighted sums, composited after their pass. Sorted whenever the
+    /// frame has no blended draw, so such a frame allocates and records nothing for them.
+    TransparencyMethod transparency = TransparencyMethod::Sorted;
     glm::vec4 clear{0.0f};    ///< linear, premultiplied
     float pointSize = 1.0f;   ///< pixels across a point (GL_POINTS)
     float lineWidth = 1.0f;   ///< pixels across a line (GL_LINES)

@@ -106,13 +106,14 @@ Result<void> FrameRing::createSlot(Slot& s, std::size_t index) {
     LANTERN_VK_TRY(vkCreateFence(dev, &fci, nullptr, &fence));
     s.fence = UniqueFence(dev, fence);
 
-    VkDescriptorPoolSize sizes[4] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 2},
+    VkDescriptorPoolSize sizes[5] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 2},
                                      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, 1},
-                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 6},
-                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}};
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 7},
+                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1},
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2}};
     VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     dpci.maxSets = 1;
-    dpci.poolSizeCount = 4;
+    dpci.poolSizeCount = 5;
     dpci.pPoolSizes = sizes;
     VkDescriptorPool dp = VK_NULL_HANDLE;
     LANTERN_VK_TRY(vkCreateDescriptorPool(dev, &dpci, nullptr, &dp));
@@ -144,8 +145,8 @@ FrameRing::~FrameRing() {
 // before recording. `flatPerTriangle`: flat triangles are lit by the pre-pass this frame.
 // `guarded`: every draw of the colour pass is guarded (guardable()).
 Result<void> FrameRing::preparePipelines(const DrawList& list, SceneBuffers& scene,
-                                         bool flatPerTriangle, std::vector<VkPipeline>& main,
-                                         std::vector<VkPipeline>& aov, bool& guarded) {
+                                         bool flatPerTriangle, FramePipelines& out,
+                                         bool& guarded) {
     const bool vertexGuard =
         m_ctx.capabilities().vertexStores &&
         (list.outputGuard == OutputGuard::Always ||
@@ -153,17 +154,31 @@ Result<void> FrameRing::preparePipelines(const DrawList& list, SceneBuffers& sce
     guarded = list.outputGuard != OutputGuard::Never;
     const bool aovPass = list.target.aovs.any() && list.target.samples > 1;
     // The variants the draws use (and only those), the missing ones compiled together.
-    std::vector<PipelineKey> mainKeys, aovKeys;
+    const bool weightedPass = list.target.transparency == TransparencyMethod::Weighted;
+    std::vector<PipelineKey> mainKeys, aovKeys, weightedKeys;
+    std::vector<bool> mainDrawn, weightedDrawn;  // per draw: whether that pass draws it
     bool needFlat = false, needFlatTriangles = false;
     for (const ViewCommands& v : list.views)
         for (const DrawCommand& d : v.draws) {
             PipelineKey key = d.pipeline;
             key.flatPerTriangle = FlatLighter::perTriangle(d.pipeline, flatPerTriangle);
             PipelineKey single = key;
+            single.blendPath = BlendPath::Over;  // the AOV pass's colour is not the picture
             if (aovPass) key.aov = key.aovSurface = false;
             key.guard = list.outputGuard != OutputGuard::Never && guardable(key, vertexGuard);
             guarded &= key.guard;
-            mainKeys.push_back(key);
+            // A weighted draw writes in the scene pass only its AOVs (its colour goes to the
+            // weighted pass): without AOVs there, it is not drawn in it.
+            const bool weighted = key.blend && key.blendPath == BlendPath::Weighted;
+            mainDrawn.push_back(!weighted || key.aov);
+            if (mainDrawn.back()) mainKeys.push_back(key);
+            weightedDrawn.push_back(weightedPass && weighted);
+            if (weightedDrawn.back()) {
+                PipelineKey w = key;
+                w.aov = w.aovSurface = false;
+                w.weightedPass = true;
+                weightedKeys.push_back(w);
+            }
             if (aovPass) {
                 single.samples = 1;
                 single.aov = true;
@@ -175,13 +190,27 @@ Result<void> FrameRing::preparePipelines(const DrawList& list, SceneBuffers& sce
         }
     std::vector<PipelineKey> all = mainKeys;
     all.insert(all.end(), aovKeys.begin(), aovKeys.end());
+    all.insert(all.end(), weightedKeys.begin(), weightedKeys.end());
     LANTERN_TRY(m_pipelines.prepare(all));
-    for (const auto& [keys, out] : {std::pair{&mainKeys, &main}, std::pair{&aovKeys, &aov}})
-        for (const PipelineKey& key : *keys) {
-            auto p = m_pipelines.pipeline(key);
+    // Per draw, in list order; a pass that does not draw it gets a null pipeline.
+    auto resolve = [&](const std::vector<PipelineKey>& keys, const std::vector<bool>* drawn,
+                       std::vector<VkPipeline>& pipelines) -> Result<void> {
+        std::size_t k = 0;
+        const std::size_t draws = drawn ? drawn->size() : keys.size();
+        for (std::size_t i = 0; i < draws; ++i) {
+            if (drawn && !(*drawn)[i]) {
+                pipelines.push_back(VK_NULL_HANDLE);
+                continue;
+            }
+            auto p = m_pipelines.pipeline(keys[k++]);
             if (!p) return std::move(p).error();
-            out->push_back(*p);
+            pipelines.push_back(*p);
         }
+        return {};
+    };
+    LANTERN_TRY(resolve(mainKeys, &mainDrawn, out.main));
+    LANTERN_TRY(resolve(aovKeys, nullptr, out.aov));
+    if (weightedPass) LANTERN_TRY(resolve(weightedKeys, &weightedDrawn, out.weighted));
     if (needFlat) LANTERN_TRY(scene.ensureFlatStreams(needFlatTriangles));
     return {};
 }
@@ -219,7 +248,13 @@ Result<void> FrameRing::preparePrePasses(Slot& slot, const DrawList& list,
         if (!shadows) return std::move(shadows).error();
         m_shadowPass = std::move(*shadows);
     }
-    return m_shadowPass->prepare(slot.shadow, list);
+    LANTERN_TRY(m_shadowPass->prepare(slot.shadow, list));
+    if (!m_transparency) {
+        auto transparency = TransparencyPass::create(m_ctx, m_pipelines);
+        if (!transparency) return std::move(transparency).error();
+        m_transparency = std::move(*transparency);
+    }
+    return m_transparency->prepare(slot.transparency, list.target);
 }
 
 // The uniform arena: materials, then per view its FrameBlock and its lights, at the device's
@@ -326,6 +361,7 @@ void FrameRing::writeFrameSet(Slot& slot, const ArenaLayout& a) {
     writeBufferDescriptors(m_ctx, slot.frameSet,
                            {{LANTERN_BINDING_FLAT_COLORS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, colors},
                             {LANTERN_BINDING_FLAT_NORMALS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, normals}});
+    m_transparency->writeDescriptors(slot.frameSet, slot.transparency, {slot.arena.get(), 0, 16});
 }
 
 Result<void> FrameRing::queueSubmit(Slot& slot, const SubmitHooks& hooks) {
@@ -363,9 +399,19 @@ Result<std::uint32_t> FrameRing::submit(const DrawList& list,
     if (slot.busy)
         return makeError(ErrorCode::Usage, "frame slot " + std::to_string(index) +
                                                " is still in flight; collect it first");
+    if (list.target.transparency == TransparencyMethod::Exact && !m_ctx.capabilities().fragmentStores)
+        return makeError(ErrorCode::Unsupported,
+                         "the device lacks fragmentStoresAndAtomics, which exact transparency (the "
+                         "default for blended materials) needs: use --transparency sorted",
+                         "--transparency");
+    if (list.target.transparency == TransparencyMethod::Weighted && !m_ctx.capabilities().independentBlend)
+        return makeError(ErrorCode::Unsupported,
+                         "the device lacks independentBlend, which weighted transparency needs: "
+                         "use --transparency sorted or exact",
+                         "--transparency");
     LANTERN_TRY(ensureTarget(m_ctx, slot.target, list.target, m_inPlace));
     slot.desc = list.target;
-    std::vector<VkPipeline> pipelines, aovPipelines;
+    FramePipelines pipelines;
     const bool flatPerTriangle = FlatLighter::available(m_ctx, *scene, list);
     bool guardedDraws = false;
     // Clearing by drawing (gpu/ClearDraw.h): a missing clear pipeline is compiled on a thread
@@ -383,8 +429,7 @@ Result<std::uint32_t> FrameRing::submit(const DrawList& list,
         clear = std::async(m_clearDraw->ready(slot.target) ? std::launch::deferred : std::launch::async,
                            [this, &slot] { return m_clearDraw->prepare(slot.target); });
     }
-    LANTERN_TRY(preparePipelines(list, *scene, flatPerTriangle, pipelines, aovPipelines,
-                                 guardedDraws));
+    LANTERN_TRY(preparePipelines(list, *scene, flatPerTriangle, pipelines, guardedDraws));
     if (clear.valid()) {
         auto made = clear.get();
         if (!made) return std::move(made).error();
@@ -405,17 +450,20 @@ Result<std::uint32_t> FrameRing::submit(const DrawList& list,
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     LANTERN_VK_TRY(vkBeginCommandBuffer(slot.cmd, &bi));
-    recordFrame(m_pipelines.layout(), m_overlays.get(), m_deformer.get(), m_flatLighter.get(),
-                *m_shadowPass, slot, *scene, list, *arena, pipelines, aovPipelines, hooks);
+    const FramePasses passes{m_overlays.get(), m_deformer.get(), m_flatLighter.get(),
+                             m_shadowPass.get(), m_transparency.get()};
+    recordFrame(m_pipelines.layout(), passes, slot, *scene, list, *arena, pipelines, hooks);
     LANTERN_VK_TRY(vkEndCommandBuffer(slot.cmd));
     LANTERN_TRY(queueSubmit(slot, hooks));
     m_submittedOnce = true;
     slot.scene = scene;
     slot.busy = true;
     slot.readback = hooks.readback;
-    slot.draws = pipelines.size();
-    // The overlays' constant colours are not guarded: a frame with them is checked on the host.
-    slot.guarded = guardedDraws && !list.overlays.any() && clearWithinGuard(list.target.clear);
+    slot.draws = pipelines.main.size();
+    // The overlays' constant colours are not guarded: a frame with them is checked on the host;
+    // nor are the weighted sums, which divide (shaders/weighted_resolve.frag).
+    slot.guarded = guardedDraws && !list.overlays.any() && clearWithinGuard(list.target.clear) &&
+                   list.target.transparency != TransparencyMethod::Weighted;
     m_next = (m_next + 1) % std::uint32_t(m_slots.size());
     return index;
 }
@@ -438,10 +486,11 @@ Result<FrameReadback> FrameRing::collect(std::uint32_t index, lantern::Image sto
     slot.scene.reset();
     if (wait != VK_SUCCESS) return vkError(wait, "vkWaitForFences");
     if (injected != VK_SUCCESS) return vkError(injected, "vkWaitForFences");
-    if (!inPlace) return readBack(m_ctx, slot, std::move(storage));
     HostView view;
     view.live = m_viewsLive;
-    return readBack(m_ctx, slot, std::move(storage), &view);
+    auto frame = readBack(m_ctx, slot, std::move(storage), inPlace ? &view : nullptr);
+    if (frame && m_transparency) m_transparency->readCounts(slot.transparency, *frame);
+    return frame;
 }
 
 } // namespace lantern::gpu

@@ -17,6 +17,7 @@
 #include "gpu/SceneBuffers.h"
 #include "gpu/Shadows.h"
 #include "gpu/Targets.h"
+#include "gpu/Transparency.h"
 
 #include <functional>
 #include <memory>
@@ -36,6 +37,13 @@ struct SubmitHooks {
         afterRender;
     VkSemaphore wait = VK_NULL_HANDLE;  ///< waited for at the transfer stage
     VkSemaphore signal = VK_NULL_HANDLE;
+};
+
+/// One frame's pipelines, one per draw in list order: the scene pass's (null: the draw writes
+/// nothing there), the single-sampled AOV pass's (MSAA with AOVs) and the weighted
+/// transparency pass's (null for the draws it does not draw; empty without that pass).
+struct FramePipelines {
+    std::vector<VkPipeline> main, aov, weighted;
 };
 
 class FrameRing {
@@ -75,6 +83,7 @@ public:
         bool deforming = false; ///< this frame records the deformation pre-pass
         FlatSlot flat;          ///< flat triangles lit once per triangle (gpu/FlatLight.h)
         ShadowSlot shadow;      ///< the shadow maps (a 1 x 1 layer when the frame has none)
+        TransparencySlot transparency;  ///< fragment lists or weighted sums (gpu/Transparency.h)
         /// Every colour this frame writes comes from a guarded fragment variant or the clear
         /// colour (within LANTERN_GUARD_BOUND): unless the guard word at `guardOffset` of the
         /// arena is set, the host skips its NaN/Inf check of the picture (gpu/Readback.cpp).
@@ -95,8 +104,7 @@ private:
     FrameRing(Context& ctx, Pipelines& pipelines) : m_ctx(ctx), m_pipelines(pipelines) {}
     Result<void> createSlot(Slot& slot, std::size_t index);
     Result<void> preparePipelines(const DrawList& list, SceneBuffers& scene, bool flatPerTriangle,
-                                  std::vector<VkPipeline>& main, std::vector<VkPipeline>& aov,
-                                  bool& guarded);
+                                  FramePipelines& out, bool& guarded);
     Result<void> preparePrePasses(Slot& slot, const DrawList& list, const SceneBuffers& scene,
                                   bool flatPerTriangle);
     Result<ArenaLayout> fillArena(Slot& slot, const DrawList& list);
@@ -110,6 +118,7 @@ private:
     std::unique_ptr<FlatLighter> m_flatLighter;    ///< made on first use
     std::unique_ptr<ClearDraw> m_clearDraw;        ///< made on first use
     std::unique_ptr<ShadowPass> m_shadowPass;      ///< made on first use
+    std::unique_ptr<TransparencyPass> m_transparency;  ///< made on first use
     std::vector<Slot> m_slots;
     std::uint32_t m_next = 0;
     bool m_timestamps = false;
@@ -127,13 +136,19 @@ private:
 /// Records a frame into `slot.cmd` (begun): the deformation pre-pass (when the slot deforms),
 /// the shadow maps (when it has them), the per-triangle flat lighting (when it has flat
 /// triangle draws), barriers, the render pass(es) with every view's draws and overlays, the
-/// copies into the readback buffers, then `hooks.afterRender`.
-void recordFrame(VkPipelineLayout layout, const OverlayPipelines* overlays,
-                 const Deformer* deformer, const FlatLighter* flatLighter,
-                 const ShadowPass& shadowPass, FrameRing::Slot& slot,
+/// transparency pass and composite (exact or weighted), the copies into the readback buffers,
+/// then `hooks.afterRender`.
+struct FramePasses {
+    const OverlayPipelines* overlays = nullptr;
+    const Deformer* deformer = nullptr;
+    const FlatLighter* flatLighter = nullptr;
+    const ShadowPass* shadows = nullptr;
+    const TransparencyPass* transparency = nullptr;
+};
+void recordFrame(VkPipelineLayout layout, const FramePasses& passes, FrameRing::Slot& slot,
                  const SceneBuffers& scene, const DrawList& list,
-                 const FrameRing::ArenaLayout& arena, const std::vector<VkPipeline>& pipelines,
-                 const std::vector<VkPipeline>& aovPipelines, const SubmitHooks& hooks);
+                 const FrameRing::ArenaLayout& arena, const FramePipelines& pipelines,
+                 const SubmitHooks& hooks);
 
 /// Converts a finished slot's readback buffers into a FrameReadback (every NaN or Inf counted
 /// and replaced, so none leaves the renderer), reusing `storage`'s memory for the planes. With

@@ -75,6 +75,21 @@ VkPipelineDepthStencilStateCreateInfo depthStencilState(const GraphicsPipelineDe
 std::vector<VkPipelineColorBlendAttachmentState> blendAttachments(const GraphicsPipelineDesc& d) {
     std::vector<VkPipelineColorBlendAttachmentState> blends(d.colorFormats.size());
     for (auto& b : blends) b.colorWriteMask = 0xF;
+    if (!d.colorWrite && !blends.empty()) blends[0].colorWriteMask = 0;
+    if (d.premultiplied && !blends.empty()) {
+        blends[0].blendEnable = VK_TRUE;
+        blends[0].srcColorBlendFactor = blends[0].srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+        blends[0].dstColorBlendFactor = blends[0].dstAlphaBlendFactor =
+            VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    }
+    if (d.weightedSums && blends.size() == 2) {
+        blends[0].blendEnable = blends[1].blendEnable = VK_TRUE;
+        blends[0].srcColorBlendFactor = blends[0].srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+        blends[0].dstColorBlendFactor = blends[0].dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+        blends[1].srcColorBlendFactor = blends[1].srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
+        blends[1].dstColorBlendFactor = blends[1].dstAlphaBlendFactor =
+            VK_BLEND_FACTOR_ONE_MINUS_SRC_COLOR;
+    }
     if (d.blend && !blends.empty()) {
         // Straight-alpha "over" into a premultiplied target (the EXR convention):
         // rgb = a * src + (1 - a) * dst, alpha = a + (1 - a) * dstAlpha.

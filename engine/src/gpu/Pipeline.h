@@ -31,6 +31,11 @@ struct GraphicsPipelineDesc {
     VkFormat depthFormat = VK_FORMAT_D32_SFLOAT;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
     bool blend = false;  ///< straight-alpha "over" on attachment 0, premultiplied result
+    bool premultiplied = false;  ///< premultiplied "over" on attachment 0 (the transparency composites)
+    /// Weighted transparency's pass: attachment 0 adds (ONE, ONE), attachment 1 multiplies by
+    /// one minus the source (ZERO, ONE_MINUS_SRC_COLOR).
+    bool weightedSums = false;
+    bool colorWrite = true;  ///< false: attachment 0 is not written (the fragment stores elsewhere)
     bool depthTest = true;  ///< with a depth format: the depth test is on
     bool depthWrite = true;
     VkCompareOp depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL;

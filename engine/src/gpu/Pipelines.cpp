@@ -22,8 +22,11 @@ using frame::Program;
 
 // A program's vertex stage (plain, and guarded where the vertex stage lights: it checks what
 // it lit, shaders/include/guard.glsl) and its fragment stage (plain, and with the AOV outputs).
+// Blended draws under exact transparency store their fragments (_list, with and without the
+// AOV outputs); under weighted transparency they add into the weighted sums (_weighted).
 struct ProgramShaders {
     ShaderId vertex, vertexGuard, fragment, fragmentAov;
+    ShaderId fragmentList, fragmentAovList, fragmentWeighted;
 };
 
 // The stage that lights comes as the light loop, unrolled for up to 2 lights and for up to 8
@@ -37,26 +40,35 @@ ShaderId byUnroll(std::uint32_t lights, ShaderId loop, ShaderId two, ShaderId ei
 ProgramShaders programShaders(const PipelineKey& key) {
     using S = ShaderId;
     if (key.flatPerTriangle)  // lit (and checked) by the pre-pass
-        return {S::flatprim_vert, S::flatprim_vert, S::flatprim_frag, S::flatprim_aov_frag};
+        return {S::flatprim_vert, S::flatprim_vert, S::flatprim_frag, S::flatprim_aov_frag,
+                S::flatprim_list_frag, S::flatprim_aov_list_frag, S::flatprim_weighted_frag};
     const std::uint32_t n = key.constants[LANTERN_SC_UNROLLED_LIGHTS];
     switch (key.program) {
     case Program::Phong: break;
     case Program::Gouraud:
         return {byUnroll(n, S::gouraud_vert, S::gouraud_u2_vert, S::gouraud_u8_vert),
                 byUnroll(n, S::gouraud_guard_vert, S::gouraud_guard_u2_vert, S::gouraud_guard_u8_vert),
-                S::gouraud_frag, S::gouraud_aov_frag};
+                S::gouraud_frag, S::gouraud_aov_frag, S::gouraud_list_frag,
+                S::gouraud_aov_list_frag, S::gouraud_weighted_frag};
     case Program::Flat:
         return {byUnroll(n, S::flat_vert, S::flat_u2_vert, S::flat_u8_vert),
                 byUnroll(n, S::flat_guard_vert, S::flat_guard_u2_vert, S::flat_guard_u8_vert),
-                S::flat_frag, S::flat_aov_frag};
+                S::flat_frag, S::flat_aov_frag, S::flat_list_frag, S::flat_aov_list_frag,
+                S::flat_weighted_frag};
     case Program::GlFlat:
         return {byUnroll(n, S::glflat_vert, S::glflat_u2_vert, S::glflat_u8_vert),
                 byUnroll(n, S::glflat_guard_vert, S::glflat_guard_u2_vert, S::glflat_guard_u8_vert),
-                S::flat_frag, S::flat_aov_frag};
-    case Program::Floor: return {S::mesh_vert, S::mesh_vert, S::floor_frag, S::floor_aov_frag};
+                S::flat_frag, S::flat_aov_frag, S::flat_list_frag, S::flat_aov_list_frag,
+                S::flat_weighted_frag};
+    case Program::Floor:  // the trivial shader measures rasterising alone: blended or not
+        return {S::mesh_vert, S::mesh_vert, S::floor_frag, S::floor_aov_frag,
+                S::floor_frag, S::floor_aov_frag, S::floor_frag};
     }
     return {S::mesh_vert, S::mesh_vert, byUnroll(n, S::phong_frag, S::phong_u2_frag, S::phong_u8_frag),
-            byUnroll(n, S::phong_aov_frag, S::phong_aov_u2_frag, S::phong_aov_u8_frag)};
+            byUnroll(n, S::phong_aov_frag, S::phong_aov_u2_frag, S::phong_aov_u8_frag),
+            byUnroll(n, S::phong_list_frag, S::phong_list_u2_frag, S::phong_list_u8_frag),
+            byUnroll(n, S::phong_aov_list_frag, S::phong_aov_list_u2_frag, S::phong_aov_list_u8_frag),
+            byUnroll(n, S::phong_weighted_frag, S::phong_weighted_u2_frag, S::phong_weighted_u8_frag)};
 }
 
 // One vertex-buffer binding per attribute, numbered as its location (non-interleaved streams).
@@ -106,6 +118,8 @@ std::size_t PipelineKeyHash::operator()(const PipelineKey& k) const noexcept {
     h = h * 31u + (k.reversedZ ? 1u : 0u);
     h = h * 31u + (k.flatPerTriangle ? 1u : 0u);
     h = h * 31u + (k.guard ? 1u : 0u);
+    h = h * 31u + std::size_t(k.blendPath);
+    h = h * 31u + (k.weightedPass ? 1u : 0u);
     return h;
 }
 
@@ -130,7 +144,13 @@ Result<Pipelines> Pipelines::create(Context& ctx) {
               {LANTERN_BINDING_INSTANCES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
                VK_SHADER_STAGE_VERTEX_BIT, nullptr},
               {LANTERN_BINDING_SHADOW_MAP, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, all, nullptr},
-              {LANTERN_BINDING_SHADOWS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr}});
+              {LANTERN_BINDING_SHADOWS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+              {LANTERN_BINDING_FRAGMENT_LISTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+               VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+              {LANTERN_BINDING_WEIGHTED_ACCUM, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1,
+               VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+              {LANTERN_BINDING_WEIGHTED_REVEAL, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1,
+               VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}});
     if (!frameLayout) return std::move(frameLayout).error();
     p.m_frameLayout = std::move(*frameLayout);
     std::vector<VkDescriptorSetLayoutBinding> textureBindings;
@@ -183,7 +203,12 @@ Result<GraphicsPipelineDesc> Pipelines::describe(const PipelineKey& key) {
     const ProgramShaders ps = programShaders(key);
     auto vs = shader(std::uint32_t(key.guard ? ps.vertexGuard : ps.vertex));
     if (!vs) return std::move(vs).error();
-    auto fs = shader(std::uint32_t(key.aov ? ps.fragmentAov : ps.fragment));
+    const bool list = key.blend && key.blendPath == BlendPath::List;
+    const bool weighted = key.blend && key.blendPath == BlendPath::Weighted;
+    ShaderId fragment = key.aov ? ps.fragmentAov : ps.fragment;
+    if (list) fragment = key.aov ? ps.fragmentAovList : ps.fragmentList;
+    if (key.weightedPass) fragment = ps.fragmentWeighted;
+    auto fs = shader(std::uint32_t(fragment));
     if (!fs) return std::move(fs).error();
 
     GraphicsPipelineDesc d;
@@ -221,9 +246,15 @@ Result<GraphicsPipelineDesc> Pipelines::describe(const PipelineKey& key) {
     // which the validation layer reports against the shader's output type).
     d.colorFormats = passColorFormats(
         key.aov ? (key.aovSurface ? LANTERN_OUT_COUNT_AOV : LANTERN_OUT_SURFACE) : 1);
+    if (key.weightedPass) d.colorFormats = {kWeightedAccumFormat, kWeightedRevealFormat};
     d.depthFormat = kDepthFormat;
     d.samples = VkSampleCountFlagBits(key.samples);
-    d.blend = key.blend;
+    // Blended over the colour (sorted), or not written there: stored in the fragment lists
+    // (exact), or, in the scene pass, only the AOVs of a weighted draw, whose colour its own
+    // pass adds into the weighted sums.
+    d.blend = key.blend && key.blendPath == BlendPath::Over;
+    d.colorWrite = !(list || weighted) || key.weightedPass;
+    d.weightedSums = key.weightedPass;
     d.depthWrite = !key.blend;
     // GL's default depth test is strict: the first of two equal depths wins.
     d.depthCompare = key.reversedZ ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_LESS;
@@ -233,7 +264,7 @@ Result<GraphicsPipelineDesc> Pipelines::describe(const PipelineKey& key) {
                                                     : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
     d.name = std::string(frame::toString(key.program)) +
              (key.flatPerTriangle ? " per-triangle" : "") + (key.guard ? " guarded" : "") +
-             " variant";
+             (list ? " fragment-list" : "") + (key.weightedPass ? " weighted" : "") + " variant";
     return d;
 }
 

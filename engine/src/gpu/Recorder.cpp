@@ -1,6 +1,7 @@
 // Recording one frame with Vulkan 1.3 dynamic rendering and synchronization2: the shadow maps'
 // passes, attachment barriers, the scene pass (and, with MSAA and AOVs, a single-sampled AOV pass), one viewport
-// per view, one draw per DrawCommand, the overlays, then the copies into the readback buffers
+// per view, one draw per DrawCommand, the overlays, weighted transparency's pass and the
+// transparency composite (gpu/Transparency.h), then the copies into the readback buffers
 // (or, for planes read in place, only the transition that hands them to the host).
 #include "gpu/FrameRing.h"
 
@@ -25,9 +26,12 @@ struct FrameRecorder {
     void bindStreams(const DrawCommand& d, std::uint32_t flatJob) const;
     void shadowMaps(const ShadowPass& shadows) const;
     void drawDepth(const DrawCommand& d) const;
-    void drawViews(const std::vector<VkPipeline>& pipelines) const;
+    void drawViews(const std::vector<VkPipeline>& pipelines, bool overlaysToo) const;
+    void beginRendering(const std::vector<VkRenderingAttachmentInfo>& colors,
+                        const VkRenderingAttachmentInfo& depth) const;
     void pass(const std::vector<VkRenderingAttachmentInfo>& colors, const Image& depthImage,
-              VkPipeline clear, const std::vector<VkPipeline>& pipelines) const;
+              VkPipeline clear, const std::vector<VkPipeline>& pipelines, bool keepDepth) const;
+    void weightedPass(const TransparencyPass& transparency, const std::vector<VkPipeline>& pipelines) const;
     void copyOut(const Image& img, const Buffer& buf, bool readback) const;
 };
 
@@ -204,8 +208,9 @@ void FrameRecorder::drawDepth(const DrawCommand& d) const {
     }
 }
 
-// Draws every view's list with the given pipelines (one per draw, in list order).
-void FrameRecorder::drawViews(const std::vector<VkPipeline>& pipelines) const {
+// Draws every view's list with the given pipelines (one per draw, in list order; a null one
+// skips its draw), then each view's overlays when `overlaysToo`.
+void FrameRecorder::drawViews(const std::vector<VkPipeline>& pipelines, bool overlaysToo) const {
     const int rows = int(slot.target.height);
     const int pictureHeight = list.pictureHeight > 0 ? int(list.pictureHeight) : rows;
     std::size_t counter = 0;
@@ -237,6 +242,7 @@ void FrameRecorder::drawViews(const std::vector<VkPipeline>& pipelines) const {
             const std::uint32_t flatJob =
                 counter < slot.flat.drawJobs.size() ? slot.flat.drawJobs[counter] : kNoFlatJob;
             const VkPipeline p = pipelines[counter++];
+            if (p == VK_NULL_HANDLE) continue;
             if (p != bound) {
                 vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
                 if (bound == VK_NULL_HANDLE)
@@ -265,23 +271,14 @@ void FrameRecorder::drawViews(const std::vector<VkPipeline>& pipelines) const {
             bindStreams(d, flatJob);
         }
         // The display overlays never meet the AOV pass (they refuse AOVs).
-        if (slot.overlays.any())
+        if (overlaysToo && slot.overlays.any())
             overlays->recordView(cmd, scene, v, slot.frameSet, dynamicOffsets, slot.overlays);
     }
 }
 
-// `clear`: the pipeline that clears the colour attachments by drawing (gpu/ClearDraw.h), which
-// are then not loaded; null: they clear themselves (LOAD_OP_CLEAR).
-void FrameRecorder::pass(const std::vector<VkRenderingAttachmentInfo>& colors,
-                         const Image& depthImage, VkPipeline clear,
-                         const std::vector<VkPipeline>& pipelines) const {
-    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depth.imageView = depthImage.view.get();
-    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    // Reversed-Z clears to 0 (infinitely far), standard depth to 1.
-    depth.clearValue.depthStencil.depth = list.target.reversedZ ? 0.0f : 1.0f;
+// Begins rendering over the whole target into `colors` and `depth`.
+void FrameRecorder::beginRendering(const std::vector<VkRenderingAttachmentInfo>& colors,
+                                   const VkRenderingAttachmentInfo& depth) const {
     VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
     ri.renderArea = {{0, 0}, {slot.target.width, slot.target.height}};
     ri.layerCount = 1;
@@ -289,10 +286,45 @@ void FrameRecorder::pass(const std::vector<VkRenderingAttachmentInfo>& colors,
     ri.pColorAttachments = colors.data();
     ri.pDepthAttachment = &depth;
     vkCmdBeginRendering(cmd, &ri);
+}
+
+// `clear`: the pipeline that clears the colour attachments by drawing (gpu/ClearDraw.h), which
+// are then not loaded; null: they clear themselves (LOAD_OP_CLEAR). `keepDepth`: a later pass
+// (weighted transparency's) tests against the depth.
+void FrameRecorder::pass(const std::vector<VkRenderingAttachmentInfo>& colors,
+                         const Image& depthImage, VkPipeline clear,
+                         const std::vector<VkPipeline>& pipelines, bool keepDepth) const {
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = depthImage.view.get();
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = keepDepth ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    // Reversed-Z clears to 0 (infinitely far), standard depth to 1.
+    depth.clearValue.depthStencil.depth = list.target.reversedZ ? 0.0f : 1.0f;
+    beginRendering(colors, depth);
     if (clear != VK_NULL_HANDLE)
         ClearDraw::record(cmd, layout, clear, slot.target.width, slot.target.height,
                           colors[LANTERN_OUT_COLOR].clearValue.color.float32);
-    drawViews(pipelines);
+    drawViews(pipelines, true);
+    vkCmdEndRendering(cmd);
+}
+
+// Weighted transparency's pass: the blended draws into the weighted sums and the revealage
+// (multisampled like the scene, resolved), tested against the scene pass's depth, not writing it.
+void FrameRecorder::weightedPass(const TransparencyPass& transparency,
+                                 const std::vector<VkPipeline>& pipelines) const {
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+    const std::vector<VkRenderingAttachmentInfo> colors = transparency.weightedAttachments(slot.transparency);
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = slot.target.depth.view.get();
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    beginRendering(colors, depth);
+    drawViews(pipelines, false);
     vkCmdEndRendering(cmd);
 }
 
@@ -360,28 +392,28 @@ void aovAttachments(const Target& t, bool drawn, std::vector<VkRenderingAttachme
 
 } // namespace
 
-void recordFrame(VkPipelineLayout layout, const OverlayPipelines* overlays,
-                 const Deformer* deformer, const FlatLighter* flatLighter,
-                 const ShadowPass& shadowPass, FrameRing::Slot& slot,
+void recordFrame(VkPipelineLayout layout, const FramePasses& passes, FrameRing::Slot& slot,
                  const SceneBuffers& scene, const DrawList& list,
-                 const FrameRing::ArenaLayout& arena, const std::vector<VkPipeline>& pipelines,
-                 const std::vector<VkPipeline>& aovPipelines, const SubmitHooks& hooks) {
-    const FrameRecorder r{slot.cmd, layout, overlays, slot, scene, list, arena};
+                 const FrameRing::ArenaLayout& arena, const FramePipelines& pipelines,
+                 const SubmitHooks& hooks) {
+    const FrameRecorder r{slot.cmd, layout, passes.overlays, slot, scene, list, arena};
     const VkCommandBuffer cmd = slot.cmd;
     Target& t = slot.target;
     if (slot.queries) vkCmdResetQueryPool(cmd, slot.queries, 0, 2);
     r.beginAttachments();
     if (slot.queries) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, slot.queries, 0);
-    if (slot.deforming && deformer) deformer->record(cmd, slot.deform);
+    if (slot.deforming && passes.deformer) passes.deformer->record(cmd, slot.deform);
     // The maps before anything that lights (the flat pass and the scene pass read them); a
     // frame without them makes its 1 x 1 stand-in readable, never read.
     if (slot.shadow.rendering)
-        r.shadowMaps(shadowPass);
+        r.shadowMaps(*passes.shadows);
     else
         ShadowPass::transition(cmd, slot.shadow, VK_IMAGE_LAYOUT_UNDEFINED,
                                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    if (slot.flat.any() && flatLighter)
-        flatLighter->record(cmd, slot.flat, slot.frameSet, arena.frameOffsets, arena.lightOffsets);
+    if (slot.flat.any() && passes.flatLighter)
+        passes.flatLighter->record(cmd, slot.flat, slot.frameSet, arena.frameOffsets, arena.lightOffsets);
+    const TransparencyMethod transparency = slot.transparency.method;
+    passes.transparency->begin(cmd, slot.transparency, list.target.reversedZ);
 
     VkClearValue colorClear{};
     std::memcpy(colorClear.color.float32, &list.target.clear[0], 4 * sizeof(float));
@@ -391,7 +423,9 @@ void recordFrame(VkPipelineLayout layout, const OverlayPipelines* overlays,
     colors[LANTERN_OUT_COLOR] =
         attachment(t.color, t.multisampled() ? &t.colorMsaa : nullptr, colorClear, drawn);
     if (t.aov && !t.multisampled()) aovAttachments(t, drawn, colors);
-    r.pass(colors, t.depth, slot.clear.scene, pipelines);
+    const bool weighted = transparency == TransparencyMethod::Weighted;
+    r.pass(colors, t.depth, slot.clear.scene, pipelines.main, weighted);
+    if (weighted) r.weightedPass(*passes.transparency, pipelines.weighted);
     if (t.separateAovPass()) {
         // With MSAA the AOVs come from this single-sampled pass: each plane holds the surface
         // at the pixel centre, never a resolve of several samples.
@@ -399,8 +433,12 @@ void recordFrame(VkPipelineLayout layout, const OverlayPipelines* overlays,
         std::vector<VkRenderingAttachmentInfo> aov(LANTERN_OUT_COUNT_AOV);
         aov[LANTERN_OUT_COLOR] = attachment(t.aovColor, nullptr, colorClear, aovDrawn);
         aovAttachments(t, aovDrawn, aov);
-        r.pass(aov, t.aovDepth, slot.clear.aov, aovPipelines);
+        r.pass(aov, t.aovDepth, slot.clear.aov, pipelines.aov, false);
     }
+    if (transparency != TransparencyMethod::Sorted)
+        passes.transparency->composite(cmd, layout, slot.frameSet,
+                                       frameSetOffsets(arena.frameOffsets[0], arena.lightOffsets[0]),
+                                       slot.transparency, t);
     if (slot.queries)
         vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, slot.queries, 1);
 

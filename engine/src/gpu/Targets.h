@@ -20,6 +20,10 @@ inline constexpr VkFormat kNormalDepthFormat = VK_FORMAT_R32G32B32A32_UINT;
 inline constexpr VkFormat kIdFormat = VK_FORMAT_R32G32_UINT;
 inline constexpr VkFormat kSurfaceFormat = VK_FORMAT_R32G32B32A32_UINT;
 inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+/// Weighted transparency's sums and revealage (float, not the paper's half floats: no sum of
+/// weights overflows them; formats every device can also read as storage images).
+inline constexpr VkFormat kWeightedAccumFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+inline constexpr VkFormat kWeightedRevealFormat = VK_FORMAT_R32_SFLOAT;
 
 struct Target {
     std::uint32_t width = 0, height = 0, samples = 0;

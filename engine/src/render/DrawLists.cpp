@@ -259,6 +259,7 @@ gpu::TargetDesc targetFor(const RenderOptions& o) {
     t.samples = std::uint32_t(std::max(o.msaa, 0));
     t.aovs = o.aovs;
     t.reversedZ = o.depth == DepthMode::ReversedZ;
+    t.transparency = effectiveTransparency(o);  // buildDrawList: sorted without blended draws
     t.clear = o.background;
     t.pointSize = float(o.pointSize);
     t.lineWidth = float(o.lineWidth);
@@ -295,6 +296,11 @@ gpu::DrawList buildDrawList(const Scene& scene, const frame::Frame& frame,
     }
     addDeforms(scene, frame, list);
     packShadows(frame, o, list);
+    // A frame without blended draws records no transparency pass and allocates nothing for it.
+    bool blended = false;
+    for (const gpu::ViewCommands& v : list.views)
+        for (const gpu::DrawCommand& d : v.draws) blended |= d.pipeline.blend;
+    if (!blended) list.target.transparency = TransparencyMethod::Sorted;
     return list;
 }
 

@@ -107,6 +107,16 @@ Result<RenderedFrame> renderFrame(gpu::Device& device, const std::shared_ptr<gpu
     const auto t1 = Clock::now();
     auto readback = device.collect(*slot, std::move(storage), inPlace);
     if (!readback) return std::move(readback).error();
+    // Exact transparency's lists held fewer fragments than the frame made: the device now
+    // sizes them for it (gpu/Transparency.h), and the frame is rendered again, once. (A device
+    // that cannot hold more logged a warning instead.)
+    if (readback->listFragments > readback->listCapacity && readback->listsGrow) {
+        auto again = device.submit(list, scene);
+        if (!again) return std::move(again).error();
+        auto retried = device.collect(*again, std::move(readback->image), inPlace);
+        if (!retried) return std::move(retried).error();
+        readback = std::move(retried);
+    }
     resolveAovPlanes(sceneData, *f, options.aovs, *readback);
     stats.waitMs = msSince(t1);
     stats.gpuMs = readback->gpuMs;

@@ -43,6 +43,10 @@ std::uint32_t clampMode(frame::Clamp c) {
 
 } // namespace
 
+TransparencyMethod effectiveTransparency(const RenderOptions& o) {
+    return o.transparency.value_or(o.glCompat ? TransparencyMethod::Sorted : TransparencyMethod::Exact);
+}
+
 gpu::PipelineKey pipelineKey(const frame::Frame& frame, const frame::Draw& d,
                              const RenderOptions& o) {
     const frame::Lighting& lit = frame.lighting;
@@ -53,6 +57,12 @@ gpu::PipelineKey pipelineKey(const frame::Frame& frame, const frame::Draw& d,
     k.program = lit.program;
     k.topology = d.topology;
     k.blend = f.blend;
+    if (f.blend) {
+        const TransparencyMethod t = effectiveTransparency(o);
+        k.blendPath = t == TransparencyMethod::Exact      ? gpu::BlendPath::List
+                      : t == TransparencyMethod::Weighted ? gpu::BlendPath::Weighted
+                                                          : gpu::BlendPath::Over;
+    }
     k.aov = o.aovs.any();
     k.aovSurface = o.aovs.anySurface();
     k.samples = std::uint32_t(o.msaa);
@@ -140,7 +150,10 @@ std::string describe(const gpu::PipelineKey& k) {
     s << (k.constants[LANTERN_SC_OPAQUE] ? " opaque" : "");
     if (k.topology == Topology::Lines) s << " lines";
     if (k.topology == Topology::Points) s << " points";
-    if (k.blend) s << " blend";
+    if (k.blend)
+        s << (k.blendPath == gpu::BlendPath::List       ? " blend=fragment-list"
+              : k.blendPath == gpu::BlendPath::Weighted ? " blend=weighted"
+                                                        : " blend");
     if (k.aov) s << (k.aovSurface ? " aov+surface" : " aov");
     if (k.samples > 1) s << " msaa=" << k.samples;
     if (!k.reversedZ) s << " standard-z";

@@ -16,6 +16,10 @@ namespace lantern::render {
 gpu::PipelineKey pipelineKey(const frame::Frame& frame, const frame::Draw& draw,
                              const RenderOptions& options);
 
+/// How the options composite blended surfaces: as asked, else exact (sorted under GL
+/// compatibility, as GL programs draw).
+TransparencyMethod effectiveTransparency(const RenderOptions& options);
+
 /// One line, e.g. "phong: lights=directional specular=blinn vertex-color opaque".
 std::string describe(const gpu::PipelineKey& key);
 
