@@ -35,8 +35,8 @@ def read_rows(path):
     return rows
 
 
-# The transparency methods' markers (scenes without blended surfaces: circles).
-METHOD_MARKERS = {"sorted": "s", "exact": "o", "weighted": "^"}
+# The transparency methods' and shadow filters' markers (other scenes: circles).
+METHOD_MARKERS = {"sorted": "s", "exact": "o", "weighted": "^", "hardware": "v", "pcf": "D"}
 
 
 def group_of(row):
@@ -46,10 +46,12 @@ def group_of(row):
 def draw_panel(ax, rows, error, front_flag, title):
     curves = {}
     for r in rows:
-        # Transparency scenes: one curve per method too (marker), the method in the label.
-        curves.setdefault((r["shading"], r["msaa"], r.get("transparency") or ""), []).append(r)
+        # Transparency scenes: one curve per method too (marker), the method in the label; the
+        # shadow scene: one per shadow filter, along the map resolutions.
+        method = r.get("transparency") or r.get("shadow_filter") or ""
+        curves.setdefault((r["shading"], r["msaa"], method), []).append(r)
     for (mode, msaa, method), points in sorted(curves.items()):
-        points.sort(key=lambda r: r["segments"])
+        points.sort(key=lambda r: (r["segments"], int(r.get("shadow_resolution") or 0)))
         ax.plot([max(r["ms_per_frame"], 1e-3) for r in points],
                 [max(r[error], ERROR_FLOOR) for r in points],
                 color=MODE_COLOURS.get(mode, "black"), linestyle=MSAA_STYLES.get(msaa, "-"),

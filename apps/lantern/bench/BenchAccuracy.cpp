@@ -27,7 +27,8 @@ std::string AccuracyRow::group() const {
 std::string AccuracyRow::setting() const {
     return std::string(toString(shading)) + ", " + std::to_string(segments) +
            (scene == "spot" ? " subdivisions" : " segments") + ", " + std::to_string(msaa) + "x" +
-           (transparency.empty() ? "" : ", " + transparency);
+           (transparency.empty() ? "" : ", " + transparency) +
+           (shadowResolution > 0 ? ", " + std::to_string(shadowResolution) + " texels, " + shadowFilter : "");
 }
 
 void markParetoFronts(std::vector<AccuracyRow>& rows) {
@@ -59,6 +60,8 @@ struct AccuracyArgs {
     std::vector<int> segments{8, 16, 32, 64, 128, 256, 512};
     std::vector<int> msaa{1, 4};
     std::vector<std::string> transparency{"sorted", "exact", "weighted"};
+    std::vector<int> shadowResolutions{256, 512, 1024, 2048, 4096};
+    std::vector<std::string> shadowFilters{"hardware", "pcf"};
     std::vector<int> widths{960, 1920}, heights{540, 1080};
     TimingOptions timing;
     int referenceSamples = 8;
@@ -81,7 +84,8 @@ Result<void> checkScenes(const AccuracyArgs& a) {
         if (std::find(benchSceneNames().begin(), benchSceneNames().end(), s) ==
             benchSceneNames().end())
             return makeError(ErrorCode::InvalidInput,
-                             "\"" + s + "\" is not a benchmark scene (sphere, spot)", "--scenes");
+                             "\"" + s + "\" is not a benchmark scene (sphere, spot, crossing, "
+                             "nested, beside, shadow)", "--scenes");
     if (a.scenes.empty())
         return makeError(ErrorCode::InvalidInput, "the list is empty", "--scenes");
     for (double s : a.shininess)
@@ -116,7 +120,7 @@ struct Prepared {
 };
 /// By scene, shininess and tessellation.
 using PreparedScenes = std::map<std::tuple<std::string, double, int>, std::unique_ptr<Prepared>>;
-/// By scene, shininess, width and height.
+/// By scene, shininess, width and height; "shadow/lit": the shadow scene without its shadows.
 using References = std::map<std::tuple<std::string, double, int, int>, ReferenceImage>;
 
 // Every scene at every tessellation, uploaded once.
@@ -154,6 +158,13 @@ Result<References> makeReferences(const AccuracyArgs& a, const PreparedScenes& s
                 auto ref = raycastReference(b.scene, o, 0.0, ro);
                 if (!ref) return std::move(ref).error();
                 references[{name, s, w, h}] = std::move(*ref);
+                if (name == "shadow") {  // the same without the shadow: which pixels it darkens
+                    Scene lit = b.scene;
+                    for (Light& l : lit.lights) l.castShadows = false;
+                    auto unshadowed = raycastReference(lit, o, 0.0, ro);
+                    if (!unshadowed) return std::move(unshadowed).error();
+                    references[{"shadow/lit", s, w, h}] = std::move(*unshadowed);
+                }
                 if (!a.timing.quiet)
                     std::fprintf(stderr, "reference %s, shininess %g, %dx%d: %.1f s\n",
                                  name.c_str(), s, w, h, msSince(t0) / 1000.0);
@@ -169,11 +180,29 @@ struct Sweep {
     std::map<std::tuple<std::string, int, int, int, int>, std::size_t> floorConfig;
 };
 
-// The shading modes of one scene, shininess, tessellation, size, sample count and
-// transparency method (empty: a scene without blended surfaces).
+// What a scene sweeps besides shading, tessellation, size and samples: the transparency
+// method (the transparency scenes) or the shadow maps' resolution and filter (the shadow scene).
+struct Variant {
+    std::string transparency;
+    int shadowResolution = 0;
+    std::string shadowFilter;
+};
+
+std::vector<Variant> variantsOf(const AccuracyArgs& a, const std::string& name) {
+    std::vector<Variant> out;
+    if (name == "crossing" || name == "nested" || name == "beside")
+        for (const std::string& t : a.transparency) out.push_back({t, 0, ""});
+    else if (name == "shadow")
+        for (int r : a.shadowResolutions)
+            for (const std::string& f : a.shadowFilters) out.push_back({"", r, f});
+    else
+        out.push_back({});
+    return out;
+}
+
+// The shading modes of one scene, shininess, tessellation, size, sample count and variant.
 void addModes(Sweep& sweep, const std::vector<ShadingMode>& modes, const std::string& name,
-              double s, int seg, int w, int h, int m, const std::string& transparency,
-              const Prepared& p) {
+              double s, int seg, int w, int h, int m, const Variant& variant, const Prepared& p) {
     for (ShadingMode mode : modes) {
         AccuracyRow row;
         row.scene = name;
@@ -184,7 +213,9 @@ void addModes(Sweep& sweep, const std::vector<ShadingMode>& modes, const std::st
         row.segments = seg;
         row.triangles = p.bench.triangles;
         row.msaa = m;
-        row.transparency = transparency;
+        row.transparency = variant.transparency;
+        row.shadowResolution = variant.shadowResolution;
+        row.shadowFilter = variant.shadowFilter;
         TimedConfig c;
         c.label = row.group() + ", " + row.setting();
         c.scene = &p.prepared;
@@ -192,7 +223,13 @@ void addModes(Sweep& sweep, const std::vector<ShadingMode>& modes, const std::st
         c.options.height = h;
         c.options.msaa = m;
         c.options.shading = mode;
-        if (!transparency.empty()) c.options.transparency = parseTransparencyMethod(transparency);
+        if (!variant.transparency.empty())
+            c.options.transparency = parseTransparencyMethod(variant.transparency);
+        if (variant.shadowResolution > 0) {
+            c.options.shadows.resolution = variant.shadowResolution;
+            c.options.shadows.filter =
+                variant.shadowFilter == "hardware" ? ShadowFilter::Hardware : ShadowFilter::Pcf;
+        }
         sweep.rowOfConfig.push_back(int(sweep.rows.size()));
         sweep.rows.push_back(row);
         sweep.configs.push_back(std::move(c));
@@ -226,13 +263,9 @@ Sweep makeSweep(const AccuracyArgs& a, const PreparedScenes& scenes, const Refer
         for (int m : msaa)
             for (const std::string& name : a.scenes)
                 for (int seg : a.segments) {
-                    // Only the transparency scenes have blended surfaces to composite.
-                    const bool blended = name == "crossing" || name == "nested" || name == "beside";
-                    const std::vector<std::string> methods =
-                        blended ? a.transparency : std::vector<std::string>{""};
                     for (double s : a.shininess)
-                        for (const std::string& t : methods)
-                            addModes(sweep, modes, name, s, seg, w, h, m, t, *scenes.at({name, s, seg}));
+                        for (const Variant& v : variantsOf(a, name))
+                            addModes(sweep, modes, name, s, seg, w, h, m, v, *scenes.at({name, s, seg}));
                     if (!a.noFloor)
                         addFloor(sweep, name, seg, w, h, m,
                                  scenes.at({name, a.shininess[0], seg})->prepared);
@@ -242,10 +275,13 @@ Sweep makeSweep(const AccuracyArgs& a, const PreparedScenes& scenes, const Refer
         AccuracyRow* row = &sweep.rows[std::size_t(sweep.rowOfConfig[i])];
         const ReferenceImage* ref =
             &references.at({row->scene, row->shininess, row->width, row->height});
-        sweep.configs[i].inspect = [row, ref](const Image& image) -> Result<void> {
+        const auto lit = references.find({row->scene + "/lit", row->shininess, row->width, row->height});
+        const ReferenceImage* unshadowed = lit != references.end() ? &lit->second : nullptr;
+        sweep.configs[i].inspect = [row, ref, unshadowed](const Image& image) -> Result<void> {
             auto e = measureError(image, *ref);
             if (!e) return std::move(e).error();
             row->error = *e;
+            if (unshadowed) row->wrongShadowShare = shadowWrongShare(image, *ref, *unshadowed);
             return {};
         };
     }
@@ -347,7 +383,7 @@ Runner addAccuracyBench(CLI::App& bench) {
     CLI::App* cmd = bench.add_subcommand(
         "accuracy", "Sweep shading mode x tessellation x MSAA x resolution: ms per frame against "
                     "the error from an exact ray-cast reference (CSV, markdown summary, plot)");
-    cmd->add_option("--scenes", a->scenes, "Analytic scenes: sphere (S1), spot (S2); transparency: crossing (T1), nested (T2), beside (T3)")
+    cmd->add_option("--scenes", a->scenes, "Analytic scenes: sphere (S1), spot (S2); transparency: crossing (T1), nested (T2), beside (T3); shadow (H1)")
         ->delimiter(',')
         ->capture_default_str();
     cmd->add_option("--shininess", a->shininess, "Material shininess values")
@@ -361,6 +397,15 @@ Runner addAccuracyBench(CLI::App& bench) {
                             ->delimiter(',')
                             ->capture_default_str();
     cmd->add_option("--msaa", a->msaa, help::kMsaaList)->delimiter(',')->capture_default_str();
+    cmd->add_option("--shadow-resolution", a->shadowResolutions,
+                    "Shadow map sizes for the shadow scene (texels per side)")
+        ->delimiter(',')
+        ->capture_default_str()
+        ->check(CLI::Range(16, 16384));
+    cmd->add_option("--shadow-filter", a->shadowFilters, "Shadow filters for the shadow scene: hardware, pcf")
+        ->delimiter(',')
+        ->capture_default_str()
+        ->check(CLI::IsMember({"hardware", "pcf"}));
     cmd->add_option("--transparency", a->transparency,
                     "Transparency methods for the transparency scenes: sorted, exact, weighted")
         ->delimiter(',')

@@ -20,8 +20,8 @@ struct BenchScene {
     std::size_t triangles = 0;
 };
 
-/// The scene names makeBenchScene() knows: "sphere" (S1), "spot" (S2) and the transparency
-/// scenes "crossing" (T1), "nested" (T2) and "beside" (T3).
+/// The scene names makeBenchScene() knows: "sphere" (S1), "spot" (S2), the transparency
+/// scenes "crossing" (T1), "nested" (T2) and "beside" (T3), and "shadow" (H1).
 const std::vector<std::string>& benchSceneNames();
 
 /// S1 "sphere": a unit sphere 4 units in front of a 40-degree camera, one point light at
@@ -34,6 +34,9 @@ const std::vector<std::string>& benchSceneNames();
 /// (alpha 0.5) and 1 (alpha 0.3). T3 "beside": a blended 6 x 6 floor (alpha 0.4) at y = -0.5
 /// and a blended sphere (radius 0.5, alpha 0.6) standing on its far half. Blended materials are
 /// double-sided; the same light as S1, the camera looking at the origin.
+/// H1 "shadow": an opaque sphere (radius 0.5) 1 above a 4 x 4 plane, lit by a directional light
+/// 38.7 degrees above the plane that casts shadows (LANTERN_lights_shadow), seen from above at
+/// an angle; the reference casts exact shadow rays.
 /// `segments`: sphere segments around (segments / 2 rings), or plane subdivisions per side.
 BenchScene makeBenchScene(const std::string& name, double shininess, int segments);
 
@@ -48,6 +51,12 @@ struct AccuracyRow {
     int msaa = 1;
     /// The transparency scenes: "sorted", "exact" or "weighted" (--transparency); else empty.
     std::string transparency;
+    /// The shadow scene: texels per map side and "hardware" or "pcf"; else 0 and empty.
+    int shadowResolution = 0;
+    std::string shadowFilter;
+    /// The shadow scene: the share of the reference's fully covered plane and sphere pixels
+    /// whose shadowed state (shadowWrongShare()) the render gets wrong; < 0: not measured.
+    double wrongShadowShare = -1.0;
     double ms = 0.0;           ///< median of the rounds' median frame times
     double msMin = 0.0;        ///< fastest timed frame
     double msWall = 0.0;       ///< median render() wall time, readback included
@@ -62,9 +71,15 @@ struct AccuracyRow {
 
     /// The comparable set: same scene, shininess and resolution.
     std::string group() const;
-    /// "phong, 64 segments, 1x" for tables (", exact" after it for a transparency scene).
+    /// "phong, 64 segments, 1x" for tables (", exact" after it for a transparency scene,
+    /// ", 1024 texels, pcf" for the shadow scene).
     std::string setting() const;
 };
+
+/// The share of `shadowed`'s interior pixels whose state, lit or shadowed, `render` gets wrong:
+/// a pixel is shadowed where its colour (R + G + B) falls below the unshadowed reference `lit`'s
+/// by more than half the largest fall the exact shadow makes anywhere in the picture.
+double shadowWrongShare(const Image& render, const ReferenceImage& shadowed, const ReferenceImage& lit);
 
 /// Marks the Pareto fronts (no other row of the group is at least as fast and at least as
 /// accurate, and better in one) for the interior and whole-image RMSE.

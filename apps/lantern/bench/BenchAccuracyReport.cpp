@@ -15,7 +15,7 @@ std::string csvHeader() {
            "db,max_error,"
            "interior_pixels,interior_rmse,interior_max,interior_p99,silhouette_pixels,"
            "silhouette_rmse,silhouette_max,silhouette_p99,peak_ratio,nonfinite,pareto_interior,"
-           "pareto_whole,transparency\n";
+           "pareto_whole,transparency,shadow_resolution,shadow_filter,wrong_shadow_share\n";
 }
 
 std::string csvRow(const AccuracyRow& r) {
@@ -32,7 +32,9 @@ std::string csvRow(const AccuracyRow& r) {
       << e.silhouette.pixels << ',' << num(e.silhouette.rmse) << ',' << num(e.silhouette.max) << ','
       << num(e.silhouette.p99) << ',' << num(e.peakRatio) << ','
       << (e.nonFinite + r.replacedNonFinite) << ',' << (r.paretoInterior ? 1 : 0) << ','
-      << (r.paretoWhole ? 1 : 0) << ',' << r.transparency << '\n';
+      << (r.paretoWhole ? 1 : 0) << ',' << r.transparency << ','
+      << (r.shadowResolution > 0 ? std::to_string(r.shadowResolution) : "") << ',' << r.shadowFilter
+      << ',' << (r.wrongShadowShare >= 0.0 ? num(r.wrongShadowShare, "%.5f") : "") << '\n';
     return s.str();
 }
 
@@ -106,6 +108,28 @@ void budgetMarkdown(std::ostringstream& md, const std::vector<const AccuracyRow*
     md << "\n";
 }
 
+// The shadow scene's rows (`in`: fastest first): each setting's share of pixels whose shadowed
+// state is wrong, and the Pareto front of (ms, that share).
+void shadowMarkdown(std::ostringstream& md, const std::vector<const AccuracyRow*>& in) {
+    std::vector<const AccuracyRow*> rows;
+    for (const AccuracyRow* r : in)
+        if (r->wrongShadowShare >= 0.0) rows.push_back(r);
+    if (rows.empty()) return;
+    md << "Shadow maps against the exact shadow rays: the share of fully covered pixels whose "
+          "shadowed state is wrong (front: no faster setting is as right):\n\n"
+       << "| setting | ms | wrong shadow % | interior RMSE | whole RMSE | front |\n"
+          "|---|---|---|---|---|---|\n";
+    double best = 2.0;  // the smallest share of any faster row
+    for (const AccuracyRow* r : rows) {
+        const bool front = r->wrongShadowShare < best;
+        best = std::min(best, r->wrongShadowShare);
+        md << "| " << r->setting() << " | " << num(r->ms, "%.2f") << " | "
+           << num(100.0 * r->wrongShadowShare, "%.3f") << " | " << num(r->error.interior.rmse, "%.2e")
+           << " | " << num(r->error.whole.rmse, "%.2e") << " | " << (front ? "yes" : "") << " |\n";
+    }
+    md << "\n";
+}
+
 } // namespace
 
 std::string accuracyCsv(const std::vector<AccuracyRow>& rows) {
@@ -132,6 +156,7 @@ std::string accuracySummaryMarkdown(const std::vector<AccuracyRow>& rows,
         md << "## " << g << "\n\n";
         paretoMarkdown(md, in);
         budgetMarkdown(md, in);
+        shadowMarkdown(md, in);
     }
     md << "## First frames (pipeline JIT)\n\n| configuration | variants compiled | first frame ms "
           "| "

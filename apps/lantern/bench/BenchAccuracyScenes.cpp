@@ -7,6 +7,8 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include <algorithm>
+
 namespace lantern::cli {
 namespace {
 
@@ -132,16 +134,54 @@ BenchScene transparencyScene(const std::string& name, double shininess, int segm
                    segments, shininess, {0.0, 1.5, 4.0});
 }
 
+// H1: the sphere over the plane, its shadow cast by a directional light that casts them.
+BenchScene shadowScene(double shininess, int segments) {
+    const glm::dvec3 right(1, 0, 0);
+    BenchScene b = layered("shadow",
+                           {{AnalyticShape::plane(0, 4.0), {0.8, 0.8, 0.8, 1.0}, placed({}, glm::angleAxis(-kPi / 2, right))},
+                            {AnalyticShape::sphere(0, 0.5), {0.9, 0.6, 0.2, 1.0}, placed({0.0, 1.0, 0.0})}},
+                           segments, shininess, {0.0, 4.0, 3.5});
+    Light& light = b.scene.lights[0];
+    light.name = "sun";
+    light.type = LightType::Directional;
+    light.castShadows = true;
+    Node& node = b.scene.nodes[0];  // the light's (layered() puts it first)
+    node.name = "sun";
+    node.translation = {0.0, 0.0, 0.0};
+    node.rotation = glm::quatLookAtRH(-glm::normalize(glm::dvec3(1.25, 1.0, 0.3)), glm::dvec3(0, 1, 0));
+    return b;
+}
+
 } // namespace
 
 const std::vector<std::string>& benchSceneNames() {
-    static const std::vector<std::string> names{"sphere", "spot", "crossing", "nested", "beside"};
+    static const std::vector<std::string> names{"sphere", "spot", "crossing", "nested", "beside", "shadow"};
     return names;
+}
+
+double shadowWrongShare(const Image& render, const ReferenceImage& shadowed, const ReferenceImage& lit) {
+    const std::size_t n = render.pixelCount();
+    if (n == 0 || shadowed.centre.pixelCount() != n || lit.centre.pixelCount() != n) return -1.0;
+    auto sum = [](const float* p) { return double(p[0]) + p[1] + p[2]; };
+    double fall = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+        fall = std::max(fall, sum(&lit.centre.rgba[4 * i]) - sum(&shadowed.centre.rgba[4 * i]));
+    std::size_t interior = 0, wrong = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!shadowed.interior[i] || !lit.interior[i]) continue;
+        const double l = sum(&lit.centre.rgba[4 * i]);
+        const bool exact = l - sum(&shadowed.centre.rgba[4 * i]) > 0.5 * fall;
+        const bool mapped = l - sum(&render.rgba[4 * i]) > 0.5 * fall;
+        ++interior;
+        wrong += exact != mapped;
+    }
+    return interior > 0 && fall > 0.0 ? double(wrong) / double(interior) : -1.0;
 }
 
 BenchScene makeBenchScene(const std::string& name, double shininess, int segments) {
     if (name == "crossing" || name == "nested" || name == "beside")
         return transparencyScene(name, shininess, segments);
+    if (name == "shadow") return shadowScene(shininess, segments);
     Node object;
     object.name = name;
     object.mesh = 0;
