@@ -176,4 +176,10 @@ ReferenceComparison compareWithReference(gpu::Device& device, const Scene& scene
     return c;
 }
 
+Image RenderTest::render(const Scene& scene, const RenderOptions& options) {
+    auto image = renderer().render(scene, options, 0.0);
+    EXPECT_TRUE(image) << image.error().describe();
+    return image ? std::move(*image) : Image{};
+}
+
 } // namespace lantern::test

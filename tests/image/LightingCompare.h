@@ -90,6 +90,13 @@ ReferenceComparison compareWithReference(gpu::Device& device, const Scene& scene
                                          const render::FrameEdits& edits = {},
                                          double time = 0.0);
 
+/// A GpuTest whose render() renders a scene at time 0 on the test's renderer; a failure fails
+/// the test, naming the error, and gives an empty image.
+class RenderTest : public GpuTest {
+protected:
+    Image render(const Scene& scene, const RenderOptions& options);
+};
+
 /// RenderOptions of the given size and shading mode.
 RenderOptions optionsFor(int width, int height, ShadingMode mode);
 

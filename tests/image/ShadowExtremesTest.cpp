@@ -19,7 +19,6 @@
 namespace {
 
 using namespace lantern;
-using lantern::test::GpuTest;
 using lantern::test::LitScene;
 
 struct Extreme {
@@ -56,14 +55,7 @@ Scene build(const Extreme& e, bool castShadows) {
     return scene.build();
 }
 
-class ShadowExtremes : public GpuTest {
-protected:
-    Image render(const Scene& scene, const RenderOptions& o) {
-        auto image = renderer().render(scene, o, 0.0);
-        EXPECT_TRUE(image) << image.error().describe();
-        return image ? std::move(*image) : Image{};
-    }
-};
+class ShadowExtremes : public test::RenderTest {};
 
 TEST_F(ShadowExtremes, NoAcneNorPeterPanningAtTheExtremes) {
     const Extreme cases[] = {

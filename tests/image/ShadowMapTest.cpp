@@ -17,7 +17,6 @@
 namespace {
 
 using namespace lantern;
-using lantern::test::GpuTest;
 using lantern::test::LitScene;
 
 const glm::dvec3 kTowardsLight = glm::normalize(glm::dvec3(1.25, 0.0, 1.0));
@@ -50,14 +49,7 @@ Scene sphereOverPlane(LightType type, bool castShadows) {
     return s.build();
 }
 
-class ShadowMaps : public GpuTest {
-protected:
-    Image render(const Scene& scene, const RenderOptions& o) {
-        auto image = renderer().render(scene, o, 0.0);
-        EXPECT_TRUE(image) << image.error().describe();
-        return image ? std::move(*image) : Image{};
-    }
-};
+class ShadowMaps : public test::RenderTest {};
 
 // Pixels of the plane (outside the sphere's disc) whose shadowed state the maps get wrong,
 // and how many the exact shadow covers.

@@ -24,7 +24,6 @@
 namespace {
 
 using namespace lantern;
-using lantern::test::GpuTest;
 using lantern::test::LitScene;
 
 Material glass(const glm::dvec4& colour) {
@@ -86,13 +85,8 @@ RenderOptions options(TransparencyMethod method, int msaa = 1) {
     return o;
 }
 
-class Transparency : public GpuTest {
+class Transparency : public test::RenderTest {
 protected:
-    Image render(const Scene& scene, const RenderOptions& o) {
-        auto image = renderer().render(scene, o, 0.0);
-        EXPECT_TRUE(image) << image.error().describe();
-        return image ? std::move(*image) : Image{};
-    }
     // Interior RMSE against the exact composite (and the pixels it covers).
     ErrorMetrics error(const Layered& l, const RenderOptions& o) {
         ReferenceOptions r;
