@@ -15,6 +15,7 @@
 #include <lantern/Log.h>
 #include <lantern/Result.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -80,6 +81,15 @@ public:
     const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return m_memory; }
     /// The largest single allocation the device accepts (Vulkan 1.1 maxMemoryAllocationSize).
     VkDeviceSize maxAllocation() const { return m_maxAllocation; }
+    /// The size of the largest device-local memory heap (0: none reported), what the
+    /// memory checks of targets, shadow maps and transparency lists measure against.
+    VkDeviceSize largestDeviceLocalHeap() const {
+        VkDeviceSize heap = 0;
+        for (std::uint32_t i = 0; i < m_memory.memoryHeapCount; ++i)
+            if (m_memory.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+                heap = std::max(heap, m_memory.memoryHeaps[i].size);
+        return heap;
+    }
     const Capabilities& capabilities() const { return m_caps; }
     bool validationEnabled() const { return m_validation; }
     /// True when the instance and device are the host's (adopt()).

@@ -53,10 +53,7 @@ void describe(const Context& ctx, DeviceInfo& info, DeviceLimits& limits) {
     limits.sampleCounts = caps.colorDepthSampleCounts;
     limits.primitiveId = caps.primitiveIdInFragment;
     limits.wireframe = caps.fillModeNonSolid;
-    const auto& mem = ctx.memoryProperties();
-    for (std::uint32_t i = 0; i < mem.memoryHeapCount; ++i)
-        if (mem.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
-            limits.deviceMemory = std::max<std::uint64_t>(limits.deviceMemory, mem.memoryHeaps[i].size);
+    limits.deviceMemory = ctx.largestDeviceLocalHeap();
 }
 
 PipelineCacheSettings pipelineCacheSettings(const DeviceDesc& desc) {

@@ -32,11 +32,7 @@ Result<void> checkFits(const Context& ctx, std::uint32_t layers, std::uint32_t r
                          what + ": the device's images are at most " +
                              std::to_string(lim.maxImageDimension2D) + " texels a side",
                          "--shadow-resolution");
-    VkDeviceSize heap = 0;
-    const auto& mem = ctx.memoryProperties();
-    for (std::uint32_t i = 0; i < mem.memoryHeapCount; ++i)
-        if (mem.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
-            heap = std::max(heap, mem.memoryHeaps[i].size);
+    const VkDeviceSize heap = ctx.largestDeviceLocalHeap();
     const double bytes = double(layers) * double(resolution) * double(resolution) * 4.0;
     if (heap > 0 && bytes > 0.5 * double(heap))
         return makeError(ErrorCode::OutOfMemory,

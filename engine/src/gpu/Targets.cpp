@@ -169,11 +169,7 @@ Result<void> checkTarget(const Context& ctx, const TargetDesc& d, std::uint32_t 
                          "--aov");
     LANTERN_TRY(checkPointsAndLines(ctx, d));
     const double bytes = slotBytes(d) * double(slots);
-    VkDeviceSize heap = 0;
-    const auto& mem = ctx.memoryProperties();
-    for (std::uint32_t i = 0; i < mem.memoryHeapCount; ++i)
-        if (mem.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
-            heap = std::max(heap, mem.memoryHeaps[i].size);
+    const VkDeviceSize heap = ctx.largestDeviceLocalHeap();
     if (heap > 0 && bytes > double(heap) * 0.9)
         return makeError(ErrorCode::OutOfMemory,
                          "a " + sizeText(d) + " image needs about " +

@@ -18,23 +18,13 @@ namespace {
 constexpr VkDeviceSize kWord = 4;
 constexpr VkDeviceSize kHeaderBytes = LANTERN_OIT_HEADER_WORDS * kWord;
 
-// The largest device-local heap: lists and weighted images may take at most half of it (each
-// frame slot holds its own).
-VkDeviceSize largestHeap(const Context& ctx) {
-    VkDeviceSize heap = 0;
-    const auto& mem = ctx.memoryProperties();
-    for (std::uint32_t i = 0; i < mem.memoryHeapCount; ++i)
-        if (mem.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
-            heap = std::max(heap, mem.memoryHeaps[i].size);
-    return heap;
-}
-
 // The most nodes one binding can hold beside `pixels` heads: the device's storage-buffer range,
-// its largest allocation and half its largest heap bound it.
+// its largest allocation and half its largest device-local heap bound it (each frame slot
+// holds its own lists).
 std::uint64_t maxNodes(const Context& ctx, std::uint64_t pixels) {
     VkDeviceSize bytes = ctx.properties().limits.maxStorageBufferRange;
     if (ctx.maxAllocation() != 0) bytes = std::min(bytes, ctx.maxAllocation());
-    if (const VkDeviceSize heap = largestHeap(ctx); heap > 0) bytes = std::min(bytes, heap / 2);
+    if (const VkDeviceSize heap = ctx.largestDeviceLocalHeap(); heap > 0) bytes = std::min(bytes, heap / 2);
     const VkDeviceSize fixed = kHeaderBytes + pixels * kWord;
     if (bytes <= fixed) return 0;
     // Node indices are 32-bit words with LANTERN_OIT_END reserved.
@@ -133,7 +123,7 @@ Result<void> TransparencyPass::prepareLists(TransparencySlot& slot, const Target
 
 Result<void> TransparencyPass::prepareWeighted(TransparencySlot& slot, const TargetDesc& target) {
     const double bytes = double(target.width) * target.height * 20.0 * double(target.samples + 1);
-    if (const VkDeviceSize heap = largestHeap(m_ctx); heap > 0 && bytes > 0.5 * double(heap))
+    if (const VkDeviceSize heap = m_ctx.largestDeviceLocalHeap(); heap > 0 && bytes > 0.5 * double(heap))
         return makeError(ErrorCode::OutOfMemory,
                          "weighted transparency's images need " +
                              std::to_string(std::llround(bytes / 1048576.0)) +
