@@ -36,7 +36,7 @@ def read_rows(path):
 
 
 # The transparency methods' and shadow filters' markers (other scenes: circles).
-METHOD_MARKERS = {"sorted": "s", "exact": "o", "weighted": "^", "hardware": "v", "pcf": "D"}
+METHOD_MARKERS = {"sorted": "s", "exact": "o", "weighted": "^", "hardware": "v", "pcf": "D", "pcss": "P"}
 
 
 def group_of(row):
@@ -47,15 +47,17 @@ def draw_panel(ax, rows, error, front_flag, title):
     curves = {}
     for r in rows:
         # Transparency scenes: one curve per method too (marker), the method in the label; the
-        # shadow scene: one per shadow filter, along the map resolutions.
+        # shadow scenes: one per shadow filter and cascade count, along the map resolutions.
         method = r.get("transparency") or r.get("shadow_filter") or ""
+        if r.get("shadow_cascades"):
+            method += f" {r['shadow_cascades']}c"
         curves.setdefault((r["shading"], r["msaa"], method), []).append(r)
     for (mode, msaa, method), points in sorted(curves.items()):
         points.sort(key=lambda r: (r["segments"], int(r.get("shadow_resolution") or 0)))
         ax.plot([max(r["ms_per_frame"], 1e-3) for r in points],
                 [max(r[error], ERROR_FLOOR) for r in points],
                 color=MODE_COLOURS.get(mode, "black"), linestyle=MSAA_STYLES.get(msaa, "-"),
-                marker=METHOD_MARKERS.get(method, "o"), markersize=3, linewidth=1.2,
+                marker=METHOD_MARKERS.get(method.split(" ")[0], "o"), markersize=3, linewidth=1.2,
                 label=f"{mode}, {msaa}x MSAA" + (f", {method}" if method else ""))
     front = sorted((r for r in rows if r[front_flag]), key=lambda r: r["ms_per_frame"])
     if front:

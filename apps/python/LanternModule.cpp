@@ -138,6 +138,20 @@ void defineScene(py::module_& m) {
         });
 }
 
+const char* const kRenderDoc =
+    "Renders `scene` at `time` seconds: a (height, width, 4) float32 array of linear, "
+    "premultiplied RGBA; with depth=True and/or normal=True a tuple (rgba, depth, "
+    "normal) of the planes asked for; with aov=[names] (docs/aovs.md) a tuple (rgba, "
+    "dict) of float32 data planes and uint32 id planes by name. Computer-vision cameras: "
+    "intrinsics=(fx, fy, cx, cy) or a 3x3 K in OpenCV pixels (centres at integers), "
+    "near/far, world_to_camera (OpenCV axes) or camera_to_world (glTF axes) as 4x4 "
+    "matrices, or camera=\"FILE.json\" (docs/cameras.md). shadows=True: every light casts "
+    "shadows (docs/shadows.md), filtered by shadow_filter=\"pcf\" (the default), "
+    "\"hardware\" or \"pcss\" (soft), with shadow_cascades=2 maps per directional light. "
+    "transparency=\"exact\" (the default; \"sorted\" with "
+    "gl_compat), \"sorted\" or \"weighted\": how blended materials are composited "
+    "(docs/transparency.md)";
+
 void defineRenderer(py::module_& m) {
     py::class_<PyRenderer>(m, "Renderer",
                            "The renderer: creates the Vulkan device once; keep it for many "
@@ -170,7 +184,8 @@ void defineRenderer(py::module_& m) {
                std::optional<std::vector<std::vector<double>>> worldToCamera,
                std::optional<std::vector<std::vector<double>>> cameraToWorld,
                std::optional<double> znear, std::optional<double> zfar, bool shadows,
-               std::optional<std::string> transparency) {
+               std::optional<std::string> transparency, std::optional<std::string> shadowFilter,
+               std::optional<int> shadowCascades) {
                 RenderArgs a{time,       width,   height,      std::move(shading),
                              std::move(specular), msaa, std::move(background), std::move(lookAt),
                              std::move(perspective), std::move(ortho), std::nullopt, twoSided,
@@ -189,6 +204,8 @@ void defineRenderer(py::module_& m) {
                 a.zfar = zfar;
                 a.shadows = shadows;
                 a.transparency = std::move(transparency);
+                a.shadowFilter = std::move(shadowFilter);
+                a.shadowCascades = shadowCascades;
                 return r.render(scene, a);
             },
             py::arg("scene"), py::kw_only(), py::arg("time") = 0.0, py::arg("width") = 1280,
@@ -204,17 +221,9 @@ void defineRenderer(py::module_& m) {
             py::arg("intrinsics") = py::none(), py::arg("world_to_camera") = py::none(),
             py::arg("camera_to_world") = py::none(), py::arg("near") = py::none(),
             py::arg("far") = py::none(), py::arg("shadows") = false,
-            py::arg("transparency") = py::none(),
-            "Renders `scene` at `time` seconds: a (height, width, 4) float32 array of linear, "
-            "premultiplied RGBA; with depth=True and/or normal=True a tuple (rgba, depth, "
-            "normal) of the planes asked for; with aov=[names] (docs/aovs.md) a tuple (rgba, "
-            "dict) of float32 data planes and uint32 id planes by name. Computer-vision cameras: "
-            "intrinsics=(fx, fy, cx, cy) or a 3x3 K in OpenCV pixels (centres at integers), "
-            "near/far, world_to_camera (OpenCV axes) or camera_to_world (glTF axes) as 4x4 "
-            "matrices, or camera=\"FILE.json\" (docs/cameras.md). shadows=True: every light casts "
-            "shadows (docs/shadows.md). transparency=\"exact\" (the default; \"sorted\" with "
-            "gl_compat), \"sorted\" or \"weighted\": how blended materials are composited "
-            "(docs/transparency.md)");
+            py::arg("transparency") = py::none(), py::arg("shadow_filter") = py::none(),
+            py::arg("shadow_cascades") = py::none(),
+            kRenderDoc);
 }
 
 } // namespace

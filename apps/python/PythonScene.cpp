@@ -260,6 +260,18 @@ RenderOptions renderOptions(const RenderArgs& a) {
         throw py::value_error("unlit_exact: needs msaa=1 (no anti-aliasing)");
     o.unlitExact = a.unlitExact;
     o.shadows.all = a.shadows;
+    if (a.shadowFilter) {
+        const std::string& f = *a.shadowFilter;
+        if (f == "hardware") o.shadows.filter = ShadowFilter::Hardware;
+        else if (f == "pcf") o.shadows.filter = ShadowFilter::Pcf;
+        else if (f == "pcss") o.shadows.filter = ShadowFilter::Pcss;
+        else throw py::value_error("shadow_filter \"" + f + "\": hardware, pcf or pcss");
+    }
+    if (a.shadowCascades) {
+        if (*a.shadowCascades < 1 || *a.shadowCascades > 8)
+            throw py::value_error("shadow_cascades " + std::to_string(*a.shadowCascades) + ": 1 to 8");
+        o.shadows.cascades = *a.shadowCascades;
+    }
     if (a.transparency) {
         const std::string& t = *a.transparency;
         if (t == "sorted") o.transparency = TransparencyMethod::Sorted;

@@ -80,6 +80,8 @@ struct RenderArgs {
     std::vector<std::string> aov;  ///< aov=: AOV names (docs/aovs.md); a dict of arrays back
     bool unlitExact = false;       ///< unlit_exact=: exact label colours
     bool shadows = false;          ///< shadows=: every light casts shadows
+    std::optional<std::string> shadowFilter;  ///< shadow_filter=: "hardware", "pcf" or "pcss"
+    std::optional<int> shadowCascades;        ///< shadow_cascades=: 1 to 8
     std::optional<std::string> transparency;  ///< transparency=: "sorted", "exact" or "weighted"
     /// Computer-vision cameras (docs/python.md): intrinsics (fx, fy, cx, cy) or a 3x3 K in
     /// OpenCV pixels; a pose as OpenCV's world_to_camera or glTF's camera_to_world (4x4);

@@ -20,6 +20,7 @@
 #define LANTERN_BINDING_FRAGMENT_LISTS 10  // buffer: exact transparency's per-pixel lists (oit.glsl)
 #define LANTERN_BINDING_WEIGHTED_ACCUM 11  // image2D rgba32f: weighted transparency's sums (oit.glsl)
 #define LANTERN_BINDING_WEIGHTED_REVEAL 12 // image2D r32f: weighted transparency's revealage
+#define LANTERN_BINDING_SHADOW_DEPTH 13    // sampler2DArray: the shadow maps' depths (PCSS's blocker search)
 #define LANTERN_SET_TEXTURE 1
 #define LANTERN_BINDING_BASE_COLOR 0 // sampler2D, the material's base-colour texture
 #define LANTERN_BINDING_METALLIC_ROUGHNESS 1  // sampler2D: B metallic, G roughness (linear)
@@ -93,6 +94,8 @@
 #define LANTERN_SHADOW_NONE 0u
 #define LANTERN_SHADOW_HARDWARE 1u     // one comparison with the device's 2 x 2 filter
 #define LANTERN_SHADOW_PCF 2u          // kernel x kernel filtered comparisons
+#define LANTERN_SHADOW_PCSS 3u         // blocker search, then PCF over the penumbra's width
+#define LANTERN_MAX_CASCADES 8         // a directional light's maps at most (ShadowOptions::cascades)
 
 // Material maps (MaterialData.params.y holds the material's, as a float).
 #define LANTERN_MAP_METALLIC_ROUGHNESS 1u

@@ -171,24 +171,26 @@ TEST_F(BenchHarness, TinyAccuracySweepWritesOneFiniteRowPerConfiguration) {
     expectPlot(dir, r.err);
 }
 
-// The shadow scene sweeps map resolution x filter against the exact shadow rays, the
-// transparency scenes the three methods against the exact composite: the finer map gets fewer
-// pixels wrong than the coarsest, and exact transparency's error is far below sorting's.
+// The shadow scenes sweep map resolution x filter x cascades against the exact shadow rays
+// (PCSS against lights with a size), the transparency scenes the three methods against the
+// exact composite: the finer map gets fewer pixels wrong than the coarsest, cascades fewer than
+// one map over the long field, and exact transparency's error is far below sorting's.
 TEST_F(BenchHarness, ShadowAndTransparencySectionsMeasureTheirTrades) {
     const auto dir = test::testOutputDir();
-    const auto r = runLantern({"bench", "accuracy", "--scenes", "shadow,crossing", "--shading", "phong",
+    const auto r = runLantern({"bench", "accuracy", "--scenes", "shadow,field,crossing", "--shading", "phong",
                                "--segments", "32", "--msaa", "1", "--width", "96", "--height", "72",
-                               "--shadow-resolution", "32,1024", "--shadow-filter", "hardware,pcf",
-                               "--rounds", "1", "--frames", "1", "--warmup", "1",
+                               "--shadow-resolution", "32,1024", "--shadow-filter", "hardware,pcf,pcss",
+                               "--shadow-cascades", "1,4", "--rounds", "1", "--frames", "1", "--warmup", "1",
                                "--reference-samples", "2", "--no-floor", "-q", "-o", dir.string()});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const Csv csv = readCsv(dir / "accuracy.csv");
-    ASSERT_EQ(csv.rows.size(), 4u + 3u);  // 2 resolutions x 2 filters; 3 methods
+    ASSERT_EQ(csv.rows.size(), 2u * 12u + 3u);  // 2 resolutions x 3 filters x 2 cascades; 3 methods
     std::map<std::string, double> wrong, interior;
     for (const auto& row : csv.rows) {
         const std::string key = row.at("scene") + "/" + row.at("shadow_resolution") + "/" +
-                                row.at("shadow_filter") + row.at("transparency");
-        if (row.at("scene") == "shadow") {
+                                row.at("shadow_filter") + "/" + row.at("shadow_cascades") +
+                                row.at("transparency");
+        if (row.at("scene") != "crossing") {
             wrong[key] = number(row, "wrong_shadow_share");
             EXPECT_TRUE(wrong[key] >= 0.0 && wrong[key] <= 1.0) << key;
         } else {
@@ -197,14 +199,17 @@ TEST_F(BenchHarness, ShadowAndTransparencySectionsMeasureTheirTrades) {
         interior[key] = number(row, "interior_rmse");
     }
     for (const char* f : {"hardware", "pcf"}) {
-        const std::string coarse = std::string("shadow/32/") + f, fine = std::string("shadow/1024/") + f;
+        const std::string coarse = std::string("shadow/32/") + f + "/1", fine = std::string("shadow/1024/") + f + "/1";
         EXPECT_LT(wrong.at(fine), wrong.at(coarse)) << f;
         EXPECT_LT(wrong.at(fine), 0.01) << f;
+        EXPECT_LT(wrong.at(std::string("field/1024/") + f + "/4"), wrong.at(std::string("field/1024/") + f + "/1")) << f;
     }
-    EXPECT_LT(interior.at("crossing//exact"), 1e-3);
-    EXPECT_GT(interior.at("crossing//sorted"), 10.0 * interior.at("crossing//exact"));
+    EXPECT_LT(wrong.at("shadow/1024/pcss/4"), 0.02);
+    EXPECT_LT(interior.at("crossing///exact"), 1e-3);
+    EXPECT_GT(interior.at("crossing///sorted"), 10.0 * interior.at("crossing///exact"));
     const std::string md = readText(dir / "accuracy.md");
     EXPECT_NE(md.find("wrong shadow %"), std::string::npos);
+    EXPECT_NE(md.find("4 cascades"), std::string::npos);
 }
 
 TEST_F(BenchHarness, TinySpeedRunGivesEveryTimeAsAMultipleOfTheFloor) {

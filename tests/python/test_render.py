@@ -65,6 +65,26 @@ def test_shadows_only_darken(renderer, teapot):
     assert (shadowed[..., :3] < lit[..., :3] - 0.02).any(), "no pixel is in a shadow"
 
 
+def test_shadow_filter_and_cascades(renderer, teapot):
+    # Each filter and cascade count shadows the teapot (it darkens some pixels, brightens
+    # none); a soft filter's picture differs from PCF's; bad values raise ValueError.
+    lit = renderer.render(teapot, width=128, height=96)
+    pictures = {}
+    for kwargs in ({"shadow_filter": "hardware"}, {"shadow_filter": "pcss"},
+                   {"shadow_cascades": 1}, {"shadow_cascades": 8}):
+        shadowed = renderer.render(teapot, width=128, height=96, shadows=True, **kwargs)
+        assert np.isfinite(shadowed).all(), kwargs
+        assert (shadowed[..., :3] <= lit[..., :3] + 1e-5).all(), kwargs
+        assert (shadowed[..., :3] < lit[..., :3] - 0.02).any(), kwargs
+        pictures[str(kwargs)] = shadowed
+    pcf = renderer.render(teapot, width=128, height=96, shadows=True)
+    assert not np.array_equal(pictures[str({"shadow_filter": "pcss"})], pcf)
+    with pytest.raises(ValueError, match="shadow_filter"):
+        renderer.render(teapot, shadows=True, shadow_filter="vsm", **SIZE)
+    with pytest.raises(ValueError, match="shadow_cascades"):
+        renderer.render(teapot, shadows=True, shadow_cascades=9, **SIZE)
+
+
 def test_transparency_methods(renderer, teapot):
     # The teapot blends nothing: every method gives the same picture (it pays for none);
     # tests/image/TransparencyTest.cpp holds where they differ.

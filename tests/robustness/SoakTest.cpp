@@ -67,7 +67,13 @@ TEST_F(Soak, TwoThousandFramesKeepMemoryFlat) {
     // reuse, so resident memory creeps up and drops back in steps of a few MiB with no leak
     // (LeakSanitizer checks leaks in that build); the plain build holds the 4 MiB line.
     constexpr double kToleranceMiB = test::kAddressSanitizer ? 16.0 : 4.0;
-    EXPECT_LT(peak - base, kToleranceMiB) << series;
+    // A leak grows with the frames, so the level at the end (the least of the last three
+    // samples) is held to the line; a passing peak (a thread's arena while the parallel
+    // suite loads the machine: 128.4 MiB once against 126.5 before and after) only to 4x it.
+    const std::size_t n = samples.size();
+    const double end = std::min({samples[n - 1].second, samples[n - 2].second, samples[n - 3].second});
+    EXPECT_LT(end - base, kToleranceMiB) << series;
+    EXPECT_LT(peak - base, 4.0 * kToleranceMiB) << series;
     EXPECT_LE(r->peakQueuedFrames, 2u * std::max(1u, std::thread::hardware_concurrency()));
 }
 

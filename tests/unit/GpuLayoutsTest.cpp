@@ -80,6 +80,7 @@ TEST(GpuLayouts, MirrorsMatchTheShippedSpirv) {
         LANTERN_ROW(FrameBlock, lightCount),     LANTERN_ROW(FrameBlock, viewIndex),
         LANTERN_ROW(FrameBlock, shadowMaps),     LANTERN_ROW(FrameBlock, shadowParams),
         LANTERN_ROW(ShadowData, clipFromView),   LANTERN_ROW(ShadowData, params),
+        LANTERN_ROW(ShadowData, depth),
         LANTERN_ROW(LightData, position),        LANTERN_ROW(LightData, ambient),
         LANTERN_ROW(LightData, diffuse),         LANTERN_ROW(LightData, specular),
         LANTERN_ROW(LightData, spotDirection),   LANTERN_ROW(LightData, attenuation),
@@ -126,7 +127,7 @@ TEST(GpuLayouts, MirrorsMatchTheShippedSpirv) {
 TEST(GpuLayouts, EveryShaderMemberIsMirrored) {
     // A member added to a shader block but not to the C++ mirror is caught here.
     const std::map<std::string, std::size_t> expectedCounts = {
-        {"FrameBlock", 7}, {"ShadowData", 2}, {"LightData", 8}, {"MaterialSideData", 4}, {"MaterialData", 8}, {"DrawBlock", 6},
+        {"FrameBlock", 7}, {"ShadowData", 3}, {"LightData", 8}, {"MaterialSideData", 4}, {"MaterialData", 8}, {"DrawBlock", 6},
         {"InstanceData", 2},
         {"DeformJob", 16}, {"FlatJob", 17}};
     const Layouts layouts = allLayouts();

@@ -169,4 +169,50 @@ TEST(ReferenceLighting, ZeroShininessWithoutAHalfwayVectorIsStillOne) {
     EXPECT_EQ(specularTerm({0, 0, -1}, {0, 0, -1}, {0, 0, 1}, 2.0, SpecularModel::Blinn), 0.0);
 }
 
+// The shadow rays: one to a point-like light; with PCSS's light sizes, kAreaLightRays spread
+// evenly over the light's disc as the point sees it, so the share of rays within a fraction
+// rho of the disc's radius is rho^2 (the area), to within a ray or two.
+TEST(ReferenceShadowRays, AreaLightsAreDiscsCoveredEvenly) {
+    ShadowOptions hard;
+    EyeLight point;
+    point.type = LightType::Point;
+    point.position = {1.0, 2.0, -3.0};
+    const glm::dvec3 p(0.5, -1.0, 0.0);
+    ASSERT_EQ(shadowRays(point, p, hard).size(), 1u);
+    EXPECT_EQ(shadowRays(point, p, hard)[0].dir, point.position - p);
+    ShadowOptions soft;
+    soft.filter = ShadowFilter::Pcss;
+    soft.lightRadius = 0.25;
+    soft.sunRadius = 2.0;
+    const std::vector<ShadowRay> rays = shadowRays(point, p, soft);
+    ASSERT_EQ(rays.size(), std::size_t(kAreaLightRays));
+    const glm::dvec3 axis = glm::normalize(point.position - p);
+    for (double rho : {0.25, 0.5, 0.75}) {
+        int inside = 0;
+        for (const ShadowRay& r : rays) {
+            const glm::dvec3 target = p + r.dir;  // on the disc, across the axis
+            EXPECT_NEAR(glm::dot(target - point.position, axis), 0.0, 1e-12);
+            EXPECT_LE(glm::length(target - point.position), soft.lightRadius + 1e-12);
+            EXPECT_EQ(r.tMax, 1.0);
+            inside += glm::length(target - point.position) < rho * soft.lightRadius;
+        }
+        EXPECT_NEAR(double(inside) / kAreaLightRays, rho * rho, 2.0 / kAreaLightRays) << rho;
+    }
+    // A directional light: a cone of the sun's angular radius about the light's direction.
+    const EyeLight sun = directional({0.2, 1.0, 0.3});
+    const double tanRadius = std::tan(soft.sunRadius * 3.14159265358979323846 / 180.0);
+    int inside = 0;
+    for (const ShadowRay& r : shadowRays(sun, p, soft)) {
+        EXPECT_TRUE(std::isinf(r.tMax));
+        const double along = glm::dot(r.dir, sun.toLight);
+        const double across = glm::length(r.dir - along * sun.toLight) / along;
+        EXPECT_LE(across, tanRadius * (1.0 + 1e-12));
+        inside += across < 0.5 * tanRadius;
+    }
+    EXPECT_NEAR(inside / double(kAreaLightRays), 0.25, 2.0 / kAreaLightRays);
+    // A light of no size is a point again.
+    soft.lightRadius = 0.0;
+    EXPECT_EQ(shadowRays(point, p, soft).size(), 1u);
+}
+
 } // namespace

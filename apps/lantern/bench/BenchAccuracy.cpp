@@ -28,7 +28,10 @@ std::string AccuracyRow::setting() const {
     return std::string(toString(shading)) + ", " + std::to_string(segments) +
            (scene == "spot" ? " subdivisions" : " segments") + ", " + std::to_string(msaa) + "x" +
            (transparency.empty() ? "" : ", " + transparency) +
-           (shadowResolution > 0 ? ", " + std::to_string(shadowResolution) + " texels, " + shadowFilter : "");
+           (shadowResolution > 0 ? ", " + std::to_string(shadowResolution) + " texels, " + shadowFilter +
+                                       ", " + std::to_string(shadowCascades) + " cascade" +
+                                       (shadowCascades == 1 ? "" : "s")
+                                 : "");
 }
 
 void markParetoFronts(std::vector<AccuracyRow>& rows) {
@@ -62,6 +65,7 @@ struct AccuracyArgs {
     std::vector<std::string> transparency{"sorted", "exact", "weighted"};
     std::vector<int> shadowResolutions{256, 512, 1024, 2048, 4096};
     std::vector<std::string> shadowFilters{"hardware", "pcf"};
+    std::vector<int> shadowCascades{1, 4};
     std::vector<int> widths{960, 1920}, heights{540, 1080};
     TimingOptions timing;
     int referenceSamples = 8;
@@ -85,7 +89,7 @@ Result<void> checkScenes(const AccuracyArgs& a) {
             benchSceneNames().end())
             return makeError(ErrorCode::InvalidInput,
                              "\"" + s + "\" is not a benchmark scene (sphere, spot, crossing, "
-                             "nested, beside, shadow)", "--scenes");
+                             "nested, beside, torus, shadow, field)", "--scenes");
     if (a.scenes.empty())
         return makeError(ErrorCode::InvalidInput, "the list is empty", "--scenes");
     for (double s : a.shininess)
@@ -120,7 +124,8 @@ struct Prepared {
 };
 /// By scene, shininess and tessellation.
 using PreparedScenes = std::map<std::tuple<std::string, double, int>, std::unique_ptr<Prepared>>;
-/// By scene, shininess, width and height; "shadow/lit": the shadow scene without its shadows.
+/// By scene, shininess, width and height; "NAME/lit": a shadow scene without its shadows,
+/// "NAME/soft": with PCSS's lights of a size (the pcss rows' reference).
 using References = std::map<std::tuple<std::string, double, int, int>, ReferenceImage>;
 
 // Every scene at every tessellation, uploaded once.
@@ -158,12 +163,20 @@ Result<References> makeReferences(const AccuracyArgs& a, const PreparedScenes& s
                 auto ref = raycastReference(b.scene, o, 0.0, ro);
                 if (!ref) return std::move(ref).error();
                 references[{name, s, w, h}] = std::move(*ref);
-                if (name == "shadow") {  // the same without the shadow: which pixels it darkens
+                if (isShadowScene(name)) {  // the same without the shadow: which pixels it darkens
                     Scene lit = b.scene;
                     for (Light& l : lit.lights) l.castShadows = false;
                     auto unshadowed = raycastReference(lit, o, 0.0, ro);
                     if (!unshadowed) return std::move(unshadowed).error();
-                    references[{"shadow/lit", s, w, h}] = std::move(*unshadowed);
+                    references[{name + "/lit", s, w, h}] = std::move(*unshadowed);
+                }
+                const auto& f = a.shadowFilters;
+                if (isShadowScene(name) && std::find(f.begin(), f.end(), "pcss") != f.end()) {
+                    RenderOptions soft = o;  // lights of PCSS's default sizes
+                    soft.shadows.filter = ShadowFilter::Pcss;
+                    auto penumbra = raycastReference(b.scene, soft, 0.0, ro);
+                    if (!penumbra) return std::move(penumbra).error();
+                    references[{name + "/soft", s, w, h}] = std::move(*penumbra);
                 }
                 if (!a.timing.quiet)
                     std::fprintf(stderr, "reference %s, shininess %g, %dx%d: %.1f s\n",
@@ -186,15 +199,17 @@ struct Variant {
     std::string transparency;
     int shadowResolution = 0;
     std::string shadowFilter;
+    int shadowCascades = 0;
 };
 
 std::vector<Variant> variantsOf(const AccuracyArgs& a, const std::string& name) {
     std::vector<Variant> out;
-    if (name == "crossing" || name == "nested" || name == "beside")
+    if (isTransparencyScene(name))
         for (const std::string& t : a.transparency) out.push_back({t, 0, ""});
-    else if (name == "shadow")
+    else if (isShadowScene(name))
         for (int r : a.shadowResolutions)
-            for (const std::string& f : a.shadowFilters) out.push_back({"", r, f});
+            for (const std::string& f : a.shadowFilters)
+                for (int c : a.shadowCascades) out.push_back({"", r, f, c});
     else
         out.push_back({});
     return out;
@@ -216,6 +231,7 @@ void addModes(Sweep& sweep, const std::vector<ShadingMode>& modes, const std::st
         row.transparency = variant.transparency;
         row.shadowResolution = variant.shadowResolution;
         row.shadowFilter = variant.shadowFilter;
+        row.shadowCascades = variant.shadowCascades;
         TimedConfig c;
         c.label = row.group() + ", " + row.setting();
         c.scene = &p.prepared;
@@ -227,8 +243,8 @@ void addModes(Sweep& sweep, const std::vector<ShadingMode>& modes, const std::st
             c.options.transparency = parseTransparencyMethod(variant.transparency);
         if (variant.shadowResolution > 0) {
             c.options.shadows.resolution = variant.shadowResolution;
-            c.options.shadows.filter =
-                variant.shadowFilter == "hardware" ? ShadowFilter::Hardware : ShadowFilter::Pcf;
+            c.options.shadows.filter = parseShadowFilter(variant.shadowFilter);
+            c.options.shadows.cascades = variant.shadowCascades;
         }
         sweep.rowOfConfig.push_back(int(sweep.rows.size()));
         sweep.rows.push_back(row);
@@ -273,8 +289,8 @@ Sweep makeSweep(const AccuracyArgs& a, const PreparedScenes& scenes, const Refer
     for (std::size_t i = 0; i < sweep.configs.size(); ++i) {
         if (sweep.rowOfConfig[i] < 0) continue;
         AccuracyRow* row = &sweep.rows[std::size_t(sweep.rowOfConfig[i])];
-        const ReferenceImage* ref =
-            &references.at({row->scene, row->shininess, row->width, row->height});
+        const std::string key = row->shadowFilter == "pcss" ? row->scene + "/soft" : row->scene;
+        const ReferenceImage* ref = &references.at({key, row->shininess, row->width, row->height});
         const auto lit = references.find({row->scene + "/lit", row->shininess, row->width, row->height});
         const ReferenceImage* unshadowed = lit != references.end() ? &lit->second : nullptr;
         sweep.configs[i].inspect = [row, ref, unshadowed](const Image& image) -> Result<void> {
@@ -383,7 +399,8 @@ Runner addAccuracyBench(CLI::App& bench) {
     CLI::App* cmd = bench.add_subcommand(
         "accuracy", "Sweep shading mode x tessellation x MSAA x resolution: ms per frame against "
                     "the error from an exact ray-cast reference (CSV, markdown summary, plot)");
-    cmd->add_option("--scenes", a->scenes, "Analytic scenes: sphere (S1), spot (S2); transparency: crossing (T1), nested (T2), beside (T3); shadow (H1)")
+    cmd->add_option("--scenes", a->scenes, "Analytic scenes: sphere (S1), spot (S2); transparency: crossing (T1), nested (T2), "
+                    "beside (T3), torus (T4); shadows: shadow (H1), field (H2)")
         ->delimiter(',')
         ->capture_default_str();
     cmd->add_option("--shininess", a->shininess, "Material shininess values")
@@ -402,10 +419,17 @@ Runner addAccuracyBench(CLI::App& bench) {
         ->delimiter(',')
         ->capture_default_str()
         ->check(CLI::Range(16, 16384));
-    cmd->add_option("--shadow-filter", a->shadowFilters, "Shadow filters for the shadow scene: hardware, pcf")
+    cmd->add_option("--shadow-filter", a->shadowFilters,
+                    "Shadow filters for the shadow scenes: hardware, pcf, pcss (against lights "
+                    "of the default sizes, --shadow-light-radius and --shadow-sun-radius of render)")
         ->delimiter(',')
         ->capture_default_str()
-        ->check(CLI::IsMember({"hardware", "pcf"}));
+        ->check(CLI::IsMember({"hardware", "pcf", "pcss"}));
+    cmd->add_option("--shadow-cascades", a->shadowCascades,
+                    "Cascades of the shadow scenes' directional light")
+        ->delimiter(',')
+        ->capture_default_str()
+        ->check(CLI::Range(1, 8));
     cmd->add_option("--transparency", a->transparency,
                     "Transparency methods for the transparency scenes: sorted, exact, weighted")
         ->delimiter(',')

@@ -21,8 +21,13 @@ struct BenchScene {
 };
 
 /// The scene names makeBenchScene() knows: "sphere" (S1), "spot" (S2), the transparency
-/// scenes "crossing" (T1), "nested" (T2) and "beside" (T3), and "shadow" (H1).
+/// scenes "crossing" (T1), "nested" (T2), "beside" (T3) and "torus" (T4), and the shadow
+/// scenes "shadow" (H1) and "field" (H2).
 const std::vector<std::string>& benchSceneNames();
+/// H1 and H2: the scenes whose lights cast shadows, swept over the shadow options.
+bool isShadowScene(const std::string& name);
+/// T1 to T4: the scenes of blended surfaces, swept over the transparency methods.
+bool isTransparencyScene(const std::string& name);
 
 /// S1 "sphere": a unit sphere 4 units in front of a 40-degree camera, one point light at
 /// eye-space (2, 2, 0), GL defaults (distant viewer, no attenuation, global ambient 0.2),
@@ -32,11 +37,15 @@ const std::vector<std::string>& benchSceneNames();
 /// T1 "crossing": two blended 2 x 2 squares (alpha 0.5) turned +-0.6 rad about Y through the
 /// origin. T2 "nested": an opaque sphere (radius 0.4) inside blended spheres of radius 0.7
 /// (alpha 0.5) and 1 (alpha 0.3). T3 "beside": a blended 6 x 6 floor (alpha 0.4) at y = -0.5
-/// and a blended sphere (radius 0.5, alpha 0.6) standing on its far half. Blended materials are
-/// double-sided; the same light as S1, the camera looking at the origin.
+/// and a blended sphere (radius 0.5, alpha 0.6) standing on its far half. T4 "torus": a
+/// blended torus (ring radius 1, tube 0.35, alpha 0.5) tilted 1.1 rad about X towards the
+/// eye. Blended materials are double-sided; the same light as S1, the camera looking at the
+/// origin.
 /// H1 "shadow": an opaque sphere (radius 0.5) 1 above a 4 x 4 plane, lit by a directional light
 /// 38.7 degrees above the plane that casts shadows (LANTERN_lights_shadow), seen from above at
-/// an angle; the reference casts exact shadow rays.
+/// an angle; the reference casts exact shadow rays. H2 "field": five such spheres 0.7 above
+/// a 40 x 40 plane in a row from 12 to -12 along Z, a directional light from the side, the
+/// camera 1.5 above the plane at Z = 18 looking at the origin (cascades matter here).
 /// `segments`: sphere segments around (segments / 2 rings), or plane subdivisions per side.
 BenchScene makeBenchScene(const std::string& name, double shininess, int segments);
 
@@ -51,9 +60,11 @@ struct AccuracyRow {
     int msaa = 1;
     /// The transparency scenes: "sorted", "exact" or "weighted" (--transparency); else empty.
     std::string transparency;
-    /// The shadow scene: texels per map side and "hardware" or "pcf"; else 0 and empty.
+    /// The shadow scenes: texels per map side, "hardware", "pcf" or "pcss", and the
+    /// directional light's cascades; else 0 and empty.
     int shadowResolution = 0;
     std::string shadowFilter;
+    int shadowCascades = 0;
     /// The shadow scene: the share of the reference's fully covered plane and sphere pixels
     /// whose shadowed state (shadowWrongShare()) the render gets wrong; < 0: not measured.
     double wrongShadowShare = -1.0;

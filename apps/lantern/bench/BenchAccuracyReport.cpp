@@ -15,7 +15,7 @@ std::string csvHeader() {
            "db,max_error,"
            "interior_pixels,interior_rmse,interior_max,interior_p99,silhouette_pixels,"
            "silhouette_rmse,silhouette_max,silhouette_p99,peak_ratio,nonfinite,pareto_interior,"
-           "pareto_whole,transparency,shadow_resolution,shadow_filter,wrong_shadow_share\n";
+           "pareto_whole,transparency,shadow_resolution,shadow_filter,wrong_shadow_share,shadow_cascades\n";
 }
 
 std::string csvRow(const AccuracyRow& r) {
@@ -34,7 +34,8 @@ std::string csvRow(const AccuracyRow& r) {
       << (e.nonFinite + r.replacedNonFinite) << ',' << (r.paretoInterior ? 1 : 0) << ','
       << (r.paretoWhole ? 1 : 0) << ',' << r.transparency << ','
       << (r.shadowResolution > 0 ? std::to_string(r.shadowResolution) : "") << ',' << r.shadowFilter
-      << ',' << (r.wrongShadowShare >= 0.0 ? num(r.wrongShadowShare, "%.5f") : "") << '\n';
+      << ',' << (r.wrongShadowShare >= 0.0 ? num(r.wrongShadowShare, "%.5f") : "") << ','
+      << (r.shadowCascades > 0 ? std::to_string(r.shadowCascades) : "") << '\n';
     return s.str();
 }
 

@@ -111,7 +111,8 @@ Node placed(const glm::dvec3& translation, const glm::dquat& rotation = glm::dqu
 }
 
 // T1 "crossing": two blended squares that cross (each is in front on one side of the line
-// where they meet). T2 "nested": an opaque sphere inside two blended glass spheres. T3
+// where they meet). T4 "torus": one blended torus that overlaps itself (its triangles drawn in
+// index order, so sorting by object cannot order them). T2 "nested": an opaque sphere inside two blended glass spheres. T3
 // "beside": a large blended floor and a small blended sphere standing on its far half (the
 // floor's centre is nearer the eye than the sphere's, though the sphere hides the floor behind
 // it: pyrender issue 206).
@@ -121,6 +122,10 @@ BenchScene transparencyScene(const std::string& name, double shininess, int segm
         return layered(name,
                        {{AnalyticShape::plane(0, 2.0), {0.9, 0.2, 0.1, 0.5}, placed({}, glm::angleAxis(0.6, up))},
                         {AnalyticShape::plane(0, 2.0), {0.1, 0.3, 0.9, 0.5}, placed({}, glm::angleAxis(-0.6, up))}},
+                       segments, shininess, {0.0, 0.6, 4.0});
+    if (name == "torus")  // tilted, so the far half of the tube shows through the near half
+        return layered(name,
+                       {{AnalyticShape::torus(0, 1.0, 0.35), {0.3, 0.6, 0.9, 0.5}, placed({}, glm::angleAxis(-1.1, right))}},
                        segments, shininess, {0.0, 0.6, 4.0});
     if (name == "nested")
         return layered(name,
@@ -152,10 +157,36 @@ BenchScene shadowScene(double shininess, int segments) {
     return b;
 }
 
+// H2: five spheres in a row along a 40 x 40 plane, seen from low down at one end, so the
+// shadows near the eye need finer texels than one map over the whole plane gives.
+BenchScene fieldScene(double shininess, int segments) {
+    const glm::dvec3 right(1, 0, 0);
+    std::vector<Layer> layers{
+        {AnalyticShape::plane(0, 40.0), {0.8, 0.8, 0.8, 1.0}, placed({}, glm::angleAxis(-kPi / 2, right))}};
+    for (double z : {12.0, 6.0, 0.0, -6.0, -12.0})
+        layers.push_back({AnalyticShape::sphere(0, 0.5), {0.9, 0.6, 0.2, 1.0}, placed({0.8, 0.7, z})});
+    BenchScene b = layered("field", layers, segments, shininess, {0.0, 1.5, 18.0});
+    Light& light = b.scene.lights[0];
+    light.name = "sun";
+    light.type = LightType::Directional;
+    light.castShadows = true;
+    Node& node = b.scene.nodes[0];
+    node.name = "sun";
+    node.translation = {0.0, 0.0, 0.0};
+    node.rotation = glm::quatLookAtRH(-glm::normalize(glm::dvec3(-1.0, 1.2, 0.4)), glm::dvec3(0, 1, 0));
+    return b;
+}
+
 } // namespace
 
+bool isShadowScene(const std::string& name) { return name == "shadow" || name == "field"; }
+
+bool isTransparencyScene(const std::string& name) {
+    return name == "crossing" || name == "nested" || name == "beside" || name == "torus";
+}
+
 const std::vector<std::string>& benchSceneNames() {
-    static const std::vector<std::string> names{"sphere", "spot", "crossing", "nested", "beside", "shadow"};
+    static const std::vector<std::string> names{"sphere", "spot", "crossing", "nested", "beside", "torus", "shadow", "field"};
     return names;
 }
 
@@ -179,9 +210,9 @@ double shadowWrongShare(const Image& render, const ReferenceImage& shadowed, con
 }
 
 BenchScene makeBenchScene(const std::string& name, double shininess, int segments) {
-    if (name == "crossing" || name == "nested" || name == "beside")
-        return transparencyScene(name, shininess, segments);
+    if (isTransparencyScene(name)) return transparencyScene(name, shininess, segments);
     if (name == "shadow") return shadowScene(shininess, segments);
+    if (name == "field") return fieldScene(shininess, segments);
     Node object;
     object.name = name;
     object.mesh = 0;

@@ -129,12 +129,13 @@ std::vector<View> quadLayout(int width, int height, const CameraSpec& perspectiv
 struct ShadingOptions {
     std::string shading, specular;
     bool localViewer = false, twoSided = false, clamp = false, glCompat = false;
-    bool noInstancing = false;
+    bool noInstancing = false, noCulling = false;
     bool shadows = false;
-    int shadowResolution = 2048, shadowKernel = 3;
+    int shadowResolution = 2048, shadowKernel = 3, shadowCascades = 2;
     std::string shadowFilter = "pcf";
     std::string transparency;  ///< empty: exact (sorted under --gl-compat)
     double shadowBias = 2.0, shadowNormalOffset = 1.5;
+    double shadowLightRadius = 0.05, shadowSunRadius = 0.5;
     int msaa = 1;
     double pointSize = 1.0, lineWidth = 1.0;
 
@@ -144,6 +145,10 @@ struct ShadingOptions {
     /// does; checked before anything is rendered.
     Result<void> checkDevice(const DeviceInfo& device) const;
 };
+
+/// "hardware", "pcf" or "pcss" (checked by the option) as the filter, and back.
+ShadowFilter parseShadowFilter(const std::string& text);
+const char* shadowFilterName(ShadowFilter filter);
 
 /// "sorted", "exact" or "weighted" (checked by the option) as the method, and back.
 TransparencyMethod parseTransparencyMethod(const std::string& text);

@@ -39,12 +39,28 @@ void ShadingOptions::add(CLI::App& app) {
         ->capture_default_str()
         ->check(CLI::Range(16, 16384));
     app.add_option("--shadow-filter", shadowFilter,
-                   "How shadow maps are filtered: hardware (the device's 2 x 2 comparison) or pcf")
+                   "How shadow maps are filtered: hardware (the device's 2 x 2 comparison), pcf "
+                   "(kernel x kernel comparisons) or pcss (soft: a blocker search, then PCF over "
+                   "the penumbra a light of --shadow-light-radius or --shadow-sun-radius casts)")
         ->capture_default_str()
-        ->check(CLI::IsMember({"hardware", "pcf"}));
-    app.add_option("--shadow-kernel", shadowKernel, "PCF comparisons per side (odd, 1 to 9)")
+        ->check(CLI::IsMember({"hardware", "pcf", "pcss"}));
+    app.add_option("--shadow-kernel", shadowKernel,
+                   "Comparisons per side for pcf and pcss (odd, 1 to 9)")
         ->capture_default_str()
         ->check(CLI::IsMember({1, 3, 5, 7, 9}));
+    app.add_option("--shadow-cascades", shadowCascades,
+                   "Shadow maps per directional light, fitted to consecutive depth ranges of the "
+                   "view (1 to 8; 1: one map around the scene)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, kMaxShadowCascades));
+    app.add_option("--shadow-light-radius", shadowLightRadius,
+                   "pcss: the radius of point and spot lights, in world units")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 1e30));
+    app.add_option("--shadow-sun-radius", shadowSunRadius,
+                   "pcss: the angular radius of directional lights, in degrees (the sun's is 0.27)")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 45.0));
     app.add_option("--shadow-bias", shadowBias, "Shadow depth bias, in units of the depth's slope")
         ->capture_default_str()
         ->check(CLI::Range(0.0, 1000.0));
@@ -60,6 +76,9 @@ void ShadingOptions::add(CLI::App& app) {
     app.add_flag("--no-instancing", noInstancing,
                  "Draw every node on its own, not nodes that share a mesh as one instanced draw "
                  "(the same picture; to measure what instancing buys)");
+    app.add_flag("--no-culling", noCulling,
+                 "Draw every caster into every shadow map, not only those that reach it (the same "
+                 "picture; to measure what culling buys)");
 }
 
 Result<void> ShadingOptions::apply(RenderOptions& o) const {
@@ -75,12 +94,31 @@ Result<void> ShadingOptions::apply(RenderOptions& o) const {
     o.instancing = !noInstancing;
     o.shadows.all = shadows;
     o.shadows.resolution = shadowResolution;
-    o.shadows.filter = shadowFilter == "hardware" ? ShadowFilter::Hardware : ShadowFilter::Pcf;
+    o.culling = !noCulling;
+    o.shadows.filter = parseShadowFilter(shadowFilter);
     o.shadows.kernel = shadowKernel;
+    o.shadows.cascades = shadowCascades;
+    o.shadows.lightRadius = shadowLightRadius;
+    o.shadows.sunRadius = shadowSunRadius;
     o.shadows.slopeBias = shadowBias;
     o.shadows.normalOffset = shadowNormalOffset;
     if (!transparency.empty()) o.transparency = parseTransparencyMethod(transparency);
     return {};
+}
+
+ShadowFilter parseShadowFilter(const std::string& text) {
+    return text == "hardware" ? ShadowFilter::Hardware
+           : text == "pcss"   ? ShadowFilter::Pcss
+                              : ShadowFilter::Pcf;
+}
+
+const char* shadowFilterName(ShadowFilter f) {
+    switch (f) {
+    case ShadowFilter::Hardware: return "hardware";
+    case ShadowFilter::Pcf: return "pcf";
+    case ShadowFilter::Pcss: return "pcss";
+    }
+    return "pcf";
 }
 
 TransparencyMethod parseTransparencyMethod(const std::string& text) {

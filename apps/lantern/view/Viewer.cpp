@@ -147,7 +147,13 @@ std::string Viewer::renderCommand(const std::string& output) const {
     if (o.shadows.all) s += " --shadows";
     const ShadowOptions defaults;
     if (o.shadows.filter != defaults.filter)
-        s += std::string(" --shadow-filter ") + (o.shadows.filter == ShadowFilter::Hardware ? "hardware" : "pcf");
+        s += std::string(" --shadow-filter ") + shadowFilterName(o.shadows.filter);
+    if (o.shadows.cascades != defaults.cascades)
+        s += " --shadow-cascades " + std::to_string(o.shadows.cascades);
+    if (o.shadows.filter == ShadowFilter::Pcss && o.shadows.lightRadius != defaults.lightRadius)
+        s += " --shadow-light-radius " + number(o.shadows.lightRadius);
+    if (o.shadows.filter == ShadowFilter::Pcss && o.shadows.sunRadius != defaults.sunRadius)
+        s += " --shadow-sun-radius " + number(o.shadows.sunRadius);
     if (o.shadows.kernel != defaults.kernel) s += " --shadow-kernel " + std::to_string(o.shadows.kernel);
     if (o.shadows.resolution != defaults.resolution)
         s += " --shadow-resolution " + std::to_string(o.shadows.resolution);
@@ -156,6 +162,7 @@ std::string Viewer::renderCommand(const std::string& output) const {
         s += " --shadow-normal-offset " + number(o.shadows.normalOffset);
     if (o.transparency) s += std::string(" --transparency ") + transparencyName(*o.transparency);
     if (!o.instancing) s += " --no-instancing";
+    if (!o.culling) s += " --no-culling";
     s += " --background " + backgroundText(); // the text it was parsed from: the same floats
     if (m_st.quad) s += " --layout quad";
     s += m_st.camera.commandLine(perspectiveAspect());

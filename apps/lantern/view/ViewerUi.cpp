@@ -331,9 +331,17 @@ void shadingSection(ViewerState& st) {
     pressed = ImGui::RadioButton("hardware", &filter, int(ShadowFilter::Hardware));
     ImGui::SameLine();
     pressed |= ImGui::RadioButton("pcf", &filter, int(ShadowFilter::Pcf));
+    ImGui::SameLine();
+    pressed |= ImGui::RadioButton("pcss", &filter, int(ShadowFilter::Pcss));
     if (pressed) o.shadows.filter = ShadowFilter(filter);
     ImGui::SliderInt("shadow kernel", &o.shadows.kernel, 1, 9);
     o.shadows.kernel |= 1;  // odd
+    ImGui::SliderInt("cascades", &o.shadows.cascades, 1, kMaxShadowCascades);
+    if (o.shadows.filter == ShadowFilter::Pcss) {
+        float radius = float(o.shadows.lightRadius), sun = float(o.shadows.sunRadius);
+        if (ImGui::DragFloat("light radius", &radius, 0.005f, 0.0f, 1e6f)) o.shadows.lightRadius = radius;
+        if (ImGui::SliderFloat("sun radius (deg)", &sun, 0.0f, 10.0f)) o.shadows.sunRadius = sun;
+    }
     // Transparency (--transparency): how blended materials are composited.
     int transparency = int(
         o.transparency.value_or(o.glCompat ? TransparencyMethod::Sorted : TransparencyMethod::Exact));

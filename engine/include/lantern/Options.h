@@ -94,14 +94,20 @@ struct View {
     CameraSpec camera;
 };
 
-/// How a shadow map is filtered: the device's 2 x 2 comparison (Hardware), or percentage
-/// closer filtering over kernel x kernel comparisons a texel apart (Pcf).
-enum class ShadowFilter { Hardware, Pcf };
+/// How a shadow map is filtered: the device's 2 x 2 comparison (Hardware), percentage closer
+/// filtering over kernel x kernel comparisons a texel apart (Pcf), or percentage closer soft
+/// shadows (Pcss): a blocker search finds how far the caster is from the receiver, and the
+/// kernel x kernel comparisons spread over the penumbra a light of ShadowOptions::lightRadius
+/// (sunRadius for directional lights) casts there.
+enum class ShadowFilter { Hardware, Pcf, Pcss };
 
 /// Shadow maps (docs/shadows.md): a light casts shadows when the scene says so
 /// (LANTERN_lights_shadow, Light::castShadows) or when `all` is set; a frame without such a
 /// light renders as it did without shadows, with the same pipeline variants. Under GL
 /// compatibility only `all` casts them (GL has no shadows).
+/// The most cascades a directional light's shadow may have (ShadowOptions::cascades).
+inline constexpr int kMaxShadowCascades = 8;
+
 struct ShadowOptions {
     bool all = false;           ///< every light casts shadows (--shadows)
     int resolution = 2048;      ///< texels per side of each map (a cube face for point lights)
@@ -109,6 +115,16 @@ struct ShadowOptions {
     int kernel = 3;             ///< Pcf: comparisons per side, odd, 1 to 9
     double slopeBias = 2.0;     ///< depth bias, in units of the depth's slope (texels)
     double normalOffset = 1.5;  ///< the lookup point moves this many texels along the normal
+    /// Directional lights: maps fitted to consecutive depth ranges of the first view (cascaded
+    /// shadow maps), 1 to kMaxShadowCascades; 1: one map around everything drawn (also when
+    /// several views share the maps).
+    int cascades = 2;
+    /// Pcss: the radius of point and spot lights, in world units (the exact reference then
+    /// treats them as discs of that radius facing the point), and the angular radius of
+    /// directional lights, in degrees (the sun's is 0.27). The hard filters and the
+    /// reference under them treat every light as a point.
+    double lightRadius = 0.05;
+    double sunRadius = 0.5;
 };
 
 /// How blended surfaces (glTF alphaMode BLEND) are composited (docs/transparency.md).
@@ -163,6 +179,10 @@ struct RenderOptions {
     /// false: one draw per node. The picture is the same either way (docs/performance.md,
     /// "Instanced draws"); the switch is there to measure what instancing buys.
     bool instancing = true;
+    /// Draws that cannot cover a pixel of a pass are not recorded (today: each shadow map's
+    /// pass skips the casters outside its map). The picture is the same either way; false
+    /// draws everything, to measure what culling buys and check that it changes no pixel.
+    bool culling = true;
     ShadowOptions shadows;
     /// How blended surfaces are composited; default: Exact (Sorted under glCompat, as GL
     /// programs draw), docs/transparency.md has the measurements behind it. A frame without

@@ -20,6 +20,9 @@ namespace lantern {
 enum class AnalyticKind {
     Sphere, ///< centred at the mesh's origin, as makeSphere() builds it
     Plane,  ///< the square |x|, |y| <= size / 2 in the mesh's XY plane, normal +Z (makePlane())
+    /// around the mesh's Z axis: the circle of radius `radius` in the XY plane swept by a
+    /// circle of radius `size` (the tube's), so a ray can meet it four times
+    Torus,
 };
 
 /// Declares that Scene::meshes[mesh] stands for an exact surface in its own (object) space.
@@ -28,16 +31,18 @@ enum class AnalyticKind {
 struct LANTERN_API AnalyticShape {
     int mesh = -1;
     AnalyticKind kind = AnalyticKind::Sphere;
-    double radius = 1.0; ///< Sphere
-    double size = 2.0;   ///< Plane: side length
+    double radius = 1.0; ///< Sphere; Torus: the ring's radius
+    double size = 2.0;   ///< Plane: side length; Torus: the tube's radius
 
     static AnalyticShape sphere(int mesh, double radius);
     static AnalyticShape plane(int mesh, double size);
+    static AnalyticShape torus(int mesh, double ringRadius, double tubeRadius);
 };
 
 /// The triangle mesh a rasteriser draws for `shape` at a tessellation level: a sphere with
 /// `segments` around and max(2, segments / 2) rings (2 segments (rings - 1) triangles), a
-/// plane split into segments x segments quads. `segments` is clamped to at least 3 (sphere)
+/// plane split into segments x segments quads, a torus with `segments` around the ring and
+/// max(3, segments / 2) around the tube. `segments` is clamped to at least 3 (sphere)
 /// or 1 (plane).
 LANTERN_API Primitive tessellate(const AnalyticShape& shape, int segments);
 

@@ -178,12 +178,23 @@ struct ShadowMap {
     bool perspective = false;
     /// A texel's world size: at unit distance from the light (perspective), or anywhere.
     double texel = 0.0;
+    /// Map depth to distance d from the map's eye plane: perspective, depth = depthScale / d;
+    /// orthographic, depth = depthScale * d + depthOffset.
+    double depthScale = 0.0, depthOffset = 0.0;
+    /// Clip units a lookup keeps from the map's edge: a cascade's points nearer its edge than
+    /// its filter reaches take the next cascade.
+    double margin = 0.0;
+    /// PCSS: the light's radius in world units (perspective), or the tangent of its angular
+    /// radius (orthographic); 0 under the hard filters.
+    double lightSize = 0.0;
 };
 
 /// The frame's shadow maps: none unless a light casts shadows (then the frame pays nothing).
 struct Shadows {
     std::vector<ShadowMap> maps;
     std::vector<int> firstMap;  ///< per light: its first map (a point light has six), -1: none
+    std::vector<int> mapCount;  ///< per light: its maps (six cube faces, or the cascades)
+    ShadowOptions options;      ///< what they were planned with (the reference's light sizes)
     bool any() const { return !maps.empty(); }
 };
 

@@ -117,6 +117,8 @@ struct Overlays {
 struct ShadowCommands {
     std::uint32_t resolution = 0;
     std::vector<FrameBlock> passes;   ///< per map: the block its pass draws with (the map's clip space)
+    /// per map: the first view's draws its pass records (indices into views[0].draws)
+    std::vector<std::vector<std::uint32_t>> passDraws;
     std::vector<ShadowData> lookups;  ///< per view, per map (ShadowBlock in shadows.glsl)
     float slopeBias = 0.0f;           ///< the passes' depth-bias slope factor (reversed Z: negative)
     bool any() const { return !passes.empty(); }

@@ -109,7 +109,7 @@ Result<void> FrameRing::createSlot(Slot& s, std::size_t index) {
     VkDescriptorPoolSize sizes[5] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 2},
                                      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, 1},
                                      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 7},
-                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1},
+                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2},
                                      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2}};
     VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     dpci.maxSets = 1;
@@ -340,15 +340,7 @@ void FrameRing::writeFrameSet(Slot& slot, const ArenaLayout& a) {
           {slot.arena.get(), a.instanceOffset, a.shadowOffset - a.instanceOffset}},
          {LANTERN_BINDING_SHADOWS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
           {slot.arena.get(), a.shadowOffset, a.size - a.shadowOffset}}});
-    const VkDescriptorImageInfo shadowMap{m_shadowPass->sampler(), slot.shadow.image.view.get(),
-                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    write.dstSet = slot.frameSet;
-    write.dstBinding = LANTERN_BINDING_SHADOW_MAP;
-    write.descriptorCount = 1;
-    write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    write.pImageInfo = &shadowMap;
-    vkUpdateDescriptorSets(m_ctx.device(), 1, &write, 0, nullptr);
+    m_shadowPass->writeDescriptors(slot.frameSet, slot.shadow);
     // The per-triangle flat records; a frame without them points the bindings at the arena
     // (never read).
     const FlatSlot& f = slot.flat;

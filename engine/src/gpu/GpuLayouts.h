@@ -96,10 +96,17 @@ static_assert(offsetof(MaterialData, mapUv) == 208);
 // v * FrameBlock::shadowMaps + k (shaders/include/shadows.glsl).
 struct ShadowData {
     Mat4 clipFromView;
-    Vec4 params;  ///< x: a texel's world size (per unit distance when y = 1), y: perspective
+    /// x: a texel's world size (per unit distance when y = 1), y: perspective, z: the margin
+    /// (clip units) a lookup keeps from the map's edge, w: the light's size for PCSS (radius
+    /// in world units when perspective, else the tangent of its angular radius)
+    Vec4 params;
+    /// Depth to distance from the map's eye plane: perspective, x / depth (x: the near
+    /// plane); orthographic, (depth - y) / x.
+    Vec4 depth;
 };
-static_assert(sizeof(ShadowData) == 80);
+static_assert(sizeof(ShadowData) == 96);
 static_assert(offsetof(ShadowData, params) == 64);
+static_assert(offsetof(ShadowData, depth) == 80);
 
 // Push constants (std430): 124 bytes of the 128 every device guarantees.
 struct DrawBlock {

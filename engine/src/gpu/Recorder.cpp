@@ -141,8 +141,8 @@ void FrameRecorder::bindStreams(const DrawCommand& d, std::uint32_t flatJob) con
     }
 }
 
-// The shadow maps: one depth-only pass per map over the first view's opaque triangles (both
-// faces: an open mesh casts too), with the map's frame block bound and a slope-scaled depth
+// The shadow maps: one depth-only pass per map over the first view's opaque triangles that can
+// reach it (both faces: an open mesh casts too), with the map's frame block bound and a slope-scaled depth
 // bias; then every layer to the lighting's reads.
 void FrameRecorder::shadowMaps(const ShadowPass& shadows) const {
     const ShadowSlot& s = slot.shadow;
@@ -165,8 +165,8 @@ void FrameRecorder::shadowMaps(const ShadowPass& shadows) const {
         vkCmdSetScissor(cmd, 0, 1, &area);
         const FrameSetOffsets offsets = frameSetOffsets(arena.shadowFrameOffsets[k], arena.lightOffsets[0]);
         VkPipeline bound = VK_NULL_HANDLE;
-        for (const DrawCommand& d : list.views[0].draws) {
-            if (d.pipeline.blend || d.pipeline.topology != Topology::Triangles) continue;
+        for (std::uint32_t index : list.shadows.passDraws[k]) {
+            const DrawCommand& d = list.views[0].draws[index];
             const VkPipeline p = shadows.pipeline(d.pipeline.constants[LANTERN_SC_INSTANCED] != 0);
             if (p != bound) {
                 vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);

@@ -62,7 +62,29 @@ Result<std::unique_ptr<ShadowPass>> ShadowPass::create(Context& ctx, Pipelines& 
     LANTERN_VK_TRY(vkCreateSampler(ctx.device(), &sci, nullptr, &sampler));
     p->m_sampler = UniqueSampler(ctx.device(), sampler);
     ctx.setName(VK_OBJECT_TYPE_SAMPLER, sampler, "shadow comparison sampler");
+    // PCSS's blocker search reads the depths themselves, texel by texel.
+    sci.magFilter = sci.minFilter = VK_FILTER_NEAREST;
+    sci.compareEnable = VK_FALSE;
+    LANTERN_VK_TRY(vkCreateSampler(ctx.device(), &sci, nullptr, &sampler));
+    p->m_depthSampler = UniqueSampler(ctx.device(), sampler);
+    ctx.setName(VK_OBJECT_TYPE_SAMPLER, sampler, "shadow depth sampler");
     return p;
+}
+
+void ShadowPass::writeDescriptors(VkDescriptorSet set, const ShadowSlot& slot) const {
+    const VkDescriptorImageInfo images[2] = {
+        {m_sampler.get(), slot.image.view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+        {m_depthSampler.get(), slot.image.view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
+    VkWriteDescriptorSet writes[2] = {};
+    for (int i = 0; i < 2; ++i) {
+        writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+        writes[i].dstSet = set;
+        writes[i].dstBinding = i == 0 ? LANTERN_BINDING_SHADOW_MAP : LANTERN_BINDING_SHADOW_DEPTH;
+        writes[i].descriptorCount = 1;
+        writes[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        writes[i].pImageInfo = &images[i];
+    }
+    vkUpdateDescriptorSets(m_ctx.device(), 2, writes, 0, nullptr);
 }
 
 Result<void> ShadowPass::makePipelines() {

@@ -33,6 +33,11 @@ public:
     /// pipelines it needs.
     Result<void> prepare(ShadowSlot& slot, const DrawList& list);
     VkSampler sampler() const { return m_sampler.get(); }
+    /// Nearest, without comparison: the depths themselves (PCSS's blocker search).
+    VkSampler depthSampler() const { return m_depthSampler.get(); }
+    /// Points the frame set's map bindings at the slot's image: through the comparison sampler
+    /// (LANTERN_BINDING_SHADOW_MAP) and as depths (LANTERN_BINDING_SHADOW_DEPTH, PCSS).
+    void writeDescriptors(VkDescriptorSet set, const ShadowSlot& slot) const;
     /// The depth-only pipeline for plain or instanced draws (made by prepare()).
     VkPipeline pipeline(bool instanced) const { return m_pipelines[instanced ? 1 : 0].get(); }
 
@@ -46,7 +51,7 @@ private:
 
     Context& m_ctx;
     Pipelines& m_programs;
-    UniqueSampler m_sampler;
+    UniqueSampler m_sampler, m_depthSampler;
     UniquePipeline m_pipelines[2];
 };
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <glm/geometric.hpp>
 #include <string>
 
@@ -153,6 +154,31 @@ glm::dvec3 shade(const glm::dvec3& V, const glm::dvec3& n, const MaterialSide& m
     const LightSums s = evaluateLighting(V, n, m, lights, settings);
     const SplitColour c = splitColour(s, m.ambient, glm::dvec3(m.diffuse), false, false);
     return c.base + c.textured;
+}
+
+std::vector<ShadowRay> shadowRays(const EyeLight& light, const glm::dvec3& p,
+                                  const ShadowOptions& options) {
+    const bool directional = light.type == LightType::Directional;
+    const ShadowRay centre{directional ? light.toLight : light.position - p,
+                           directional ? std::numeric_limits<double>::infinity() : 1.0};
+    const bool soft = options.filter == ShadowFilter::Pcss;
+    const double size = directional ? std::tan(options.sunRadius * 0.017453292519943295)
+                                    : options.lightRadius;
+    if (!soft || !(size > 0.0)) return {centre};
+    // The disc's frame: w towards the light, u and v across it.
+    const glm::dvec3 w = safeNormalize(centre.dir);
+    const glm::dvec3 a = std::abs(w.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+    const glm::dvec3 u = glm::normalize(glm::cross(w, a)), v = glm::cross(w, u);
+    std::vector<ShadowRay> rays;
+    rays.reserve(kAreaLightRays);
+    const double golden = 2.399963229728653;  // pi (3 - sqrt 5)
+    for (int i = 0; i < kAreaLightRays; ++i) {
+        const double r = std::sqrt((i + 0.5) / kAreaLightRays), phi = i * golden;
+        const glm::dvec3 offset = (r * std::cos(phi)) * u + (r * std::sin(phi)) * v;
+        rays.push_back(directional ? ShadowRay{w + size * offset, centre.tMax}
+                                   : ShadowRay{centre.dir + size * offset, 1.0});
+    }
+    return rays;
 }
 
 } // namespace lantern::ref

@@ -83,6 +83,22 @@ struct SplitColour {
 SplitColour splitColour(const LightSums& s, const glm::dvec3& ambientM,
                         const glm::dvec3& diffuseM, bool ambientFollowsDiffuse, bool glClamp);
 
+/// One shadow ray from a point: towards p + t * dir for t in (0, tMax).
+struct ShadowRay {
+    glm::dvec3 dir{0.0};
+    double tMax = 1.0;
+};
+
+/// The shadow rays from eye-space point p towards `light`: one to a point-like light (ending at
+/// it; unbounded along a directional light), or, when the options give lights a size (PCSS:
+/// ShadowOptions::lightRadius, sunRadius), kAreaLightRays rays to points spread evenly over
+/// the light's disc as p sees it (a sunflower pattern), whose unblocked share is the light's
+/// visibility. Positional lights are discs of that radius facing p; directional lights cones
+/// of that angular radius.
+constexpr int kAreaLightRays = 64;
+std::vector<ShadowRay> shadowRays(const EyeLight& light, const glm::dvec3& p,
+                                  const ShadowOptions& options);
+
 /// The full colour at a point without textures or vertex colours (unclamped).
 glm::dvec3 shade(const glm::dvec3& V, const glm::dvec3& n, const MaterialSide& m,
                  const std::vector<EyeLight>& lights, const Settings& settings);

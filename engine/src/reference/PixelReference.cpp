@@ -234,10 +234,28 @@ Triangle eyeTriangle(const Vertices& vs, const frame::Draw& d, std::uint32_t ele
     return t;
 }
 
+// The node of the first opaque triangle the view draws that crosses the shadow ray from V, or
+// -1. Blended draws, lines and points cast none, as with the maps (gpu/Shadows.h).
+int firstOccluder(const Scene& scene, const frame::View& view, const glm::dvec3& V,
+                  const ShadowRay& ray, double tMin,
+                  const std::function<const DeformedPrimitive&(const frame::Draw&)>& deformed) {
+    for (const frame::Draw& d : view.draws) {
+        if (d.features.blend || d.topology != Topology::Triangles) continue;
+        const Primitive& prim = scene.meshes[d.mesh].primitives[d.primitive];
+        const Vertices vs{prim, d.deformed ? &deformed(d) : nullptr};
+        for (std::uint32_t k = 0; k < prim.elementCount(); ++k) {
+            const Triangle t = eyeTriangle(vs, d, k);
+            if (crosses(t.eye[0], t.eye[1], t.eye[2], V, ray.dir, tMin, ray.tMax)) return int(d.node);
+        }
+    }
+    return -1;
+}
+
 // The exact shadow of each light of view `vi` at eye-space point V: for a light that casts
-// shadows in the frame, the segment towards it (unbounded towards a directional light) against
-// every opaque triangle the view draws; the first met names its node. Blended draws, lines and
-// points cast none, as with the maps (gpu/Shadows.h). Empty when no light casts.
+// shadows in the frame, its shadow rays (ref::shadowRays: one segment towards it, unbounded
+// towards a directional light, or a light disc's under PCSS) against every opaque triangle the
+// view draws; the visibility is the share of rays that get through, and the first occluder
+// met names its node. Empty when no light casts.
 std::vector<Shadow> exactShadows(const Scene& scene, const frame::Frame& frame, std::size_t vi,
                                  const glm::dvec3& V,
                                  const std::function<const DeformedPrimitive&(const frame::Draw&)>& deformed) {
@@ -251,24 +269,18 @@ std::vector<Shadow> exactShadows(const Scene& scene, const frame::Frame& frame, 
         Shadow& sh = out[i];
         sh.casts = true;
         const bool directional = l.type == LightType::Directional;
-        const glm::dvec3 dir = directional ? l.toLight : l.position - V;
         // Off the point's own surface: a millionth of the way to the light (of |V| for a
         // directional light).
         const double tMin = directional ? 1e-6 * (1.0 + glm::length(V)) : 1e-6;
-        const double tMax = directional ? kInfinity : 1.0;
-        for (const frame::Draw& d : view.draws) {
-            if (d.features.blend || d.topology != Topology::Triangles) continue;
-            const Primitive& prim = scene.meshes[d.mesh].primitives[d.primitive];
-            const Vertices vs{prim, d.deformed ? &deformed(d) : nullptr};
-            for (std::uint32_t k = 0; k < prim.elementCount() && sh.occluder < 0; ++k) {
-                const Triangle t = eyeTriangle(vs, d, k);
-                if (crosses(t.eye[0], t.eye[1], t.eye[2], V, dir, tMin, tMax)) {
-                    sh.visibility = 0.0;
-                    sh.occluder = int(d.node);
-                }
-            }
-            if (sh.occluder >= 0) break;
+        const std::vector<ShadowRay> rays = shadowRays(l, V, frame.shadows.options);
+        int blocked = 0;
+        for (const ShadowRay& ray : rays) {
+            const int node = firstOccluder(scene, view, V, ray, tMin, deformed);
+            if (node < 0) continue;
+            ++blocked;
+            if (sh.occluder < 0) sh.occluder = node;
         }
+        sh.visibility = 1.0 - double(blocked) / double(rays.size());
     }
     return out;
 }

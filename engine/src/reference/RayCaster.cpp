@@ -4,6 +4,7 @@
 // (when asked) exact shadow rays. Ground truth for the accuracy benchmark.
 #include "frame/Frame.h"
 #include "reference/Lighting.h"
+#include "reference/Torus.h"
 
 #include <algorithm>
 #include <atomic>
@@ -26,9 +27,15 @@ AnalyticShape AnalyticShape::plane(int mesh, double size) {
     return AnalyticShape{mesh, AnalyticKind::Plane, 1.0, size};
 }
 
+AnalyticShape AnalyticShape::torus(int mesh, double ringRadius, double tubeRadius) {
+    return AnalyticShape{mesh, AnalyticKind::Torus, ringRadius, tubeRadius};
+}
+
 Primitive tessellate(const AnalyticShape& shape, int segments) {
     if (shape.kind == AnalyticKind::Plane) return makePlane(shape.size, std::max(segments, 1));
     segments = std::max(segments, 3);
+    if (shape.kind == AnalyticKind::Torus)
+        return ref::makeTorus(shape.radius, shape.size, segments, std::max(3, segments / 2));
     return makeSphere(shape.radius, segments, std::max(2, segments / 2));
 }
 
@@ -74,9 +81,11 @@ bool sphereRoots(const glm::dvec3& o, const glm::dvec3& d, double r, double root
     return true;
 }
 
-// The roots of a ray (model-space origin o, direction d) with a surface: 0, 1 or 2 of them.
-int surfaceRoots(const AnalyticShape& shape, const glm::dvec3& o, const glm::dvec3& d, double ts[2]) {
+// The roots of a ray (model-space origin o, direction d) with a surface: up to 2 (4 for a
+// torus) of them.
+int surfaceRoots(const AnalyticShape& shape, const glm::dvec3& o, const glm::dvec3& d, double ts[4]) {
     if (shape.kind == AnalyticKind::Sphere) return sphereRoots(o, d, shape.radius, ts) ? 2 : 0;
+    if (shape.kind == AnalyticKind::Torus) return ref::torusRoots(shape.radius, shape.size, o, d, ts);
     if (d.z == 0.0) return 0;
     ts[0] = -o.z / d.z;
     const glm::dvec3 p = o + ts[0] * d;
@@ -122,7 +131,7 @@ public:
             const Surface& s = m_surfaces[i];
             const glm::dvec3 o(s.modelFromView * glm::dvec4(ray.origin, 1.0));
             const glm::dvec3 d(s.modelFromView * glm::dvec4(ray.direction, 0.0));
-            double ts[2];
+            double ts[4];
             const int count = surfaceRoots(s.shape, o, d, ts);
             for (int k = 0; k < count; ++k) {
                 Hit h;
@@ -185,35 +194,41 @@ private:
         return glm::dvec4(c, mat.alphaMode == AlphaMode::Blend ? std::clamp(mc.alpha, 0.0, 1.0) : 1.0);
     }
 
-    // The share of `light` that reaches eye-space point p on surface `self`: the product of
-    // what every surface between them lets through (transmittance), both faces of each
-    // counted. A directional light's ray is unbounded; a positional light's ends at the light.
-    // The point's own surface is skipped within a millionth of its extent of the point.
+    // The share of `light` that reaches eye-space point p on surface `self`: the mean over its
+    // shadow rays (one, or a light disc's: ref::shadowRays) of what every surface between
+    // them lets through (transmittance), both faces of each counted. The point's own surface
+    // is skipped within a millionth of its extent of the point.
     double visibility(const glm::dvec3& p, const ref::EyeLight& light, int self) const {
-        const bool directional = light.type == LightType::Directional;
-        const glm::dvec3 dir = directional ? light.toLight : light.position - p;
-        const double tMax = directional ? kNoHit : 1.0;
-        double through = 1.0;
-        for (std::size_t i = 0; i < m_surfaces.size() && through > 0.0; ++i) {
+        const std::vector<ref::ShadowRay> rays = ref::shadowRays(light, p, m_options.shadows);
+        double sum = 0.0;
+        for (const ref::ShadowRay& ray : rays) sum += through(p, ray, self);
+        return sum / double(rays.size());
+    }
+
+    double through(const glm::dvec3& p, const ref::ShadowRay& ray, int self) const {
+        const glm::dvec3& dir = ray.dir;
+        double share = 1.0;
+        for (std::size_t i = 0; i < m_surfaces.size() && share > 0.0; ++i) {
             const Surface& s = m_surfaces[i];
             const glm::dvec3 o(s.modelFromView * glm::dvec4(p, 1.0));
             const glm::dvec3 d(s.modelFromView * glm::dvec4(dir, 0.0));
-            const double extent = s.shape.kind == AnalyticKind::Sphere ? s.shape.radius : s.shape.size;
+            const double extent = s.shape.kind == AnalyticKind::Plane ? s.shape.size : s.shape.radius;
             const double tMin = int(i) == self ? 1e-6 * extent / std::max(glm::length(d), 1e-300) : 0.0;
-            double ts[2];
+            double ts[4];
             const int count = surfaceRoots(s.shape, o, d, ts);
             for (int k = 0; k < count; ++k) {
-                if (!(ts[k] > tMin && ts[k] < tMax)) continue;
+                if (!(ts[k] > tMin && ts[k] < ray.tMax)) continue;
                 const glm::dvec3 model = o + ts[k] * d;
                 const bool front = glm::dot(s.normalFromModel * modelNormal(s, model), dir) < 0.0;
                 const Material& mat = *s.material;
-                through *= transmittance(mat, mat.side(frame::twoSidedLighting(m_lighting, mat) && !front));
+                share *= transmittance(mat, mat.side(frame::twoSidedLighting(m_lighting, mat) && !front));
             }
         }
-        return through;
+        return share;
     }
 
     static glm::dvec3 modelNormal(const Surface& s, const glm::dvec3& p) {
+        if (s.shape.kind == AnalyticKind::Torus) return ref::torusNormal(s.shape.radius, p);
         return s.shape.kind == AnalyticKind::Sphere ? p / s.shape.radius : glm::dvec3(0, 0, 1);
     }
 
@@ -290,11 +305,15 @@ Result<void> checkOptions(const Scene& scene, const RenderOptions& o, double tim
                           "mesh " + std::to_string(s.mesh) + " does not exist (the scene has " +
                               std::to_string(scene.meshes.size()) + " meshes)",
                           object);
-        const double extent = s.kind == AnalyticKind::Sphere ? s.radius : s.size;
+        const double extent = s.kind == AnalyticKind::Plane ? s.size : s.radius;
         if (!(extent > 0.0) || !std::isfinite(extent))
             return refuse(ErrorCode::InvalidInput,
-                          std::string(s.kind == AnalyticKind::Sphere ? "radius" : "size") +
+                          std::string(s.kind == AnalyticKind::Plane ? "size" : "radius") +
                               " must be a finite number > 0",
+                          object);
+        if (s.kind == AnalyticKind::Torus && !(s.size > 0.0 && s.size < s.radius))
+            return refuse(ErrorCode::InvalidInput,
+                          "a torus's tube radius (size) must be > 0 and less than its ring radius",
                           object);
         for (std::size_t j = 0; j < i; ++j)
             if (r.shapes[j].mesh == s.mesh)

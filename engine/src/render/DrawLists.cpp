@@ -18,13 +18,6 @@ gpu::Vec4 vec4(const glm::dvec3& v, double w = 0.0) {
 }
 gpu::Vec4 vec4(const glm::dvec4& v) { return {float(v.x), float(v.y), float(v.z), float(v.w)}; }
 
-gpu::Mat4 toMat4(const glm::dmat4& m) {
-    gpu::Mat4 r;
-    for (int c = 0; c < 4; ++c)
-        for (int k = 0; k < 4; ++k) r.m[c * 4 + k] = float(m[c][k]);
-    return r;
-}
-
 std::uint32_t lightType(LightType t) {
     switch (t) {
     case LightType::Directional: return LANTERN_LIGHT_DIRECTIONAL;
@@ -174,44 +167,14 @@ void addDeforms(const Scene& scene, const frame::Frame& frame, gpu::DrawList& li
         }
 }
 
-// The shadow maps: each pass's frame block (the map's clip space from the first view's eye
-// space, which the pass's draws are in), each view's lookups, and each light's first map and
-// count in its LightData.info (z: first + 1, 0 for none; w: 1, or 6 cube faces).
-void packShadows(const frame::Frame& frame, const RenderOptions& o, gpu::DrawList& list) {
-    const frame::Shadows& sh = frame.shadows;
-    if (!sh.any()) return;
-    gpu::ShadowCommands& c = list.shadows;
-    c.resolution = std::uint32_t(o.shadows.resolution);
-    c.slopeBias = -float(o.shadows.slopeBias);
-    const glm::dmat4 firstWorldFromView = glm::inverse(frame.views[0].camera.viewFromWorld);
-    for (const frame::ShadowMap& m : sh.maps) {
-        gpu::FrameBlock b = list.views[0].frame;
-        b.clipFromView = toMat4(m.clipFromWorld * firstWorldFromView);
-        c.passes.push_back(b);
-    }
-    const int kernel = o.shadows.filter == ShadowFilter::Pcf ? o.shadows.kernel : 1;
-    for (std::size_t vi = 0; vi < frame.views.size(); ++vi) {
-        const glm::dmat4 worldFromView = glm::inverse(frame.views[vi].camera.viewFromWorld);
-        for (const frame::ShadowMap& m : sh.maps) {
-            gpu::ShadowData d;
-            d.clipFromView = toMat4(m.clipFromWorld * worldFromView);
-            d.params = {float(m.texel), m.perspective ? 1.0f : 0.0f, 0.0f, 0.0f};
-            c.lookups.push_back(d);
-        }
-        gpu::ViewCommands& v = list.views[vi];
-        v.frame.shadowMaps = std::uint32_t(sh.maps.size());
-        v.frame.shadowParams = {1.0f / float(o.shadows.resolution), float(kernel),
-                                float(o.shadows.normalOffset), 0.0f};
-        for (std::size_t li = 0; li < v.lights.size() && li < sh.firstMap.size(); ++li) {
-            const int first = sh.firstMap[li];
-            if (first < 0) continue;
-            v.lights[li].info.z = std::uint32_t(first) + 1u;
-            v.lights[li].info.w = frame.views[vi].lights[li].type == LightType::Point ? 6u : 1u;
-        }
-    }
-}
-
 } // namespace
+
+gpu::Mat4 toMat4(const glm::dmat4& m) {
+    gpu::Mat4 r;
+    for (int c = 0; c < 4; ++c)
+        for (int k = 0; k < 4; ++k) r.m[c * 4 + k] = float(m[c][k]);
+    return r;
+}
 
 gpu::LightData packLight(const frame::EyeLight& l) {
     gpu::LightData d;
@@ -295,7 +258,7 @@ gpu::DrawList buildDrawList(const Scene& scene, const frame::Frame& frame,
         if (instancing) mergeInstances(frame, list.views.back().draws, list.instances);
     }
     addDeforms(scene, frame, list);
-    packShadows(frame, o, list);
+    packShadows(scene, frame, o, list);
     // A frame without blended draws records no transparency pass and allocates nothing for it.
     bool blended = false;
     for (const gpu::ViewCommands& v : list.views)

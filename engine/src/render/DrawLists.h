@@ -21,7 +21,15 @@ gpu::Overlays overlaysFor(const Scene& scene, const frame::Frame& frame,
 gpu::DrawList buildDrawList(const Scene& scene, const frame::Frame& frame,
                             const RenderOptions& options);
 
+/// The frame's shadow maps into list.shadows (render/ShadowLists.cpp): each pass's frame block
+/// and the draws it records (with RenderOptions::culling, only the casters that can reach the
+/// map), each view's lookups, and each light's maps in its LightData.info (z: first + 1, 0 for
+/// none; w: how many). Called once the views' draws are packed.
+void packShadows(const Scene& scene, const frame::Frame& frame, const RenderOptions& options,
+                 gpu::DrawList& list);
+
 /// The GPU packings, field by field (floats from doubles).
+gpu::Mat4 toMat4(const glm::dmat4& m);
 gpu::LightData packLight(const frame::EyeLight& light);
 gpu::MaterialData packMaterial(const Material& material);
 

@@ -8,6 +8,8 @@
 #include "render/DrawLists.h"
 #include "render/Variants.h"
 
+#include "lantern_shared.h"
+
 #include <chrono>
 #include <set>
 #include <sstream>
@@ -37,6 +39,17 @@ Result<void> checkShadowOptions(const ShadowOptions& s) {
     if (!(s.normalOffset >= 0.0 && s.normalOffset <= 1e3))
         return makeError(ErrorCode::InvalidInput, "the shadow normal offset is not in [0, 1000]",
                          "--shadow-normal-offset");
+    if (s.cascades < 1 || s.cascades > LANTERN_MAX_CASCADES)
+        return makeError(ErrorCode::InvalidInput,
+                         std::to_string(s.cascades) + " shadow cascades is not in [1, " +
+                             std::to_string(LANTERN_MAX_CASCADES) + "]",
+                         "--shadow-cascades");
+    if (!(s.lightRadius >= 0.0 && s.lightRadius <= 1e30))
+        return makeError(ErrorCode::InvalidInput, "the light radius is not in [0, 1e30]",
+                         "--shadow-light-radius");
+    if (!(s.sunRadius >= 0.0 && s.sunRadius <= 45.0))
+        return makeError(ErrorCode::InvalidInput, "the sun's angular radius is not in [0, 45] degrees",
+                         "--shadow-sun-radius");
     return {};
 }
 
@@ -159,6 +172,16 @@ Result<FeatureReport> explain(const Scene& scene, const RenderOptions& options, 
             const std::string line = describe(d.pipeline);
             if (seen.insert(line).second) report.variants.push_back(line);
         }
+    // What the shadow passes draw: each map's casters, of those every map would draw unculled.
+    if (list.shadows.any()) {
+        std::size_t drawn = 0, casters = 0;
+        for (const gpu::DrawCommand& d : list.views[0].draws)
+            casters += !d.pipeline.blend && d.pipeline.topology == Topology::Triangles;
+        for (const std::vector<std::uint32_t>& p : list.shadows.passDraws) drawn += p.size();
+        report.features.push_back("shadow-maps:" + std::to_string(list.shadows.passes.size()) +
+                                  " (caster draws " + std::to_string(drawn) + " of " +
+                                  std::to_string(casters * list.shadows.passes.size()) + ")");
+    }
     return report;
 }
 

@@ -87,8 +87,9 @@ gpu::PipelineKey pipelineKey(const frame::Frame& frame, const frame::Draw& d,
     sc[LANTERN_SC_MAPS] = all ? LANTERN_MAP_ALL | LANTERN_MAP_SECOND_SETS : f.maps;
     // Shadows only where a light casts them (frame/Shadows.cpp): other frames keep their variants.
     if (frame.shadows.any() && !f.unlit)
-        sc[LANTERN_SC_SHADOWS] = o.shadows.filter == ShadowFilter::Pcf ? LANTERN_SHADOW_PCF
-                                                                       : LANTERN_SHADOW_HARDWARE;
+        sc[LANTERN_SC_SHADOWS] = o.shadows.filter == ShadowFilter::Pcf    ? LANTERN_SHADOW_PCF
+                                 : o.shadows.filter == ShadowFilter::Pcss ? LANTERN_SHADOW_PCSS
+                                                                          : LANTERN_SHADOW_HARDWARE;
     // A loop over up to LANTERN_UNIFORM_LIGHTS lights reads them from a uniform buffer, which
     // llvmpipe reads faster at an index that differs between lanes; unrolled lights (read at
     // constant indices, where the storage buffer is the faster on llvmpipe), more lights and
@@ -137,7 +138,9 @@ std::string describe(const gpu::PipelineKey& k) {
     flag(LANTERN_SC_LIGHTS_UNIFORM, "uniform-lights");
     flag(LANTERN_SC_INSTANCED, "instanced");
     if (const std::uint32_t sh = k.constants[LANTERN_SC_SHADOWS])
-        s << (sh == LANTERN_SHADOW_PCF ? " shadows=pcf" : " shadows=hardware");
+        s << (sh == LANTERN_SHADOW_PCF    ? " shadows=pcf"
+              : sh == LANTERN_SHADOW_PCSS ? " shadows=pcss"
+                                          : " shadows=hardware");
     const std::uint32_t maps = k.constants[LANTERN_SC_MAPS];
     for (auto [bit, name] : {std::pair{LANTERN_MAP_METALLIC_ROUGHNESS, "metallic-roughness-map"},
                              std::pair{LANTERN_MAP_NORMAL, "normal-map"},
