@@ -254,19 +254,36 @@ Result<void> ensureStorageSet(Context& ctx, VkDescriptorSetLayout layout, std::u
     return {};
 }
 
-void writeBufferDescriptors(Context& ctx, VkDescriptorSet set, std::initializer_list<BufferBinding> bindings) {
+namespace {
+
+// One write per binding, each pointed at its info by `point`.
+template <typename Binding, typename Point>
+void writeDescriptors(Context& ctx, VkDescriptorSet set, std::initializer_list<Binding> bindings,
+                      Point point) {
     std::vector<VkWriteDescriptorSet> writes(bindings.size());
     std::size_t i = 0;
-    for (const BufferBinding& b : bindings) {
+    for (const Binding& b : bindings) {
         VkWriteDescriptorSet& w = writes[i++];
         w.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
         w.dstSet = set;
         w.dstBinding = b.binding;
         w.descriptorCount = 1;
         w.descriptorType = b.type;
-        w.pBufferInfo = &b.info;
+        point(w, b);
     }
     vkUpdateDescriptorSets(ctx.device(), std::uint32_t(writes.size()), writes.data(), 0, nullptr);
+}
+
+} // namespace
+
+void writeBufferDescriptors(Context& ctx, VkDescriptorSet set, std::initializer_list<BufferBinding> bindings) {
+    writeDescriptors(ctx, set, bindings,
+                     [](VkWriteDescriptorSet& w, const BufferBinding& b) { w.pBufferInfo = &b.info; });
+}
+
+void writeImageDescriptors(Context& ctx, VkDescriptorSet set, std::initializer_list<ImageBinding> bindings) {
+    writeDescriptors(ctx, set, bindings,
+                     [](VkWriteDescriptorSet& w, const ImageBinding& b) { w.pImageInfo = &b.info; });
 }
 
 } // namespace lantern::gpu

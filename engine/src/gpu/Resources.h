@@ -92,6 +92,16 @@ struct BufferBinding {
 /// Points each binding of `set` at its buffer range (the set must not be in use by the device).
 void writeBufferDescriptors(Context& ctx, VkDescriptorSet set, std::initializer_list<BufferBinding> bindings);
 
+/// One image descriptor of a set to write: its binding, type and image (sampler, view, layout).
+struct ImageBinding {
+    std::uint32_t binding = 0;
+    VkDescriptorType type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    VkDescriptorImageInfo info{};
+};
+
+/// Points each binding of `set` at its image (the set must not be in use by the device).
+void writeImageDescriptors(Context& ctx, VkDescriptorSet set, std::initializer_list<ImageBinding> bindings);
+
 /// Replaces `buffer` with one of twice `bytes` when it holds fewer (its contents are not kept).
 Result<void> ensureSize(Context& ctx, Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage,
                         MemoryUsage memory, const char* name);

@@ -72,19 +72,13 @@ Result<std::unique_ptr<ShadowPass>> ShadowPass::create(Context& ctx, Pipelines& 
 }
 
 void ShadowPass::writeDescriptors(VkDescriptorSet set, const ShadowSlot& slot) const {
-    const VkDescriptorImageInfo images[2] = {
-        {m_sampler.get(), slot.image.view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-        {m_depthSampler.get(), slot.image.view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
-    VkWriteDescriptorSet writes[2] = {};
-    for (int i = 0; i < 2; ++i) {
-        writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-        writes[i].dstSet = set;
-        writes[i].dstBinding = i == 0 ? LANTERN_BINDING_SHADOW_MAP : LANTERN_BINDING_SHADOW_DEPTH;
-        writes[i].descriptorCount = 1;
-        writes[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-        writes[i].pImageInfo = &images[i];
-    }
-    vkUpdateDescriptorSets(m_ctx.device(), 2, writes, 0, nullptr);
+    const VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    writeImageDescriptors(
+        m_ctx, set,
+        {{LANTERN_BINDING_SHADOW_MAP, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+          {m_sampler.get(), slot.image.view.get(), layout}},
+         {LANTERN_BINDING_SHADOW_DEPTH, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+          {m_depthSampler.get(), slot.image.view.get(), layout}}});
 }
 
 Result<void> ShadowPass::makePipelines() {

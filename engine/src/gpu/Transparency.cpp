@@ -181,19 +181,12 @@ void TransparencyPass::writeDescriptors(VkDescriptorSet set, const TransparencyS
                            {{LANTERN_BINDING_FRAGMENT_LISTS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                              lists ? VkDescriptorBufferInfo{slot.lists.get(), 0, slot.lists.size}
                                    : standIn}});
-    const VkDescriptorImageInfo images[2] = {
-        {VK_NULL_HANDLE, slot.accum.view.get(), VK_IMAGE_LAYOUT_GENERAL},
-        {VK_NULL_HANDLE, slot.reveal.view.get(), VK_IMAGE_LAYOUT_GENERAL}};
-    VkWriteDescriptorSet writes[2] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET},
-                                      {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
-    for (int i = 0; i < 2; ++i) {
-        writes[i].dstSet = set;
-        writes[i].dstBinding = i == 0 ? LANTERN_BINDING_WEIGHTED_ACCUM : LANTERN_BINDING_WEIGHTED_REVEAL;
-        writes[i].descriptorCount = 1;
-        writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-        writes[i].pImageInfo = &images[i];
-    }
-    vkUpdateDescriptorSets(m_ctx.device(), 2, writes, 0, nullptr);
+    writeImageDescriptors(
+        m_ctx, set,
+        {{LANTERN_BINDING_WEIGHTED_ACCUM, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+          {VK_NULL_HANDLE, slot.accum.view.get(), VK_IMAGE_LAYOUT_GENERAL}},
+         {LANTERN_BINDING_WEIGHTED_REVEAL, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+          {VK_NULL_HANDLE, slot.reveal.view.get(), VK_IMAGE_LAYOUT_GENERAL}}});
 }
 
 void TransparencyPass::begin(VkCommandBuffer cmd, const TransparencySlot& slot, bool reversedZ) const {
