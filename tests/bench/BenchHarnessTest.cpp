@@ -177,20 +177,20 @@ TEST_F(BenchHarness, TinyAccuracySweepWritesOneFiniteRowPerConfiguration) {
 // one map over the long field, and exact transparency's error is far below sorting's.
 TEST_F(BenchHarness, ShadowAndTransparencySectionsMeasureTheirTrades) {
     const auto dir = test::testOutputDir();
-    const auto r = runLantern({"bench", "accuracy", "--scenes", "shadow,field,crossing", "--shading", "phong",
+    const auto r = runLantern({"bench", "accuracy", "--scenes", "shadow,field,crossing,foliage", "--shading", "phong",
                                "--segments", "32", "--msaa", "1", "--width", "96", "--height", "72",
                                "--shadow-resolution", "32,1024", "--shadow-filter", "hardware,pcf,pcss",
                                "--shadow-cascades", "1,4", "--rounds", "1", "--frames", "1", "--warmup", "1",
                                "--reference-samples", "2", "--no-floor", "-q", "-o", dir.string()});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const Csv csv = readCsv(dir / "accuracy.csv");
-    ASSERT_EQ(csv.rows.size(), 2u * 12u + 3u);  // 2 resolutions x 3 filters x 2 cascades; 3 methods
+    ASSERT_EQ(csv.rows.size(), 2u * 12u + 6u);  // 2 resolutions x 3 filters x 2 cascades; 2 x 3 methods
     std::map<std::string, double> wrong, interior;
     for (const auto& row : csv.rows) {
         const std::string key = row.at("scene") + "/" + row.at("shadow_resolution") + "/" +
                                 row.at("shadow_filter") + "/" + row.at("shadow_cascades") +
                                 row.at("transparency");
-        if (row.at("scene") != "crossing") {
+        if (row.at("scene") != "crossing" && row.at("scene") != "foliage") {
             wrong[key] = number(row, "wrong_shadow_share");
             EXPECT_TRUE(wrong[key] >= 0.0 && wrong[key] <= 1.0) << key;
         } else {
@@ -206,6 +206,11 @@ TEST_F(BenchHarness, ShadowAndTransparencySectionsMeasureTheirTrades) {
     }
     EXPECT_LT(wrong.at("shadow/1024/pcss/4"), 0.02);
     EXPECT_LT(interior.at("crossing///exact"), 1e-3);
+    // Leaves cut by a textured mask over one blended pond: one blended layer, so every method
+    // composites it alike, and the reference samples the mask as the device does (but for the
+    // few pixels whose centre falls on a stripe's edge: 7.4e-3 at 96 x 72, 2.2e-3 at 480 x 270).
+    EXPECT_LT(interior.at("foliage///exact"), 2e-2);
+    EXPECT_EQ(interior.at("foliage///sorted"), interior.at("foliage///exact"));
     EXPECT_GT(interior.at("crossing///sorted"), 10.0 * interior.at("crossing///exact"));
     const std::string md = readText(dir / "accuracy.md");
     EXPECT_NE(md.find("wrong shadow %"), std::string::npos);

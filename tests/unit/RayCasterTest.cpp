@@ -242,12 +242,12 @@ TEST(RayCaster, RefusesWhatItDoesNotModel) {
          ErrorCode::Unsupported, "one full-image view"},
         {"gl compat", [](RenderOptions& o, ReferenceOptions&, Scene&) { o.glCompat = true; },
          ErrorCode::Unsupported, "GL compatibility"},
-        {"texture",
+        {"linear-filtered texture",
          [](RenderOptions&, ReferenceOptions&, Scene& sc) {
              sc.textures.push_back(Texture{"t", 1, 1, {255, 255, 255, 255}});
              sc.materials[0].baseColorTexture = 0;
          },
-         ErrorCode::Unsupported, "textured"},
+         ErrorCode::Unsupported, "textures nearest"},
         {"box samples", [](RenderOptions&, ReferenceOptions& r, Scene&) { r.boxSamples = 0; },
          ErrorCode::InvalidInput, "box samples"},
         {"empty image", [](RenderOptions& o, ReferenceOptions&, Scene&) { o.width = 0; },

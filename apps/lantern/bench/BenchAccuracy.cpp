@@ -89,7 +89,7 @@ Result<void> checkScenes(const AccuracyArgs& a) {
             benchSceneNames().end())
             return makeError(ErrorCode::InvalidInput,
                              "\"" + s + "\" is not a benchmark scene (sphere, spot, crossing, "
-                             "nested, beside, torus, shadow, field)", "--scenes");
+                             "nested, beside, torus, foliage, shadow, field)", "--scenes");
     if (a.scenes.empty())
         return makeError(ErrorCode::InvalidInput, "the list is empty", "--scenes");
     for (double s : a.shininess)
@@ -400,7 +400,7 @@ Runner addAccuracyBench(CLI::App& bench) {
         "accuracy", "Sweep shading mode x tessellation x MSAA x resolution: ms per frame against "
                     "the error from an exact ray-cast reference (CSV, markdown summary, plot)");
     cmd->add_option("--scenes", a->scenes, "Analytic scenes: sphere (S1), spot (S2); transparency: crossing (T1), nested (T2), "
-                    "beside (T3), torus (T4); shadows: shadow (H1), field (H2)")
+                    "beside (T3), torus (T4), foliage (T5); shadows: shadow (H1), field (H2)")
         ->delimiter(',')
         ->capture_default_str();
     cmd->add_option("--shininess", a->shininess, "Material shininess values")

@@ -21,12 +21,12 @@ struct BenchScene {
 };
 
 /// The scene names makeBenchScene() knows: "sphere" (S1), "spot" (S2), the transparency
-/// scenes "crossing" (T1), "nested" (T2), "beside" (T3) and "torus" (T4), and the shadow
-/// scenes "shadow" (H1) and "field" (H2).
+/// scenes "crossing" (T1), "nested" (T2), "beside" (T3), "torus" (T4) and "foliage" (T5),
+/// and the shadow scenes "shadow" (H1) and "field" (H2).
 const std::vector<std::string>& benchSceneNames();
 /// H1 and H2: the scenes whose lights cast shadows, swept over the shadow options.
 bool isShadowScene(const std::string& name);
-/// T1 to T4: the scenes of blended surfaces, swept over the transparency methods.
+/// T1 to T5: the scenes of blended surfaces, swept over the transparency methods.
 bool isTransparencyScene(const std::string& name);
 
 /// S1 "sphere": a unit sphere 4 units in front of a 40-degree camera, one point light at
@@ -39,8 +39,9 @@ bool isTransparencyScene(const std::string& name);
 /// (alpha 0.5) and 1 (alpha 0.3). T3 "beside": a blended 6 x 6 floor (alpha 0.4) at y = -0.5
 /// and a blended sphere (radius 0.5, alpha 0.6) standing on its far half. T4 "torus": a
 /// blended torus (ring radius 1, tube 0.35, alpha 0.5) tilted 1.1 rad about X towards the
-/// eye. Blended materials are double-sided; the same light as S1, the camera looking at the
-/// origin.
+/// eye. T5 "foliage": six 1 x 1 leaves, alpha-masked by a 32 x 32 texture (an ellipse,
+/// sampled nearest), tilted above a blended 6 x 6 pond (alpha 0.5) at y = -0.5. Blended and
+/// masked materials are double-sided; the same light as S1, the camera looking at the origin.
 /// H1 "shadow": an opaque sphere (radius 0.5) 1 above a 4 x 4 plane, lit by a directional light
 /// 38.7 degrees above the plane that casts shadows (LANTERN_lights_shadow), seen from above at
 /// an angle; the reference casts exact shadow rays. H2 "field": five such spheres 0.7 above

@@ -139,6 +139,47 @@ BenchScene transparencyScene(const std::string& name, double shininess, int segm
                    segments, shininess, {0.0, 1.5, 4.0});
 }
 
+// A leaf's mask: 32 x 32 texels, opaque inside an ellipse as long as the texture and half as
+// wide, transparent outside, its colour striped (sRGB), sampled nearest.
+Texture leafTexture() {
+    Texture t;
+    t.name = "leaf";
+    t.width = t.height = 32;
+    t.nearest = true;
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) {
+            const double u = (x - 15.5) / 15.0, v = (y - 15.5) / 8.0;
+            const bool inside = u * u + v * v < 1.0;
+            const std::uint8_t stripe = x % 4 < 2 ? 255 : 170;
+            t.rgba8.insert(t.rgba8.end(), {stripe, 255, stripe, std::uint8_t(inside ? 255 : 0)});
+        }
+    return t;
+}
+
+// T5: six alpha-masked leaves over a blended pond: the leaves are cut by their mask (opaque
+// where it keeps them), the pond composited behind and between them.
+BenchScene foliageScene(double shininess, int segments) {
+    const glm::dvec3 right(1, 0, 0), up(0, 1, 0);
+    std::vector<Layer> layers{
+        {AnalyticShape::plane(0, 6.0), {0.2, 0.4, 0.8, 0.5}, placed({0, -0.5, 0}, glm::angleAxis(-kPi / 2, right))}};
+    const double spots[6][3] = {{-1.2, 0.3, 0.4}, {-0.4, 0.6, -0.6}, {0.5, 0.2, 0.5},
+                                {1.1, 0.7, -0.3}, {0.0, 1.0, 0.9}, {-0.8, 0.1, -1.4}};
+    for (int i = 0; i < 6; ++i)
+        layers.push_back({AnalyticShape::plane(0, 1.0), {0.3, 0.7, 0.2, 1.0},
+                          placed({spots[i][0], spots[i][1], spots[i][2]},
+                                 glm::angleAxis(0.9 * i, up) * glm::angleAxis(-0.9, right))});
+    BenchScene b = layered("foliage", layers, segments, shininess, {0.0, 1.5, 4.0});
+    b.scene.textures.push_back(leafTexture());
+    for (std::size_t m = 1; m < b.scene.materials.size(); ++m) {
+        Material& leaf = b.scene.materials[m];
+        leaf.alphaMode = AlphaMode::Mask;
+        leaf.alphaCutoff = 0.5;
+        leaf.doubleSided = true;
+        leaf.baseColorTexture = 0;
+    }
+    return b;
+}
+
 // H1: the sphere over the plane, its shadow cast by a directional light that casts them.
 BenchScene shadowScene(double shininess, int segments) {
     const glm::dvec3 right(1, 0, 0);
@@ -182,11 +223,12 @@ BenchScene fieldScene(double shininess, int segments) {
 bool isShadowScene(const std::string& name) { return name == "shadow" || name == "field"; }
 
 bool isTransparencyScene(const std::string& name) {
-    return name == "crossing" || name == "nested" || name == "beside" || name == "torus";
+    return name == "crossing" || name == "nested" || name == "beside" || name == "torus" ||
+           name == "foliage";
 }
 
 const std::vector<std::string>& benchSceneNames() {
-    static const std::vector<std::string> names{"sphere", "spot", "crossing", "nested", "beside", "torus", "shadow", "field"};
+    static const std::vector<std::string> names{"sphere", "spot", "crossing", "nested", "beside", "torus", "foliage", "shadow", "field"};
     return names;
 }
 
@@ -210,6 +252,7 @@ double shadowWrongShare(const Image& render, const ReferenceImage& shadowed, con
 }
 
 BenchScene makeBenchScene(const std::string& name, double shininess, int segments) {
+    if (name == "foliage") return foliageScene(shininess, segments);
     if (isTransparencyScene(name)) return transparencyScene(name, shininess, segments);
     if (name == "shadow") return shadowScene(shininess, segments);
     if (name == "field") return fieldScene(shininess, segments);

@@ -87,7 +87,10 @@ struct ReferenceImage {
 /// fragments were sorted (the picture an order-independent method converges to). With
 /// ReferenceOptions::shadows every light casts exact shadows. Refused: InvalidInput for a
 /// drawn mesh without an AnalyticShape, a bad shape or bad options; Unsupported for what the
-/// reference does not model (several views, GL compatibility, textures).
+/// reference does not model (several views, GL compatibility, a base-colour texture that is
+/// not nearest-filtered or lies on a torus). A nearest-filtered base-colour texture is sampled
+/// at the surface's exact texture coordinates (those tessellate() gives its vertices): its
+/// colour multiplies the diffuse term and its alpha the material's, as the shaders do.
 LANTERN_API Result<ReferenceImage> raycastReference(const Scene& scene,
                                                     const RenderOptions& options,
                                                     double timeSeconds,

@@ -4,6 +4,7 @@
 // (when asked) exact shadow rays. Ground truth for the accuracy benchmark.
 #include "frame/Frame.h"
 #include "reference/Lighting.h"
+#include "reference/SurfaceTexture.h"
 #include "reference/Torus.h"
 
 #include <algorithm>
@@ -49,6 +50,7 @@ struct Surface {
     glm::dmat4 modelFromView{1.0};
     glm::dmat3 normalFromModel{1.0}; // eye-space normals, up to length (normalMatrix())
     const Material* material = nullptr;
+    const Texture* texture = nullptr; // the base colour's, sampled nearest; null: none
 };
 
 struct Ray {
@@ -62,6 +64,7 @@ struct Hit {
     glm::dvec3 point{0.0};  // eye space
     glm::dvec3 normal{0.0}; // unit, eye space, the surface's outward (front) side
     bool front = true;
+    glm::dvec4 texel{1.0};  // the base-colour texel there (linear; white without a texture)
 };
 
 // Both roots of |o + t d|^2 = r^2 in ascending order (NaN-free); false without real roots.
@@ -94,11 +97,19 @@ int surfaceRoots(const AnalyticShape& shape, const glm::dvec3& o, const glm::dve
 }
 
 // What a hit lets through of what lies behind it: a blended material its 1 - alpha, a masked
-// one where the mask cuts it away, an opaque one nothing.
-double transmittance(const Material& mat, const MaterialSide& side) {
-    if (mat.alphaMode == AlphaMode::Blend) return 1.0 - std::clamp(side.diffuse.a, 0.0, 1.0);
-    if (mat.alphaMode == AlphaMode::Mask && side.diffuse.a < mat.alphaCutoff) return 1.0;
+// one where the mask cuts it away, an opaque one nothing (alpha: the side's times the texel's).
+double transmittance(const Material& mat, const MaterialSide& side, double texelAlpha) {
+    const double alpha = side.diffuse.a * texelAlpha;
+    if (mat.alphaMode == AlphaMode::Blend) return 1.0 - std::clamp(alpha, 0.0, 1.0);
+    if (mat.alphaMode == AlphaMode::Mask && alpha < mat.alphaCutoff) return 1.0;
     return 0.0;
+}
+
+// The base-colour texel at model point p of surface s (white without a texture).
+glm::dvec4 texelAt(const Surface& s, const glm::dvec3& p) {
+    if (!s.texture) return glm::dvec4(1.0);
+    const glm::dvec3 uv = s.material->baseColorUvTransform * glm::dvec3(ref::analyticUv(s.shape, p), 1.0);
+    return ref::sampleNearest(*s.texture, glm::dvec2(uv));
 }
 
 class Caster {
@@ -187,11 +198,11 @@ private:
         const ref::MaterialColours mc = ref::materialColours(side, nullptr, false);
         const ref::SplitColour split =
             ref::splitColour(sums, mc.ambient, mc.diffuse, mat.ambientFollowsDiffuse, false);
-        glm::dvec3 c = split.base + split.textured;
+        glm::dvec3 c = split.base + glm::dvec3(hit.texel) * split.textured;
         if (m_options.clamp)
             for (int k = 0; k < 3; ++k)
                 if (std::isfinite(c[k])) c[k] = std::clamp(c[k], 0.0, 1.0);
-        return glm::dvec4(c, mat.alphaMode == AlphaMode::Blend ? std::clamp(mc.alpha, 0.0, 1.0) : 1.0);
+        return glm::dvec4(c, mat.alphaMode == AlphaMode::Blend ? std::clamp(mc.alpha * hit.texel.a, 0.0, 1.0) : 1.0);
     }
 
     // The share of `light` that reaches eye-space point p on surface `self`: the mean over its
@@ -221,7 +232,8 @@ private:
                 const glm::dvec3 model = o + ts[k] * d;
                 const bool front = glm::dot(s.normalFromModel * modelNormal(s, model), dir) < 0.0;
                 const Material& mat = *s.material;
-                share *= transmittance(mat, mat.side(frame::twoSidedLighting(m_lighting, mat) && !front));
+                share *= transmittance(mat, mat.side(frame::twoSidedLighting(m_lighting, mat) && !front),
+                                       texelAt(s, model).a);
             }
         }
         return share;
@@ -244,10 +256,11 @@ private:
         const bool front = glm::dot(n, ray.direction) < 0.0;
         const Material& mat = *s.material;
         if (!front && !mat.doubleSided) return false; // back-face culling
+        const glm::dvec4 texel = texelAt(s, p);
         if (mat.alphaMode == AlphaMode::Mask &&
-            mat.side(frame::twoSidedLighting(m_lighting, mat) && !front).diffuse.a < mat.alphaCutoff)
+            mat.side(frame::twoSidedLighting(m_lighting, mat) && !front).diffuse.a * texel.a < mat.alphaCutoff)
             return false;
-        hit = Hit{t, index, eye, n, front};
+        hit = Hit{t, index, eye, n, front, texel};
         return true;
     }
 
@@ -358,10 +371,14 @@ Result<std::vector<Surface>> placeSurfaces(const Scene& scene, const Pose& pose,
         const Material& mat =
             prim.material >= 0 ? scene.materials[prim.material] : kDefaultMaterial;
         const std::string matObject = "materials[" + std::to_string(prim.material) + "]";
-        if (mat.baseColorTexture >= 0)
+        const Texture* texture = mat.baseColorTexture >= 0 ? &scene.textures[mat.baseColorTexture] : nullptr;
+        if (texture && (!texture->nearest || shape->kind == AnalyticKind::Torus))
             return refuse(ErrorCode::Unsupported,
-                          "textured materials are not modelled by the reference", matObject);
+                          "the reference samples base-colour textures nearest, on spheres and "
+                          "planes only",
+                          matObject);
         Surface s;
+        s.texture = texture;
         s.shape = *shape;
         const glm::dmat4 viewFromModel = viewFromWorld * pose.worldFromNode[ni];
         s.modelFromView = glm::inverse(viewFromModel);
