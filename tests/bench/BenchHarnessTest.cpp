@@ -217,6 +217,24 @@ TEST_F(BenchHarness, ShadowAndTransparencySectionsMeasureTheirTrades) {
     EXPECT_NE(md.find("4 cascades"), std::string::npos);
 }
 
+// bench frame takes render's camera options and reports the in-place path (renderView) beside
+// render() with its copy; with AOVs (which renderView does not return) it reports render() only.
+TEST_F(BenchHarness, FrameTakesRendersCameraAndTimesRenderView) {
+    const auto r = runLantern({"bench", "frame", "builtin:spheres", "--runs", "1", "--width", "64",
+                               "--height", "48", "--look-at", "0,2,6,0,0,0,0,1,0", "--no-culling"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("render only: renderView (no copy)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("render only: render() + readback"), std::string::npos) << r.out;
+    const auto aov = runLantern({"bench", "frame", "builtin:spheres", "--runs", "1", "--width", "64",
+                                 "--height", "48", "--aov", "depth", "--view", "front"});
+    ASSERT_EQ(aov.exitCode, 0) << aov.err;
+    EXPECT_EQ(aov.out.find("renderView"), std::string::npos) << aov.out;
+    const auto bad = runLantern({"bench", "frame", "builtin:spheres", "--runs", "1", "--width", "64",
+                                 "--height", "48", "--look-at", "0,0,0,0,0,0,0,1,0"});
+    EXPECT_EQ(bad.exitCode, 1) << bad.err;
+    EXPECT_NE(bad.err.find("--look-at"), std::string::npos) << bad.err;
+}
+
 TEST_F(BenchHarness, TinySpeedRunGivesEveryTimeAsAMultipleOfTheFloor) {
     const auto dir = test::testOutputDir();
     const auto r = runLantern({"bench",       "speed",     "builtin:teapot",

@@ -21,7 +21,9 @@ TEST(ReferenceTexture, AnalyticCoordinatesAreTheTessellationsAtItsVertices) {
             // The sphere's seam column is duplicated (u = 0 and 1) and its poles have every u.
             const bool pole = shape.kind == AnalyticKind::Sphere && std::abs(std::abs(q.y) - 0.7) < 1e-6;
             const double du = std::abs(uv.x - p.texcoords[i].x);
-            if (!pole) EXPECT_TRUE(du < 1e-6 || std::abs(du - 1.0) < 1e-6) << i << " u " << uv.x;
+            if (!pole) {
+                EXPECT_TRUE(du < 1e-6 || std::abs(du - 1.0) < 1e-6) << i << " u " << uv.x;
+            }
             // v through its cosine: acos is ill-conditioned at the poles' float positions.
             EXPECT_NEAR(std::cos(3.14159265358979323846 * uv.y),
                         std::cos(3.14159265358979323846 * p.texcoords[i].y), 1e-6) << i;

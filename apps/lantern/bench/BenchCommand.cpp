@@ -1,6 +1,8 @@
 // `lantern bench frame`: per-frame timing of one scene: the first frame (pipeline JIT) apart,
-// then the median and minimum of N frames for render only (GPU timestamps and the wall time of
-// Renderer::render, which includes readback) and for render + EXR write. Benchmarks, not tests.
+// then the median and minimum of N frames for render only (GPU timestamps, the wall time of
+// Renderer::render, which includes readback into an Image, and of Renderer::renderView, which
+// leaves the pixels where the device put them) and for render + EXR write. The camera options
+// are render's. Benchmarks, not tests.
 #include "bench/Bench.h"
 #include "common/CliSupport.h"
 #include "common/Commands.h"
@@ -41,14 +43,28 @@ struct FrameArgs {
     std::vector<std::string> aovs;  ///< --aov: time the data passes too (docs/aovs.md)
     std::string up = "y";           ///< --up
     ShadingOptions shading;
+    CameraOptions camera;
     DeviceOptions device;
 };
+
+// The wall time of one renderView() frame, each row's first pixel read, as a host reading the
+// frame in place would.
+Result<double> timeRenderView(Renderer& renderer, const PreparedScene& scene,
+                              const RenderOptions& options) {
+    static volatile float sink = 0.0f;
+    const auto t0 = std::chrono::steady_clock::now();
+    auto view = renderer.renderView(scene, options, 0.0);
+    if (!view) return std::move(view).error();
+    for (int y = 0; y < view->height(); ++y) sink = sink + view->row(y)[0];
+    return msSince(t0);
+}
 
 int runFrame(const FrameArgs& a) {
     RenderOptions options;
     options.width = a.width;
     options.height = a.height;
     if (auto r = a.shading.apply(options); !r) return report(r.error());
+    if (auto r = a.camera.apply(options); !r) return report(r.error());
     for (const std::string& name : a.aovs)
         if (!enableAov(options.aovs, name))
             return report(makeError(ErrorCode::InvalidInput,
@@ -66,7 +82,7 @@ int runFrame(const FrameArgs& a) {
     auto prepared = renderer->prepare(std::make_shared<const Scene>(std::move(*scene)));
     if (!prepared) return report(prepared.error());
 
-    std::vector<double> wall, gpu, write, total;
+    std::vector<double> wall, gpu, write, total, inPlace;  // inPlace: renderView, not with AOVs
     double firstMs = 0.0;
     const auto path = std::filesystem::path(a.outDir) / "lantern-bench-frame.exr";
     ExrOptions exr;
@@ -86,6 +102,10 @@ int runFrame(const FrameArgs& a) {
         gpu.push_back(renderer->lastFrameStats().gpuMs);
         write.push_back(writeMs);
         total.push_back(renderMs + writeMs);
+        if (options.aovs.any()) continue;  // renderView returns colour only
+        auto viewMs = timeRenderView(*renderer, *prepared, options);  // interleaved: same load
+        if (!viewMs) return report(viewMs.error());
+        inPlace.push_back(*viewMs);
     }
     std::error_code ec;
     std::filesystem::remove(path, ec);
@@ -102,6 +122,9 @@ int runFrame(const FrameArgs& a) {
     std::printf("%-34s %10.2f %10.2f\n", "render only: GPU render pass", median(gpu), minimum(gpu));
     std::printf("%-34s %10.2f %10.2f\n", "render only: render() + readback", median(wall),
                 minimum(wall));
+    if (!inPlace.empty())
+        std::printf("%-34s %10.2f %10.2f\n", "render only: renderView (no copy)", median(inPlace),
+                    minimum(inPlace));
     std::printf("%-34s %10.2f %10.2f\n",
                 ("EXR write (" + a.compression + (a.half ? ", half)" : ", float)")).c_str(),
                 median(write), minimum(write));
@@ -133,6 +156,7 @@ Runner addBenchCommand(CLI::App& app) {
     frame->add_option("--tmp", args->outDir, "Folder for the temporary EXR")->capture_default_str();
     addUpOption(*frame, args->up);
     args->shading.add(*frame);
+    args->camera.add(*frame);
     args->device.add(*frame);
     std::vector<Runner> more = addMoreBenchCommands(*bench);
     return [args, frame, more]() {
