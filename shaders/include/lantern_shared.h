@@ -47,6 +47,18 @@
 #define LANTERN_FLAT_CULL_BACK 1u        // FlatJob.cull: the draw culls back faces
 #define LANTERN_FLAT_FRONT_CLOCKWISE 2u  // FlatJob.cull: clockwise triangles are front
 
+// The cluster-culling pre-pass (shaders/cull.comp, gpu/Clusters.h): its own set, used by no
+// graphics pipeline.
+#define LANTERN_BINDING_CULL_CLUSTERS 0  // buffer: the scene's clusters (bounds, cones, ranges)
+#define LANTERN_BINDING_CULL_RECORDS 1   // buffer: this frame's records (draw x instance x view)
+#define LANTERN_BINDING_CULL_COMMANDS 2  // buffer: the indirect draws the pass writes
+#define LANTERN_BINDING_CULL_COUNTS 3    // buffer: triangles kept (the frame's statistics)
+#define LANTERN_BINDING_CULL_VIEWS 4     // buffer: per view, its clip volume's planes
+#define LANTERN_CULL_GROUP 64            // invocations (records) per workgroup
+#define LANTERN_CLUSTER_TRIANGLES 128    // triangles per cluster (the last of a mesh: fewer)
+#define LANTERN_CULL_CONE 1u             // CullRecord.flags: the back-facing cone test applies
+#define LANTERN_CULL_MAX_LEVELS 8        // levels of detail per mesh, the full one included
+
 // Vertex attribute locations; each attribute has its own vertex-buffer binding of the same
 // number (non-interleaved streams, so absent attributes can be bound to a stride-0 default).
 #define LANTERN_LOC_POSITION 0

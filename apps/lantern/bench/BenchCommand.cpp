@@ -117,7 +117,13 @@ int runFrame(const FrameArgs& a) {
                 aovs.empty() ? "none" : aovs.c_str(), renderer->device().name.c_str(), a.runs,
                 a.warmup);
     std::printf("%-34s %10s %10s\n", "", "median ms", "min ms");
-    std::printf("%-34s %10zu\n", "draw calls per frame", renderer->lastFrameStats().draws);
+    const FrameStats& stats = renderer->lastFrameStats();
+    std::printf("%-34s %10zu\n", "draw calls per frame", stats.draws);
+    if (stats.clusterTriangles > 0)  // the culling pass's (and the levels of detail's) share
+        std::printf("%-34s %10llu of %llu (%.1f%%)\n", "clustered triangles drawn",
+                    static_cast<unsigned long long>(stats.clusterTrianglesDrawn),
+                    static_cast<unsigned long long>(stats.clusterTriangles),
+                    100.0 * double(stats.clusterTrianglesDrawn) / double(stats.clusterTriangles));
     std::printf("%-34s %10.2f\n", "first frame (pipeline JIT)", firstMs);
     std::printf("%-34s %10.2f %10.2f\n", "render only: GPU render pass", median(gpu), minimum(gpu));
     std::printf("%-34s %10.2f %10.2f\n", "render only: render() + readback", median(wall),

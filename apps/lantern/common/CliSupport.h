@@ -130,6 +130,7 @@ struct ShadingOptions {
     std::string shading, specular;
     bool localViewer = false, twoSided = false, clamp = false, glCompat = false;
     bool noInstancing = false, noCulling = false;
+    double lodError = 0.0;
     bool shadows = false;
     int shadowResolution = 2048, shadowKernel = 3, shadowCascades = 2;
     std::string shadowFilter = "pcf";

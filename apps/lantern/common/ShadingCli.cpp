@@ -77,8 +77,14 @@ void ShadingOptions::add(CLI::App& app) {
                  "Draw every node on its own, not nodes that share a mesh as one instanced draw "
                  "(the same picture; to measure what instancing buys)");
     app.add_flag("--no-culling", noCulling,
-                 "Draw every caster into every shadow map, not only those that reach it (the same "
-                 "picture; to measure what culling buys)");
+                 "Draw everything: every cluster of a large mesh, not only those in view and "
+                 "facing it, and every caster into every shadow map (the same picture; to "
+                 "measure what culling buys)");
+    app.add_option("--lod-error", lodError,
+                   "Level of detail: draw each large mesh at the coarsest simplified level whose "
+                   "error stays under this many pixels on screen (0: the full mesh, exact)")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 1e6));
 }
 
 Result<void> ShadingOptions::apply(RenderOptions& o) const {
@@ -95,6 +101,7 @@ Result<void> ShadingOptions::apply(RenderOptions& o) const {
     o.shadows.all = shadows;
     o.shadows.resolution = shadowResolution;
     o.culling = !noCulling;
+    o.lodError = lodError;
     o.shadows.filter = parseShadowFilter(shadowFilter);
     o.shadows.kernel = shadowKernel;
     o.shadows.cascades = shadowCascades;

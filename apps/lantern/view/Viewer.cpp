@@ -163,6 +163,7 @@ std::string Viewer::renderCommand(const std::string& output) const {
     if (o.transparency) s += std::string(" --transparency ") + transparencyName(*o.transparency);
     if (!o.instancing) s += " --no-instancing";
     if (!o.culling) s += " --no-culling";
+    if (o.lodError > 0.0) s += " --lod-error " + number(o.lodError);
     s += " --background " + backgroundText(); // the text it was parsed from: the same floats
     if (m_st.quad) s += " --layout quad";
     s += m_st.camera.commandLine(perspectiveAspect());
@@ -289,8 +290,11 @@ std::optional<int> Viewer::runFrame() {
     FrameRequest request;
     request.capture = m_captureNext || (scripted && !m_args.screenshots.empty());
     m_ui->build(m_st, m_st.statusText());
-    auto frame =
-        m_window.target().render(m_prepared, frameOptions(), m_st.time, request, m_ui->recorder());
+    RenderOptions options = frameOptions();
+    options.lodError = m_lod.bound(m_st.camera.commandLine(perspectiveAspect()), options.lodError,
+                                   m_lastFrameMs, now);
+    auto frame = m_window.target().render(m_prepared, options, m_st.time, request, m_ui->recorder());
+    m_lastFrameMs = 1000.0 * std::chrono::duration<double>(Clock::now() - now).count();
     if (!frame) return report(frame.error());
     if (frame->status != FrameStatus::Presented) return std::nullopt;
     m_stats.add(now, *frame);

@@ -5,6 +5,7 @@
 
 #include "view/ViewArgs.h"
 #include "view/ViewerInput.h"
+#include "view/ViewerLod.h"
 #include "view/ViewerState.h"
 #include "view/ViewerStats.h"
 #include "view/ViewerUi.h"
@@ -56,6 +57,8 @@ private:
     std::unique_ptr<ViewerUi> m_ui;
     LightingModel m_sceneLighting;
     ViewerStats m_stats;
+    ViewerLod m_lod;  ///< the level of detail while the camera moves
+    double m_lastFrameMs = 0.0;
 
     Clock::time_point m_last{}; ///< when the last frame sampled its input
     bool m_captureNext = false;

@@ -179,10 +179,18 @@ struct RenderOptions {
     /// false: one draw per node. The picture is the same either way (docs/performance.md,
     /// "Instanced draws"); the switch is there to measure what instancing buys.
     bool instancing = true;
-    /// Draws that cannot cover a pixel of a pass are not recorded (today: each shadow map's
-    /// pass skips the casters outside its map). The picture is the same either way; false
-    /// draws everything, to measure what culling buys and check that it changes no pixel.
+    /// What cannot cover a pixel of a pass is not drawn: each shadow map's pass skips the
+    /// casters outside its map, and the clusters of large meshes (runs of their triangles, in
+    /// the file's order) outside a view, or facing away where the draw culls back faces, are
+    /// dropped by a compute pass before the draws (docs/performance.md, "Clusters"). The
+    /// picture is the same either way; false draws everything, to measure what culling buys
+    /// and check that it changes no pixel.
     bool culling = true;
+    /// Level of detail: each clustered mesh is drawn, per instance and per view, at the
+    /// coarsest of its simplified levels whose error (object-space distance, projected at the
+    /// mesh's nearest point) stays under this many pixels. 0 (the default): the full mesh,
+    /// exact. The levels are built on the first frame that asks for them (needs culling on).
+    double lodError = 0.0;
     ShadowOptions shadows;
     /// How blended surfaces are composited; default: Exact (Sorted under glCompat, as GL
     /// programs draw), docs/transparency.md has the measurements behind it. A frame without

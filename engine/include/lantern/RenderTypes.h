@@ -55,6 +55,11 @@ struct FrameStats {
     /// refuse such a frame (ErrorCode::Internal, naming the first pixel's object); the
     /// viewer shows it with the values replaced by 0.
     std::uint64_t nonFinite = 0;
+    /// The triangles of the frame's clustered draws (every view, every instance, at full
+    /// detail) and those the culling pass kept for the rasteriser (after the view, back-face
+    /// and level-of-detail tests). Both 0 when no draw was clustered (culling off, or no mesh
+    /// large enough).
+    std::uint64_t clusterTriangles = 0, clusterTrianglesDrawn = 0;
 };
 
 /// What the device is.

@@ -246,6 +246,14 @@ Result<ViewCamera> resolveCamera(const Scene& scene, const Pose& pose, const Cam
         LANTERN_TRY(checkLookAt(*spec.lookAt, object.empty() ? "lookAt" : object));
         rc.viewFromWorld = lookAt(spec.lookAt->eye, spec.lookAt->target, spec.lookAt->up);
         rc.description += " with lookAt";
+        // Framing's perspective planes were fitted from its own eye: fitted again from this
+        // one, so that an eye inside the bounds (walking through a scene) sees them.
+        if (source == Source::Framing && !spec.framingOrthographic && !spec.projection) {
+            const FramingSphere s = framingSphere(scene, pose.root);
+            const double e = glm::length(spec.lookAt->eye - s.c), far = e + 1.5 * s.r;
+            rc.projection.znear = std::max(e - 1.5 * s.r, far * 1e-4);
+            rc.projection.zfar = far;
+        }
     }
     if (spec.projection) {
         LANTERN_TRY(checkProjection(*spec.projection, object.empty() ? "projection" : object));

@@ -180,7 +180,8 @@ VkPhysicalDeviceFeatures Context::readOptionalFeatures() {
     VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     const bool haveProvoking = hasExtension(exts, VK_EXT_PROVOKING_VERTEX_EXTENSION_NAME);
     if (haveProvoking) f13.pNext = &provoking;
-    VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13, {}};
+    VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
+    VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12, {}};
     vkGetPhysicalDeviceFeatures2(m_physical, &supported);
 
     VkPhysicalDeviceFeatures core{};
@@ -193,7 +194,9 @@ VkPhysicalDeviceFeatures Context::readOptionalFeatures() {
     core.geometryShader = supported.features.geometryShader;
     core.vertexPipelineStoresAndAtomics = supported.features.vertexPipelineStoresAndAtomics;
     core.fragmentStoresAndAtomics = supported.features.fragmentStoresAndAtomics;
+    core.multiDrawIndirect = supported.features.multiDrawIndirect;
     m_caps.fragmentStores = core.fragmentStoresAndAtomics;
+    m_caps.multiDrawIndirect = core.multiDrawIndirect && f12.drawIndirectCount;
     m_caps.independentBlend = core.independentBlend;
     m_caps.primitiveIdInFragment = core.geometryShader;
     m_caps.vertexStores = core.vertexPipelineStoresAndAtomics;
@@ -218,7 +221,9 @@ Result<void> Context::createDevice(const VkPhysicalDeviceFeatures& core, bool sw
         devExts.push_back(VK_EXT_PROVOKING_VERTEX_EXTENSION_NAME);
     }
     if (swapchain) devExts.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
-    VkPhysicalDeviceFeatures2 enable{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &enable13, core};
+    VkPhysicalDeviceVulkan12Features enable12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &enable13};
+    enable12.drawIndirectCount = m_caps.multiDrawIndirect ? VK_TRUE : VK_FALSE;
+    VkPhysicalDeviceFeatures2 enable{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &enable12, core};
 
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -264,6 +269,9 @@ Result<std::shared_ptr<Context>> Context::adopt(const ExternalDevice& e, bool sw
     ctx->m_caps.vertexStores = f.core.vertexPipelineStoresAndAtomics;
     ctx->m_caps.fragmentStores = f.core.fragmentStoresAndAtomics;
     ctx->m_caps.independentBlend = f.core.independentBlend;
+    // The clusters' draws need drawIndirectCount too, which the host's device need not have
+    // enabled: an adopted device draws every cluster.
+    ctx->m_caps.multiDrawIndirect = false;
     ctx->m_caps.provokingVertexLast =
         f.provokingVertexLast && extensionEnabled(e, VK_EXT_PROVOKING_VERTEX_EXTENSION_NAME);
     LANTERN_TRY(ctx->finishSetup(pipelineCache));

@@ -51,6 +51,8 @@ struct Capabilities {
     bool fragmentStores = false;
     /// independentBlend: weighted transparency's two attachments blend differently
     bool independentBlend = false;
+    /// multiDrawIndirect and drawIndirectCount: the clusters' indirect draws (gpu/Clusters.h)
+    bool multiDrawIndirect = false;
     std::uint32_t colorDepthSampleCounts = VK_SAMPLE_COUNT_1_BIT;  ///< float colour & depth
 };
 

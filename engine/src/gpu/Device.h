@@ -74,6 +74,8 @@ struct FrameReadback {
     /// Flat triangles given to the per-triangle lighting pass (gpu/FlatLight.h); those it
     /// finds outside the view or back-facing are skipped, the others lit once.
     std::uint64_t flatTriangles = 0;
+    /// The clustered draws' triangles and those the culling pass kept (gpu/Clusters.h).
+    std::uint64_t clusterTriangles = 0, clusterTrianglesDrawn = 0;
     /// When the frame asked for them (TargetDesc::ids, the probe): per pixel (draw index + 1,
     /// primitive id); 0: no draw.
     std::vector<std::uint32_t> ids;

@@ -243,6 +243,13 @@ Result<void> FrameRing::preparePrePasses(Slot& slot, const DrawList& list,
     if (m_flatLighter)
         LANTERN_TRY(m_flatLighter->prepare(slot.flat, list, scene,
                                            slot.deforming ? &slot.deform : nullptr, flatPerTriangle));
+    if (list.clusterCulling && scene.clusters() && !m_culler) {
+        auto culler = Culler::create(m_ctx, m_pipelines);
+        if (!culler) return std::move(culler).error();
+        m_culler = std::move(*culler);
+    }
+    slot.cull.recordCount = 0;
+    if (m_culler) LANTERN_TRY(m_culler->prepare(slot.cull, list, scene));
     if (!m_shadowPass) {
         auto shadows = ShadowPass::create(m_ctx, m_pipelines);
         if (!shadows) return std::move(shadows).error();
@@ -443,7 +450,7 @@ Result<std::uint32_t> FrameRing::submit(const DrawList& list,
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     LANTERN_VK_TRY(vkBeginCommandBuffer(slot.cmd, &bi));
     const FramePasses passes{m_overlays.get(), m_deformer.get(), m_flatLighter.get(),
-                             m_shadowPass.get(), m_transparency.get()};
+                             m_shadowPass.get(), m_transparency.get(), m_culler.get()};
     recordFrame(m_pipelines.layout(), passes, slot, *scene, list, *arena, pipelines, hooks);
     LANTERN_VK_TRY(vkEndCommandBuffer(slot.cmd));
     LANTERN_TRY(queueSubmit(slot, hooks));

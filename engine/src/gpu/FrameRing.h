@@ -7,6 +7,7 @@
 #pragma once
 
 #include "gpu/ClearDraw.h"
+#include "gpu/Clusters.h"
 #include "gpu/Context.h"
 #include "gpu/Deform.h"
 #include "gpu/Device.h"
@@ -82,6 +83,7 @@ public:
         DeformSlot deform;      ///< skinned and morphing streams (frames with deforms only)
         bool deforming = false; ///< this frame records the deformation pre-pass
         FlatSlot flat;          ///< flat triangles lit once per triangle (gpu/FlatLight.h)
+        CullSlot cull;          ///< the clusters' culling pass (gpu/Clusters.h)
         ShadowSlot shadow;      ///< the shadow maps (a 1 x 1 layer when the frame has none)
         TransparencySlot transparency;  ///< fragment lists or weighted sums (gpu/Transparency.h)
         /// Every colour this frame writes comes from a guarded fragment variant or the clear
@@ -116,6 +118,7 @@ private:
     std::unique_ptr<OverlayPipelines> m_overlays;  ///< made on first use
     std::unique_ptr<Deformer> m_deformer;          ///< made on first use
     std::unique_ptr<FlatLighter> m_flatLighter;    ///< made on first use
+    std::unique_ptr<Culler> m_culler;              ///< made on first use
     std::unique_ptr<ClearDraw> m_clearDraw;        ///< made on first use
     std::unique_ptr<ShadowPass> m_shadowPass;      ///< made on first use
     std::unique_ptr<TransparencyPass> m_transparency;  ///< made on first use
@@ -144,6 +147,7 @@ struct FramePasses {
     const FlatLighter* flatLighter = nullptr;
     const ShadowPass* shadows = nullptr;
     const TransparencyPass* transparency = nullptr;
+    const Culler* culler = nullptr;
 };
 void recordFrame(VkPipelineLayout layout, const FramePasses& passes, FrameRing::Slot& slot,
                  const SceneBuffers& scene, const DrawList& list,

@@ -264,6 +264,11 @@ Result<FrameReadback> readBack(Context& ctx, const FrameRing::Slot& slot, lanter
     }
     r.draws = slot.draws;
     r.flatTriangles = slot.flat.triangles;
+    if (slot.cull.any()) {
+        LANTERN_TRY(invalidate(ctx, slot.cull.counts));
+        r.clusterTriangles = slot.cull.triangles;
+        std::memcpy(&r.clusterTrianglesDrawn, slot.cull.counts.mapped, sizeof(std::uint32_t));
+    }
     if (slot.queries) {
         std::uint64_t ts[2] = {0, 0};
         if (vkGetQueryPoolResults(ctx.device(), slot.queries, 0, 2, sizeof ts, ts, 8,

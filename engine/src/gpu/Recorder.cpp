@@ -23,7 +23,7 @@ struct FrameRecorder {
     const FrameRing::ArenaLayout& arena;
 
     void beginAttachments() const;
-    void bindStreams(const DrawCommand& d, std::uint32_t flatJob) const;
+    void bindStreams(const DrawCommand& d, std::uint32_t flatJob, std::size_t index) const;
     void shadowMaps(const ShadowPass& shadows) const;
     void drawDepth(const DrawCommand& d) const;
     void drawViews(const std::vector<VkPipeline>& pipelines, bool overlaysToo) const;
@@ -71,7 +71,7 @@ void FrameRecorder::beginAttachments() const {
 // coordinates (either set) and tangents read a stride-0 default (white, zero, zero). `flatJob`: a flat draw lit by the
 // per-triangle pass, which binds no streams: its index list, written by the pass at three
 // times the draw's first record, names vertices whose corners flat.vert pulls from the job.
-void FrameRecorder::bindStreams(const DrawCommand& d, std::uint32_t flatJob) const {
+void FrameRecorder::bindStreams(const DrawCommand& d, std::uint32_t flatJob, std::size_t index) const {
     const PrimitiveBuffers& gp = scene.primitive(d.mesh, d.primitive);
     if (flatJob != kNoFlatJob) {
         vkCmdBindIndexBuffer(cmd, slot.flat.indices.get(), 0, VK_INDEX_TYPE_UINT32);
@@ -133,7 +133,10 @@ void FrameRecorder::bindStreams(const DrawCommand& d, std::uint32_t flatJob) con
     vkCmdBindVertexBuffers2(cmd, 0, kBindings, buffers, offsets, nullptr, strides);
     // An instanced draw's instances read their transforms at gl_InstanceIndex, which starts at
     // firstInstance (shaders/include/instance.glsl).
-    if (gp.indexCount > 0) {
+    // A clustered draw draws the clusters the culling pass kept (gpu/Clusters.h).
+    if (const CullSlot::Range* clusters = slot.cull.any() ? slot.cull.range(index) : nullptr) {
+        drawClusters(cmd, slot.cull, *clusters, geometry);
+    } else if (gp.indexCount > 0) {
         vkCmdBindIndexBuffer(cmd, geometry, gp.index, VK_INDEX_TYPE_UINT32);
         vkCmdDrawIndexed(cmd, gp.indexCount, d.instanceCount, 0, 0, d.firstInstance);
     } else {
@@ -241,6 +244,7 @@ void FrameRecorder::drawViews(const std::vector<VkPipeline>& pipelines, bool ove
         for (const DrawCommand& d : v.draws) {
             const std::uint32_t flatJob =
                 counter < slot.flat.drawJobs.size() ? slot.flat.drawJobs[counter] : kNoFlatJob;
+            const std::size_t index = counter;
             const VkPipeline p = pipelines[counter++];
             if (p == VK_NULL_HANDLE) continue;
             if (p != bound) {
@@ -268,7 +272,7 @@ void FrameRecorder::drawViews(const std::vector<VkPipeline>& pipelines, bool ove
             if (flatJob != kNoFlatJob) block.flatJob = flatJob;
             vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
                                0, sizeof(DrawBlock), &block);
-            bindStreams(d, flatJob);
+            bindStreams(d, flatJob, index);
         }
         // The display overlays never meet the AOV pass (they refuse AOVs).
         if (overlaysToo && slot.overlays.any())
@@ -403,6 +407,7 @@ void recordFrame(VkPipelineLayout layout, const FramePasses& passes, FrameRing::
     r.beginAttachments();
     if (slot.queries) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, slot.queries, 0);
     if (slot.deforming && passes.deformer) passes.deformer->record(cmd, slot.deform);
+    if (slot.cull.any() && passes.culler) passes.culler->record(cmd, slot.cull);
     // The maps before anything that lights (the flat pass and the scene pass read them); a
     // frame without them makes its 1 x 1 stand-in readable, never read.
     if (slot.shadow.rendering)

@@ -192,6 +192,9 @@ Result<std::shared_ptr<SceneBuffers>> SceneBuffers::create(std::shared_ptr<Conte
                         VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                         VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_2_INDEX_READ_BIT |
                             VK_ACCESS_2_SHADER_STORAGE_READ_BIT));
+    auto clusters = SceneClusters::create(c, g->m_scene);
+    if (!clusters) return std::move(clusters).error();
+    if ((*clusters)->any()) g->m_clusters = std::move(*clusters);
     LANTERN_TRY(g->uploadDeformInputs());
     LANTERN_TRY(g->uploadTextures(textureLayout));
     return g;

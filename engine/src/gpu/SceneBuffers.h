@@ -5,6 +5,7 @@
 // where the per-triangle pass cannot run) are built on first use.
 #pragma once
 
+#include "gpu/Clusters.h"
 #include "gpu/Context.h"
 #include "gpu/Resources.h"
 
@@ -78,6 +79,8 @@ public:
     /// Bytes of the per-corner flat streams built so far (0: none).
     std::size_t flatGeometryBytes() const { return std::size_t(m_flatGeometry.size); }
     std::size_t geometryBytes() const { return std::size_t(m_geometry.size); }
+    /// The clusters of the large triangle meshes (gpu/Clusters.h); null when none is large.
+    SceneClusters* clusters() const { return m_clusters.get(); }
 
 private:
     SceneBuffers() = default;
@@ -102,6 +105,7 @@ private:
     Buffer m_geometry;
     Buffer m_flatGeometry;
     Buffer m_deformInput;
+    std::unique_ptr<SceneClusters> m_clusters;
     std::mutex m_flatMutex;
     bool m_flatReady = false, m_flatTriangles = false;
     /// Flat streams replaced by a larger set: a frame in flight may still read them.

@@ -84,6 +84,7 @@ Result<void> SceneBuffers::updateVertices(std::uint32_t mesh, std::uint32_t prim
                                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                VK_ACCESS_2_SHADER_STORAGE_READ_BIT));
     }
+    if (m_clusters) LANTERN_TRY(m_clusters->update(mesh, prim));
     std::lock_guard lock(m_flatMutex);
     if (m_flatGeometry.get() && gp.flatVertexCount > 0) LANTERN_TRY(fillFlatStreams());
     return {};

@@ -68,6 +68,8 @@ Result<void> renderBands(gpu::Device& device, const std::shared_ptr<gpu::SceneBu
         auto band = device.collect(slot, {}, /*inPlace=*/true);
         if (!band) return fail(std::move(band).error());
         stats.draws += band->draws;
+        stats.clusterTriangles += band->clusterTriangles;
+        stats.clusterTrianglesDrawn += band->clusterTrianglesDrawn;
         if (band->gpuMs >= 0.0) stats.gpuMs = std::max(stats.gpuMs, 0.0) + band->gpuMs;
         if (band->nonFinite > 0) {
             LANTERN_TRY(device.drain());

@@ -68,6 +68,11 @@ Result<void> checkOptions(const gpu::Device& device, const RenderOptions& o) {
         return makeError(ErrorCode::InvalidInput,
                          "line width " + std::to_string(o.lineWidth) + " is not in [1, 255]",
                          "--line-width");
+    if (!(o.lodError >= 0.0 && o.lodError <= 1e6))
+        return makeError(ErrorCode::InvalidInput,
+                         "level-of-detail error " + std::to_string(o.lodError) +
+                             " pixels is not in [0, 1e6]",
+                         "--lod-error");
     // Signed values first: the device's check reads sizes and sample counts as unsigned.
     if (o.width < 1 || o.height < 1)
         return makeError(ErrorCode::InvalidInput,
@@ -134,6 +139,8 @@ Result<RenderedFrame> renderFrame(gpu::Device& device, const std::shared_ptr<gpu
     stats.waitMs = msSince(t1);
     stats.gpuMs = readback->gpuMs;
     stats.draws = readback->draws;
+    stats.clusterTriangles = readback->clusterTriangles;
+    stats.clusterTrianglesDrawn = readback->clusterTrianglesDrawn;
     stats.nonFinite = readback->nonFinite;
     stats.pipelinesCreated = device.pipelineCount() - pipelinesBefore;
     return RenderedFrame{std::move(*f), std::move(*readback)};
