@@ -148,6 +148,8 @@ const char* const kRenderDoc =
     "matrices, or camera=\"FILE.json\" (docs/cameras.md). shadows=True: every light casts "
     "shadows (docs/shadows.md), filtered by shadow_filter=\"pcf\" (the default), "
     "\"hardware\" or \"pcss\" (soft), with shadow_cascades=2 maps per directional light. "
+    "lod_error=PIXELS draws large meshes at the coarsest level of detail within that error on "
+    "screen (0: exact); culling=False draws every cluster (the same picture). "
     "transparency=\"exact\" (the default; \"sorted\" with "
     "gl_compat), \"sorted\" or \"weighted\": how blended materials are composited "
     "(docs/transparency.md)";
@@ -185,7 +187,7 @@ void defineRenderer(py::module_& m) {
                std::optional<std::vector<std::vector<double>>> cameraToWorld,
                std::optional<double> znear, std::optional<double> zfar, bool shadows,
                std::optional<std::string> transparency, std::optional<std::string> shadowFilter,
-               std::optional<int> shadowCascades) {
+               std::optional<int> shadowCascades, double lodError, bool culling) {
                 RenderArgs a{time,       width,   height,      std::move(shading),
                              std::move(specular), msaa, std::move(background), std::move(lookAt),
                              std::move(perspective), std::move(ortho), std::nullopt, twoSided,
@@ -206,6 +208,8 @@ void defineRenderer(py::module_& m) {
                 a.transparency = std::move(transparency);
                 a.shadowFilter = std::move(shadowFilter);
                 a.shadowCascades = shadowCascades;
+                a.lodError = lodError;
+                a.culling = culling;
                 return r.render(scene, a);
             },
             py::arg("scene"), py::kw_only(), py::arg("time") = 0.0, py::arg("width") = 1280,
@@ -222,8 +226,8 @@ void defineRenderer(py::module_& m) {
             py::arg("camera_to_world") = py::none(), py::arg("near") = py::none(),
             py::arg("far") = py::none(), py::arg("shadows") = false,
             py::arg("transparency") = py::none(), py::arg("shadow_filter") = py::none(),
-            py::arg("shadow_cascades") = py::none(),
-            kRenderDoc);
+            py::arg("shadow_cascades") = py::none(), py::arg("lod_error") = 0.0,
+            py::arg("culling") = true, kRenderDoc);
 }
 
 } // namespace

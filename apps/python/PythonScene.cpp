@@ -272,6 +272,10 @@ RenderOptions renderOptions(const RenderArgs& a) {
             throw py::value_error("shadow_cascades " + std::to_string(*a.shadowCascades) + ": 1 to 8");
         o.shadows.cascades = *a.shadowCascades;
     }
+    if (!(a.lodError >= 0.0 && a.lodError <= 1e6))
+        throw py::value_error("lod_error " + std::to_string(a.lodError) + ": 0 to 1e6 pixels");
+    o.lodError = a.lodError;
+    o.culling = a.culling;
     if (a.transparency) {
         const std::string& t = *a.transparency;
         if (t == "sorted") o.transparency = TransparencyMethod::Sorted;

@@ -82,6 +82,8 @@ struct RenderArgs {
     bool shadows = false;          ///< shadows=: every light casts shadows
     std::optional<std::string> shadowFilter;  ///< shadow_filter=: "hardware", "pcf" or "pcss"
     std::optional<int> shadowCascades;        ///< shadow_cascades=: 1 to 8
+    double lodError = 0.0;                    ///< lod_error=: pixels, 0 exact (--lod-error)
+    bool culling = true;                      ///< culling=: False draws everything (--no-culling)
     std::optional<std::string> transparency;  ///< transparency=: "sorted", "exact" or "weighted"
     /// Computer-vision cameras (docs/python.md): intrinsics (fx, fy, cx, cy) or a 3x3 K in
     /// OpenCV pixels; a pose as OpenCV's world_to_camera or glTF's camera_to_world (4x4);

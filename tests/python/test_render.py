@@ -85,6 +85,19 @@ def test_shadow_filter_and_cascades(renderer, teapot):
         renderer.render(teapot, shadows=True, shadow_cascades=9, **SIZE)
 
 
+def test_culling_and_level_of_detail(renderer, teapot):
+    # Culling changes no pixel; a level-of-detail bound keeps the picture close; a negative
+    # bound raises ValueError.
+    exact = renderer.render(teapot, width=128, height=96)
+    everything = renderer.render(teapot, width=128, height=96, culling=False)
+    assert np.array_equal(exact, everything)
+    coarse = renderer.render(teapot, width=128, height=96, lod_error=2.0)
+    assert np.isfinite(coarse).all()
+    assert np.abs(coarse - exact).mean() < 0.02
+    with pytest.raises(ValueError, match="lod_error"):
+        renderer.render(teapot, lod_error=-1.0, **SIZE)
+
+
 def test_transparency_methods(renderer, teapot):
     # The teapot blends nothing: every method gives the same picture (it pays for none);
     # tests/image/TransparencyTest.cpp holds where they differ.

@@ -322,7 +322,10 @@ int Viewer::finish(int code) {
     if (auto r = m_window.target().waitIdle(); !r && code == kOk) code = report(r.error());
     m_input.setUi(nullptr);
     m_ui.reset();
-    if (m_args.stats) m_stats.print(m_window.target());
+    if (m_args.stats) {
+        m_stats.print(m_window.target());
+        m_lod.print();
+    }
     if (const int sig = stopSignal(); sig != 0 && code == kOk) code = 128 + sig;
     if (m_renderer.device().validationEnabled && m_renderer.validationMessageCount() > 0) {
         std::cerr << "lantern: error: the Vulkan validation layer reported "
