@@ -99,38 +99,14 @@ bool clustered(const DrawCommand& d, const PrimitiveBuffers& gp) {
 } // namespace
 
 Result<std::unique_ptr<Culler>> Culler::create(Context& ctx, Pipelines& pipelines) {
+    static_assert(LANTERN_BINDING_CULL_CLUSTERS == 0 && LANTERN_BINDING_CULL_VIEWS == 4);
     std::unique_ptr<Culler> c(new Culler(ctx));
-    const VkDevice dev = ctx.device();
-    VkDescriptorSetLayoutBinding bindings[5];
-    for (std::uint32_t b = 0; b < 5; ++b)
-        bindings[b] = {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
-    VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    lci.bindingCount = 5;
-    lci.pBindings = bindings;
-    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
-    LANTERN_VK_TRY(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &setLayout));
-    c->m_setLayout = UniqueDescriptorSetLayout(dev, setLayout);
-    VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(std::uint32_t)};
-    VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    plci.setLayoutCount = 1;
-    plci.pSetLayouts = &setLayout;
-    plci.pushConstantRangeCount = 1;
-    plci.pPushConstantRanges = &push;
-    VkPipelineLayout layout = VK_NULL_HANDLE;
-    LANTERN_VK_TRY(vkCreatePipelineLayout(dev, &plci, nullptr, &layout));
-    c->m_layout = UniquePipelineLayout(dev, layout);
-    auto module = pipelines.shader(std::uint32_t(shaders::ShaderId::cull_comp));
-    if (!module) return std::move(module).error();
-    VkComputePipelineCreateInfo cpci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    cpci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-    cpci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    cpci.stage.module = *module;
-    cpci.stage.pName = "main";
-    cpci.layout = layout;
-    VkPipeline pipeline = VK_NULL_HANDLE;
-    LANTERN_VK_TRY(vkCreateComputePipelines(dev, ctx.pipelineCache(), 1, &cpci, nullptr, &pipeline));
-    c->m_pipeline = UniquePipeline(dev, pipeline);
-    ctx.setName(VK_OBJECT_TYPE_PIPELINE, pipeline, "cluster culling pre-pass");
+    auto pass = pipelines.computePass(std::uint32_t(shaders::ShaderId::cull_comp), 5,
+                                      sizeof(std::uint32_t), "cluster culling pre-pass");
+    if (!pass) return std::move(pass).error();
+    c->m_setLayout = std::move(pass->setLayout);
+    c->m_layout = std::move(pass->layout);
+    c->m_pipeline = std::move(pass->pipeline);
     return c;
 }
 

@@ -21,44 +21,15 @@ Error tooLarge() {
 } // namespace
 
 Result<std::unique_ptr<Deformer>> Deformer::create(Context& ctx, Pipelines& pipelines) {
+    static_assert(LANTERN_BINDING_DEFORM_INPUT == 0 && LANTERN_BINDING_DEFORM_PARAMS == 1 &&
+                  LANTERN_BINDING_DEFORM_OUTPUT == 2);
     std::unique_ptr<Deformer> d(new Deformer(ctx));
-    const VkDevice dev = ctx.device();
-    VkDescriptorSetLayoutBinding bindings[3] = {
-        {LANTERN_BINDING_DEFORM_INPUT, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
-         VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-        {LANTERN_BINDING_DEFORM_PARAMS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
-         VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-        {LANTERN_BINDING_DEFORM_OUTPUT, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
-         VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
-    VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    lci.bindingCount = 3;
-    lci.pBindings = bindings;
-    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
-    LANTERN_VK_TRY(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &setLayout));
-    d->m_setLayout = UniqueDescriptorSetLayout(dev, setLayout);
-
-    VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(DeformJob)};
-    VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    plci.setLayoutCount = 1;
-    plci.pSetLayouts = &setLayout;
-    plci.pushConstantRangeCount = 1;
-    plci.pPushConstantRanges = &push;
-    VkPipelineLayout layout = VK_NULL_HANDLE;
-    LANTERN_VK_TRY(vkCreatePipelineLayout(dev, &plci, nullptr, &layout));
-    d->m_layout = UniquePipelineLayout(dev, layout);
-
-    auto module = pipelines.shader(std::uint32_t(shaders::ShaderId::deform_comp));
-    if (!module) return std::move(module).error();
-    VkComputePipelineCreateInfo cpci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    cpci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-    cpci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    cpci.stage.module = *module;
-    cpci.stage.pName = "main";
-    cpci.layout = layout;
-    VkPipeline pipeline = VK_NULL_HANDLE;
-    LANTERN_VK_TRY(vkCreateComputePipelines(dev, ctx.pipelineCache(), 1, &cpci, nullptr, &pipeline));
-    d->m_pipeline = UniquePipeline(dev, pipeline);
-    ctx.setName(VK_OBJECT_TYPE_PIPELINE, pipeline, "deform pre-pass");
+    auto pass = pipelines.computePass(std::uint32_t(shaders::ShaderId::deform_comp), 3,
+                                      sizeof(DeformJob), "deform pre-pass");
+    if (!pass) return std::move(pass).error();
+    d->m_setLayout = std::move(pass->setLayout);
+    d->m_layout = std::move(pass->layout);
+    d->m_pipeline = std::move(pass->pipeline);
     return d;
 }
 

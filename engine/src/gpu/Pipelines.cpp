@@ -324,4 +324,41 @@ Result<void> Pipelines::prepare(const std::vector<PipelineKey>& keys) {
     return {};
 }
 
+Result<Pipelines::ComputePass> Pipelines::computePass(std::uint32_t shaderId, std::uint32_t storageBuffers,
+                                                     std::uint32_t pushBytes, const char* name) {
+    const VkDevice dev = m_ctx->device();
+    ComputePass pass;
+    std::vector<VkDescriptorSetLayoutBinding> bindings;
+    for (std::uint32_t b = 0; b < storageBuffers; ++b)
+        bindings.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+    VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    lci.bindingCount = storageBuffers;
+    lci.pBindings = bindings.data();
+    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &setLayout));
+    pass.setLayout = UniqueDescriptorSetLayout(dev, setLayout);
+    const VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes};
+    VkPipelineLayoutCreateInfo plci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    plci.setLayoutCount = 1;
+    plci.pSetLayouts = &setLayout;
+    plci.pushConstantRangeCount = pushBytes > 0 ? 1u : 0u;
+    plci.pPushConstantRanges = &push;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkCreatePipelineLayout(dev, &plci, nullptr, &layout));
+    pass.layout = UniquePipelineLayout(dev, layout);
+    auto module = shader(shaderId);
+    if (!module) return std::move(module).error();
+    VkComputePipelineCreateInfo cpci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    cpci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    cpci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    cpci.stage.module = *module;
+    cpci.stage.pName = "main";
+    cpci.layout = layout;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    LANTERN_VK_TRY(vkCreateComputePipelines(dev, m_ctx->pipelineCache(), 1, &cpci, nullptr, &pipeline));
+    pass.pipeline = UniquePipeline(dev, pipeline);
+    m_ctx->setName(VK_OBJECT_TYPE_PIPELINE, pipeline, name);
+    return pass;
+}
+
 } // namespace lantern::gpu

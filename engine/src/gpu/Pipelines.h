@@ -37,6 +37,17 @@ public:
     /// A shader module of the embedded registry (shaders::ShaderId), made on first use.
     Result<VkShaderModule> shader(std::uint32_t id);
 
+    /// A compute pre-pass of its own (deformation, cluster culling): a set of `storageBuffers`
+    /// storage buffers at bindings 0, 1, ..., a layout of that set and `pushBytes` of push
+    /// constants, and the pipeline of compute shader `shaderId`, named `name`.
+    struct ComputePass {
+        UniqueDescriptorSetLayout setLayout;
+        UniquePipelineLayout layout;
+        UniquePipeline pipeline;
+    };
+    Result<ComputePass> computePass(std::uint32_t shaderId, std::uint32_t storageBuffers,
+                                    std::uint32_t pushBytes, const char* name);
+
 private:
     Pipelines() = default;
     Result<GraphicsPipelineDesc> describe(const PipelineKey& key);
