@@ -195,8 +195,11 @@ VkPhysicalDeviceFeatures Context::readOptionalFeatures() {
     core.vertexPipelineStoresAndAtomics = supported.features.vertexPipelineStoresAndAtomics;
     core.fragmentStoresAndAtomics = supported.features.fragmentStoresAndAtomics;
     core.multiDrawIndirect = supported.features.multiDrawIndirect;
+    // The clusters' indirect draws name their instance (an instanced draw's records).
+    core.drawIndirectFirstInstance = supported.features.drawIndirectFirstInstance;
     m_caps.fragmentStores = core.fragmentStoresAndAtomics;
-    m_caps.multiDrawIndirect = core.multiDrawIndirect && f12.drawIndirectCount;
+    // Capabilities::multiDrawIndirect stands for the three features the clusters' draws use.
+    m_caps.multiDrawIndirect = core.multiDrawIndirect && core.drawIndirectFirstInstance && f12.drawIndirectCount;
     m_caps.independentBlend = core.independentBlend;
     m_caps.primitiveIdInFragment = core.geometryShader;
     m_caps.vertexStores = core.vertexPipelineStoresAndAtomics;
