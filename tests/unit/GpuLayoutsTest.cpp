@@ -1,5 +1,6 @@
 // The C++ mirrors in gpu/GpuLayouts.h against the member offsets in the SPIR-V that ships
 // (the embedded blobs), so a change on either side without the other fails here.
+#include "gpu/Clusters.h"
 #include "gpu/GpuLayouts.h"
 
 #include "ShaderBlobs.h"
@@ -72,6 +73,8 @@ struct Row {
 };
 
 #define LANTERN_ROW(T, M) Row{#T, #M, offsetof(lantern::gpu::T, M)}
+// A mirror whose GLSL struct (or member) has another name (the cluster-culling pass's).
+#define LANTERN_ROW_AS(T, GLSL, M, GLSL_M) Row{GLSL, GLSL_M, offsetof(lantern::gpu::T, M)}
 
 TEST(GpuLayouts, MirrorsMatchTheShippedSpirv) {
     const Layouts layouts = allLayouts();
@@ -113,6 +116,32 @@ TEST(GpuLayouts, MirrorsMatchTheShippedSpirv) {
         LANTERN_ROW(DeformJob, indices),         LANTERN_ROW(DeformJob, matrices),
         LANTERN_ROW(DeformJob, morphWeights),    LANTERN_ROW(DeformJob, outPosition),
         LANTERN_ROW(DeformJob, outNormal),       LANTERN_ROW(DeformJob, outCentroid),
+        LANTERN_ROW_AS(ClusterData, "Cluster", sphere, "sphere"),
+        LANTERN_ROW_AS(ClusterData, "Cluster", apex, "apex"),
+        LANTERN_ROW_AS(ClusterData, "Cluster", axis, "axis"),
+        LANTERN_ROW_AS(ClusterData, "Cluster", firstIndex, "range"),
+        LANTERN_ROW_AS(CullLevel, "Level", error, "error"),
+        LANTERN_ROW_AS(CullLevel, "Level", firstCluster, "firstCluster"),
+        LANTERN_ROW_AS(CullLevel, "Level", clusterCount, "clusterCount"),
+        LANTERN_ROW_AS(CullLevel, "Level", padding, "padding"),
+        LANTERN_ROW_AS(CullView, "View", planes, "planes"),
+        LANTERN_ROW_AS(CullView, "View", projection, "projection"),
+        LANTERN_ROW_AS(CullRecord, "Record", viewFromModel, "viewFromModel"),
+        LANTERN_ROW_AS(CullRecord, "Record", normalMatrix, "normalMatrix"),
+        LANTERN_ROW_AS(CullRecord, "Record", sphere, "sphere"),
+        LANTERN_ROW_AS(CullRecord, "Record", view, "view"),
+        LANTERN_ROW_AS(CullRecord, "Record", flags, "flags"),
+        LANTERN_ROW_AS(CullRecord, "Record", firstCommand, "firstCommand"),
+        LANTERN_ROW_AS(CullRecord, "Record", slots, "slots"),
+        LANTERN_ROW_AS(CullRecord, "Record", firstInstance, "firstInstance"),
+        LANTERN_ROW_AS(CullRecord, "Record", levelCount, "levelCount"),
+        LANTERN_ROW_AS(CullRecord, "Record", lodCommand, "lodCommand"),
+        LANTERN_ROW_AS(CullRecord, "Record", drawRecords, "drawRecords"),
+        LANTERN_ROW_AS(CullRecord, "Record", scale, "scale"),
+        LANTERN_ROW_AS(CullRecord, "Record", indexBase, "indexBase"),
+        LANTERN_ROW_AS(CullRecord, "Record", lodSlots, "lodSlots"),
+        LANTERN_ROW_AS(CullRecord, "Record", countIndex, "countIndex"),
+        LANTERN_ROW_AS(CullRecord, "Record", levels, "levels"),
     };
     for (const Row& r : rows) {
         SCOPED_TRACE(std::string(r.type) + "." + r.member);
@@ -129,7 +158,8 @@ TEST(GpuLayouts, EveryShaderMemberIsMirrored) {
     const std::map<std::string, std::size_t> expectedCounts = {
         {"FrameBlock", 7}, {"ShadowData", 3}, {"LightData", 8}, {"MaterialSideData", 4}, {"MaterialData", 8}, {"DrawBlock", 6},
         {"InstanceData", 2},
-        {"DeformJob", 16}, {"FlatJob", 17}};
+        {"DeformJob", 16}, {"FlatJob", 17},
+        {"Cluster", 4}, {"Level", 4}, {"View", 2}, {"Record", 16}};
     const Layouts layouts = allLayouts();
     for (const auto& [type, count] : expectedCounts) {
         auto it = layouts.find(type);
