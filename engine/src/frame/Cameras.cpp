@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace lantern::frame {
 namespace {
@@ -76,9 +77,9 @@ FramingSphere framingSphere(const Scene& scene, int root) {
     return s;
 }
 
-ViewCamera framingCamera(const Scene& scene, int root, const CameraSpec& spec, double aspect) {
+ViewCamera framingCamera(const FramingSphere& sphere, const CameraSpec& spec, double aspect) {
     ViewCamera rc;
-    const auto [c, r, b] = framingSphere(scene, root);
+    const auto& [c, r, b] = sphere;
     const glm::dvec3 dir = glm::length(spec.framingDirection) > 0
                                ? glm::normalize(spec.framingDirection)
                                : glm::dvec3(0, 0, -1);
@@ -220,6 +221,7 @@ Result<ViewCamera> resolveCamera(const Scene& scene, const Pose& pose, const Cam
             }
     }
     ViewCamera rc;
+    std::optional<FramingSphere> framed;  // the bounds automatic framing fitted (scanned once)
     switch (source) {
     case Source::SceneCamera: {
         auto c = sceneCamera(scene, pose, camera, object);
@@ -233,7 +235,10 @@ Result<ViewCamera> resolveCamera(const Scene& scene, const Pose& pose, const Cam
         rc.description = "GL default camera";
         break;
     case Source::Framing:
-    case Source::Automatic: rc = framingCamera(scene, pose.root, spec, aspect); break;
+    case Source::Automatic:
+        framed = framingSphere(scene, pose.root);
+        rc = framingCamera(*framed, spec, aspect);
+        break;
     }
     if (spec.lookAt && spec.viewFromWorld)
         return makeError(ErrorCode::InvalidInput, "give either lookAt or viewFromWorld, not both",
@@ -248,10 +253,9 @@ Result<ViewCamera> resolveCamera(const Scene& scene, const Pose& pose, const Cam
         rc.description += " with lookAt";
         // Framing's perspective planes were fitted from its own eye: fitted again from this
         // one, so that an eye inside the bounds (walking through a scene) sees them.
-        if (source == Source::Framing && !spec.framingOrthographic && !spec.projection) {
-            const FramingSphere s = framingSphere(scene, pose.root);
-            const double e = glm::length(spec.lookAt->eye - s.c), far = e + 1.5 * s.r;
-            rc.projection.znear = std::max(e - 1.5 * s.r, far * 1e-4);
+        if (framed && !spec.framingOrthographic && !spec.projection) {
+            const double e = glm::length(spec.lookAt->eye - framed->c), far = e + 1.5 * framed->r;
+            rc.projection.znear = std::max(e - 1.5 * framed->r, far * 1e-4);
             rc.projection.zfar = far;
         }
     }

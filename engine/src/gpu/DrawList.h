@@ -143,8 +143,8 @@ struct DrawList {
     /// [bandTop, bandTop + target.height), and every view keeps its place in the picture.
     /// pictureHeight 0: the target is the whole picture.
     std::uint32_t bandTop = 0, pictureHeight = 0;
-    /// The clusters of large meshes are culled by the pre-pass (gpu/Clusters.h); off for
-    /// frames that read the primitive ids (each indirect draw counts its own from 0).
+    /// The clusters of large meshes are culled by the pre-pass (gpu/Clusters.h), which draws
+    /// whole the frames that read the primitive ids (each indirect draw counts its own from 0).
     bool clusterCulling = false;
     float lodError = 0.0f;  ///< the level-of-detail bound in pixels (0: full detail)
 

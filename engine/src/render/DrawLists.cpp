@@ -258,7 +258,7 @@ gpu::DrawList buildDrawList(const Scene& scene, const frame::Frame& frame,
         if (instancing) mergeInstances(frame, list.views.back().draws, list.instances);
     }
     addDeforms(scene, frame, list);
-    list.clusterCulling = o.culling && !list.target.readIds();
+    list.clusterCulling = o.culling;
     list.lodError = list.clusterCulling ? float(o.lodError) : 0.0f;
     packShadows(scene, frame, o, list);
     // A frame without blended draws records no transparency pass and allocates nothing for it.
