@@ -117,12 +117,13 @@ public:
 
 private:
     explicit SceneClusters(Context& ctx) : m_ctx(ctx) {}
-    Result<void> upload(const std::vector<ClusterData>& clusters);
+    Result<void> append(const std::vector<ClusterData>& added);
     Context& m_ctx;
     std::shared_ptr<const Scene> m_scene;
     std::vector<PrimitiveClusters> m_primitives;
     std::vector<std::size_t> m_meshFirst;
     Buffer m_clusters, m_lodIndices;
+    std::uint32_t m_clusterCount = 0;  ///< in m_clusters
     std::vector<Buffer> m_retired;  ///< replaced while a frame in flight may read them
     std::mutex m_mutex;
     bool m_levelsBuilt = false;

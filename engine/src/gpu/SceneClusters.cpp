@@ -80,19 +80,31 @@ Result<std::unique_ptr<SceneClusters>> SceneClusters::create(Context& ctx,
             s->m_primitives.push_back(pc);
         }
     }
-    if (!clusters.empty()) LANTERN_TRY(s->upload(clusters));
+    if (!clusters.empty()) LANTERN_TRY(s->append(clusters));
     return s;
 }
 
-Result<void> SceneClusters::upload(const std::vector<ClusterData>& clusters) {
-    if (m_clusters.get()) m_retired.push_back(std::move(m_clusters));
-    const VkDeviceSize bytes = clusters.size() * sizeof(ClusterData);
-    auto buffer = createBuffer(m_ctx, bytes,
-                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+// A buffer of the clusters there are and `added` after them: the old ones copied on the device
+// (not computed again), the old buffer kept for the frames in flight.
+Result<void> SceneClusters::append(const std::vector<ClusterData>& added) {
+    const VkDeviceSize kept = VkDeviceSize(m_clusterCount) * sizeof(ClusterData);
+    const VkDeviceSize bytes = added.size() * sizeof(ClusterData);
+    auto buffer = createBuffer(m_ctx, kept + bytes,
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                   VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                MemoryUsage::DeviceLocal, "scene clusters");
     if (!buffer) return std::move(buffer).error();
+    if (kept > 0)
+        LANTERN_TRY(m_ctx.submitAndWait([&](VkCommandBuffer cmd) {
+            const VkBufferCopy region{0, 0, kept};
+            vkCmdCopyBuffer(cmd, m_clusters.get(), buffer->get(), 1, &region);
+            memoryBarrier(cmd, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+        }));
+    if (m_clusters.get()) m_retired.push_back(std::move(m_clusters));
     m_clusters = std::move(*buffer);
-    return uploadToBuffer(m_ctx, m_clusters, 0, clusters.data(), bytes);
+    m_clusterCount += std::uint32_t(added.size());
+    return uploadToBuffer(m_ctx, m_clusters, kept, added.data(), bytes);
 }
 
 // Each level simplifies the one before to a quarter of its triangles (meshopt_simplify keeps
@@ -110,10 +122,7 @@ Result<void> SceneClusters::ensureLevels() {
         for (const Primitive& p : mesh.primitives) {
             PrimitiveClusters& pc = m_primitives[k++];
             if (pc.levelCount == 0) continue;
-            const std::size_t first = clusters.size();
-            clustersOf(p, p.indices.data(), p.indices.size(), 0, clusters);
-            pc.levelCount = 1;
-            pc.levels[0].firstCluster = std::uint32_t(first);
+            pc.levelCount = 1;  // level 0's clusters are on the device already
             const float* positions = &p.positions[0].x;
             const float scale = meshopt_simplifyScale(positions, p.positions.size(), 12);
             std::vector<std::uint32_t> current = p.indices, next(p.indices.size());
@@ -126,16 +135,16 @@ Result<void> SceneClusters::ensureLevels() {
                                                        p.positions.size(), 12, target, 1.0f, 0, &stepError);
                 if (n == 0 || n * 5 > current.size() * 4) break;
                 error += double(stepError) * scale;
-                const std::size_t at = clusters.size();
+                const std::size_t at = m_clusterCount + clusters.size();
                 clustersOf(p, next.data(), n, std::uint32_t(lod.size()), clusters);
                 lod.insert(lod.end(), next.begin(), next.begin() + std::ptrdiff_t(n));
                 pc.levels[pc.levelCount++] = {float(error * 1.0001), std::uint32_t(at),
-                                              std::uint32_t(clusters.size() - at), 0};
+                                              std::uint32_t(m_clusterCount + clusters.size() - at), 0};
                 current.assign(next.begin(), next.begin() + std::ptrdiff_t(n));
             }
         }
     if (clusters.empty()) return {};
-    LANTERN_TRY(upload(clusters));
+    LANTERN_TRY(append(clusters));
     if (lod.empty()) return {};
     const VkDeviceSize bytes = lod.size() * 4;
     auto buffer = createBuffer(m_ctx, bytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
