@@ -100,6 +100,8 @@ TEST_F(BenchHarness, TinyAccuracySweepWritesOneFiniteRowPerConfiguration) {
     const auto dir = test::testOutputDir();
     const auto r = runLantern({"bench",
                                "accuracy",
+                               "--sections",
+                               "shading",
                                "--shading",
                                "flat,gouraud,phong",
                                "--segments",
@@ -166,7 +168,7 @@ TEST_F(BenchHarness, TinyAccuracySweepWritesOneFiniteRowPerConfiguration) {
     const std::string md = readText(dir / "accuracy.md");
     EXPECT_NE(md.find("Pareto front"), std::string::npos);
     EXPECT_NE(md.find("fastest setting"), std::string::npos);
-    EXPECT_NE(md.find("lantern bench accuracy --shading flat,gouraud,phong"), std::string::npos)
+    EXPECT_NE(md.find("lantern bench accuracy --sections shading --shading flat,gouraud,phong"), std::string::npos)
         << "the summary names the command that reproduces it";
     expectPlot(dir, r.err);
 }
@@ -177,7 +179,7 @@ TEST_F(BenchHarness, TinyAccuracySweepWritesOneFiniteRowPerConfiguration) {
 // one map over the long field, and exact transparency's error is far below sorting's.
 TEST_F(BenchHarness, ShadowAndTransparencySectionsMeasureTheirTrades) {
     const auto dir = test::testOutputDir();
-    const auto r = runLantern({"bench", "accuracy", "--scenes", "shadow,field,crossing,foliage", "--shading", "phong",
+    const auto r = runLantern({"bench", "accuracy", "--sections", "shading", "--scenes", "shadow,field,crossing,foliage", "--shading", "phong",
                                "--segments", "32", "--msaa", "1", "--width", "96", "--height", "72",
                                "--shadow-resolution", "32,1024", "--shadow-filter", "hardware,pcf,pcss",
                                "--shadow-cascades", "1,4", "--rounds", "1", "--frames", "1", "--warmup", "1",
@@ -215,6 +217,44 @@ TEST_F(BenchHarness, ShadowAndTransparencySectionsMeasureTheirTrades) {
     const std::string md = readText(dir / "accuracy.md");
     EXPECT_NE(md.find("wrong shadow %"), std::string::npos);
     EXPECT_NE(md.find("4 cascades"), std::string::npos);
+}
+
+// The level-of-detail section times each --lod-error bound against the exact frame and
+// measures its error against it: the exact row is the reference (no error), coarser bounds
+// draw fewer triangles and differ from it, and the fronts hold the fastest and the most exact.
+TEST_F(BenchHarness, LevelOfDetailSectionMeasuresEachBoundAgainstTheExactFrame) {
+    const auto dir = test::testOutputDir();
+    const auto r = runLantern({"bench", "accuracy", "--sections", "lod", "--lod-grid", "3",
+                               "--lod-segments", "48", "--lod-errors", "16,0.5", "--width", "96",
+                               "--height", "64", "--rounds", "1", "--frames", "1", "--warmup", "1",
+                               "-q", "-o", dir.string()});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Csv csv = readCsv(dir / "lod.csv");
+    ASSERT_EQ(csv.rows.size(), 3u);  // 0 is always timed; the bounds in increasing order
+    EXPECT_EQ(csv.rows[0].at("lod_error"), "0");
+    EXPECT_EQ(csv.rows[1].at("lod_error"), "0.5");
+    EXPECT_EQ(csv.rows[2].at("lod_error"), "16");
+    const auto& exact = csv.rows[0];
+    const auto& coarse = csv.rows[2];
+    EXPECT_EQ(number(exact, "rmse"), 0.0);
+    EXPECT_EQ(number(exact, "pareto"), 1.0);
+    EXPECT_EQ(number(exact, "clustered_triangles"), 9.0 * 48 * 46);  // 24 rings, two of fans
+    EXPECT_LT(number(coarse, "clustered_triangles_drawn"),
+              0.5 * number(exact, "clustered_triangles_drawn"));
+    EXPECT_GT(number(coarse, "rmse"), 0.0);
+    EXPECT_GT(number(coarse, "flip_mean"), 0.0);
+    EXPECT_LT(number(coarse, "flip_mean"), 0.5);
+    const auto* fastest = &csv.rows[0];
+    for (const auto& row : csv.rows) {
+        EXPECT_TRUE(std::isfinite(number(row, "ms_per_frame")) && number(row, "ms_per_frame") > 0.0);
+        EXPECT_EQ(number(row, "nonfinite"), 0.0);
+        if (number(row, "ms_per_frame") < number(*fastest, "ms_per_frame")) fastest = &row;
+    }
+    EXPECT_EQ(number(*fastest, "pareto"), 1.0) << "the fastest bound is on the front";
+    const std::string md = readText(dir / "accuracy.md");
+    EXPECT_NE(md.find("## Level of detail"), std::string::npos) << md;
+    EXPECT_NE(md.find("--sections lod"), std::string::npos) << "names the command";
+    EXPECT_FALSE(std::filesystem::exists(dir / "accuracy.csv")) << "the shading section did not run";
 }
 
 // bench frame takes render's camera options and reports the in-place path (renderView) beside
@@ -287,6 +327,8 @@ TEST_F(BenchHarness, RefusesBadOptionsBeforeRendering) {
         {"scene", {"accuracy", "--scenes", "cube"}, 1, "--scenes"},
         {"shading", {"accuracy", "--shading", "toon"}, 1, "--shading"},
         {"shininess", {"accuracy", "--shininess", "-1"}, 1, "--shininess"},
+        {"accuracy section", {"accuracy", "--sections", "speed"}, 1, "--sections"},
+        {"lod bound", {"accuracy", "--lod-errors", "-1"}, 1, "--lod-errors"},
         {"section", {"speed", "--sections", "fog"}, 1, "--sections"},
         {"lights", {"speed", "--lights", "0"}, 1, "--lights"},
         {"output", {"accuracy", "-o", "/proc/lantern-bench"}, 3, "--output"},

@@ -70,6 +70,8 @@ struct AccuracyArgs {
     TimingOptions timing;
     int referenceSamples = 8;
     bool noFloor = false;
+    std::vector<std::string> sections{"shading", "lod"};
+    LodSection lod;
     DeviceOptions device;
     CLI::Option *segmentsOption = nullptr, *widthOption = nullptr, *heightOption = nullptr;
 };
@@ -80,6 +82,11 @@ void applyQuick(AccuracyArgs& a) {
     if (!a.segmentsOption->count()) a.segments = {8, 16, 32, 64, 128, 256};
     if (!a.widthOption->count() && !a.heightOption->count()) a.widths = {480}, a.heights = {270};
     a.timing.applyQuick(a.timing.plan.rounds, 3);
+    a.lod.applyQuick();
+}
+
+bool wants(const AccuracyArgs& a, const char* section) {
+    return std::find(a.sections.begin(), a.sections.end(), section) != a.sections.end();
 }
 
 // The scene and shininess lists: known scenes, finite shininess, neither empty.
@@ -325,11 +332,9 @@ void collectTimes(Sweep& sweep) {
     markParetoFronts(sweep.rows);
 }
 
-// accuracy.csv and accuracy.md in the output folder, then the plot (accuracy.svg, accuracy.png)
-// when matplotlib is there; the summary on stdout.
-int writeResults(const AccuracyArgs& a, const Renderer& renderer, const Sweep& sweep, bool gpuClock,
-                 double referenceSeconds) {
-    const std::string csv = accuracyCsv(sweep.rows);
+// The shading section's report: accuracy.csv, and its part of accuracy.md.
+Result<std::string> shadingReport(const AccuracyArgs& a, const Renderer& renderer,
+                                  const Sweep& sweep, bool gpuClock, double referenceSeconds) {
     AccuracyMethod how;
     how.machine = machineDescription(renderer);
     how.gpuClock = gpuClock;
@@ -340,23 +345,49 @@ int writeResults(const AccuracyArgs& a, const Renderer& renderer, const Sweep& s
     for (const TimedConfig& c : sweep.configs)
         spreads.push_back(c.roundSpread());
     how.spread = spreadSentence(spreads);
-    const std::string md = accuracySummaryMarkdown(sweep.rows, how);
-    const std::filesystem::path dir(a.timing.output);
-    for (auto [name, text] : {std::pair{"accuracy.csv", csv}, std::pair{"accuracy.md", md}})
-        if (auto w = writeTextFile((dir / name).string(), text); !w) return report(w.error());
-    if (!a.timing.quiet) std::fputs(md.c_str(), stdout);
-    std::printf("wrote %s and %s\n", (dir / "accuracy.csv").c_str(), (dir / "accuracy.md").c_str());
-    std::fflush(stdout);
-    // The plot is a view of the CSV: without matplotlib the run still succeeds and says how to
-    // draw it later.
-    const PlotOutcome plot = plotAccuracy(
-        (dir / "accuracy.csv").string(), {(dir / "accuracy.svg").string(), (dir / "accuracy.png").string()});
-    if (!plot.drawn) std::fprintf(stderr, "lantern: warning: %s\n", plot.message.c_str());
-    return kOk;
+    const auto csv = std::filesystem::path(a.timing.output) / "accuracy.csv";
+    LANTERN_TRY(writeTextFile(csv.string(), accuracyCsv(sweep.rows)));
+    std::printf("wrote %s\n", csv.c_str());
+    return accuracySummaryMarkdown(sweep.rows, how);
+}
+
+// The shading section: references, the interleaved sweep, the report.
+Result<std::string> runShading(const AccuracyArgs& a, Renderer& renderer,
+                               const std::vector<std::pair<int, int>>& sizes,
+                               const std::vector<ShadingMode>& modes) {
+    auto msaa = supportedMsaa(renderer, a.msaa);
+    if (!msaa) return std::move(msaa).error();
+    auto scenes = prepareScenes(renderer, a);
+    if (!scenes) return std::move(scenes).error();
+    const auto r0 = std::chrono::steady_clock::now();
+    auto references = makeReferences(a, *scenes, sizes);
+    if (!references) return std::move(references).error();
+    const double referenceSeconds = msSince(r0) / 1000.0;
+
+    Sweep sweep = makeSweep(a, *scenes, *references, sizes, *msaa, modes);
+    if (!a.timing.quiet)
+        std::fprintf(stderr, "timing %zu configurations, %d rounds of %d + %d frames each\n",
+                     sweep.configs.size(), a.timing.plan.rounds, a.timing.plan.warmup,
+                     a.timing.plan.frames);
+    bool gpuClock = false;
+    LANTERN_TRY(timeInterleaved(renderer, sweep.configs, a.timing.plan, a.timing.quiet, &gpuClock));
+    collectTimes(sweep);
+    return shadingReport(a, renderer, sweep, gpuClock, referenceSeconds);
+}
+
+Result<void> checkSections(const AccuracyArgs& a) {
+    for (const std::string& s : a.sections)
+        if (s != "shading" && s != "lod")
+            return makeError(ErrorCode::InvalidInput,
+                             "\"" + s + "\" is not a section (shading, lod)", "--sections");
+    if (a.sections.empty())
+        return makeError(ErrorCode::InvalidInput, "the list is empty", "--sections");
+    return {};
 }
 
 int run(AccuracyArgs& a) {
     applyQuick(a);
+    if (auto r = checkSections(a); !r) return report(r.error());
     if (auto r = checkScenes(a); !r) return report(r.error());
     auto modes = parseShadingList(a.shading, "--shading");
     if (!modes) return report(modes.error());
@@ -369,27 +400,30 @@ int run(AccuracyArgs& a) {
     const ColdShaderCache coldCache; // before the device: first frames pay the whole JIT
     auto renderer = Renderer::create(a.device.desc());
     if (!renderer) return report(renderer.error());
-    auto msaa = supportedMsaa(*renderer, a.msaa);
-    if (!msaa) return report(msaa.error());
-    auto scenes = prepareScenes(*renderer, a);
-    if (!scenes) return report(scenes.error());
-    const auto r0 = std::chrono::steady_clock::now();
-    auto references = makeReferences(a, *scenes, *sizes);
-    if (!references) return report(references.error());
-    const double referenceSeconds = msSince(r0) / 1000.0;
-
-    Sweep sweep = makeSweep(a, *scenes, *references, *sizes, *msaa, *modes);
-    if (!a.timing.quiet)
-        std::fprintf(stderr, "timing %zu configurations, %d rounds of %d + %d frames each\n",
-                     sweep.configs.size(), a.timing.plan.rounds, a.timing.plan.warmup,
-                     a.timing.plan.frames);
-    bool gpuClock = false;
-    if (auto t =
-            timeInterleaved(*renderer, sweep.configs, a.timing.plan, a.timing.quiet, &gpuClock);
-        !t)
-        return report(t.error());
-    collectTimes(sweep);
-    return writeResults(a, *renderer, sweep, gpuClock, referenceSeconds);
+    std::string md;
+    if (wants(a, "shading")) {
+        auto shading = runShading(a, *renderer, *sizes, *modes);
+        if (!shading) return report(shading.error());
+        md = *shading;
+    }
+    if (wants(a, "lod")) {
+        auto lod = runLod(*renderer, a.lod, *sizes, a.timing, md.empty());
+        if (!lod) return report(lod.error());
+        md += *lod;
+    }
+    const auto mdPath = std::filesystem::path(a.timing.output) / "accuracy.md";
+    if (auto w = writeTextFile(mdPath.string(), md); !w) return report(w.error());
+    if (!a.timing.quiet) std::fputs(md.c_str(), stdout);
+    std::printf("wrote %s\n", mdPath.c_str());
+    std::fflush(stdout);
+    if (!wants(a, "shading")) return kOk;
+    // The plot is a view of the CSV: without matplotlib the run still succeeds and says how to
+    // draw it later.
+    const std::filesystem::path dir(a.timing.output);
+    const PlotOutcome plot = plotAccuracy(
+        (dir / "accuracy.csv").string(), {(dir / "accuracy.svg").string(), (dir / "accuracy.png").string()});
+    if (!plot.drawn) std::fprintf(stderr, "lantern: warning: %s\n", plot.message.c_str());
+    return kOk;
 }
 
 } // namespace
@@ -446,9 +480,16 @@ Runner addAccuracyBench(CLI::App& bench) {
         ->capture_default_str()
         ->check(CLI::Range(1, 64));
     cmd->add_flag("--no-floor", a->noFloor, "Do not time the trivial-shader floor");
+    cmd->add_option("--sections", a->sections,
+                    "shading (the analytic scenes against ray-cast references), lod (levels of "
+                    "detail against the exact frame)")
+        ->delimiter(',')
+        ->capture_default_str();
+    a->lod.add(*cmd);
     a->timing.output = "bench-accuracy";
-    a->timing.add(*cmd, "Reduced sweep: segments 8 to 256, 480x270, 3 frames per round",
-                  "Folder for accuracy.csv, accuracy.md and the plot (accuracy.svg, .png)");
+    a->timing.add(*cmd, "Reduced sweep: segments 8 to 256, 480x270, 3 frames per round; a 6 x 6 "
+                        "grid of 64-segment spheres",
+                  "Folder for accuracy.csv, lod.csv, accuracy.md and the plot (accuracy.svg, .png)");
     a->device.add(*cmd);
     return [a, cmd]() { return cmd->parsed() ? run(*a) : -1; };
 }

@@ -115,6 +115,54 @@ struct AccuracyMethod {
 std::string accuracySummaryMarkdown(const std::vector<AccuracyRow>& rows,
                                     const AccuracyMethod& how);
 
+/// The level-of-detail section's settings (--lod-errors, --lod-scene, --lod-grid, --lod-segments).
+struct LodSection {
+    std::vector<double> bounds{0.25, 0.5, 1.0, 2.0, 4.0, 8.0}; ///< besides 0, always timed
+    std::string scene; ///< a scene file or builtin:NAME; empty: makeLodGrid(grid, segments)
+    int grid = 10, segments = 160;
+
+    void add(CLI::App& app);
+    /// --quick: a 6 x 6 grid of 64-segment spheres unless the command line gave them.
+    void applyQuick();
+
+private:
+    CLI::Option *m_grid = nullptr, *m_segments = nullptr;
+};
+
+/// The level-of-detail section's scene: side x side unit spheres (one mesh of `segments`
+/// around, shared by every node) 2.5 apart in the plane z = 0, S1's light and material, the
+/// 40-degree camera on +Z seeing the whole grid.
+BenchScene makeLodGrid(int side, int segments);
+
+/// One bound of the level-of-detail section at one image size.
+struct LodRow {
+    std::string scene;
+    int width = 0, height = 0;
+    double bound = 0.0; ///< --lod-error, pixels
+    double ms = 0.0, msWall = 0.0, spread = 0.0; ///< as AccuracyRow's
+    std::uint64_t triangles = 0, trianglesDrawn = 0; ///< clustered triangles, last timed frame
+    double rmse = 0.0;     ///< linear RGB against the exact frame (bound 0)
+    double flipMean = 0.0; ///< the FLIP mean of `lantern compare` against the exact frame
+    std::uint64_t nonFinite = 0;
+    bool pareto = false; ///< on the front of (ms, FLIP mean) within its image size
+};
+
+/// Times every bound (and 0) at every size interleaved, measures each against the exact frame
+/// and marks the Pareto fronts. `gpuClock` as timeInterleaved's.
+Result<std::vector<LodRow>> runLodSection(Renderer& renderer, const LodSection& lod,
+                                          const std::vector<std::pair<int, int>>& sizes,
+                                          const TimingOptions& timing, bool* gpuClock);
+/// lod.csv: a header line, then one line per row.
+std::string lodCsv(const std::vector<LodRow>& rows);
+/// The "Level of detail" section of accuracy.md: a table per image size.
+std::string lodSummaryMarkdown(const std::vector<LodRow>& rows, bool gpuClock);
+
+/// The section whole: runLodSection, lod.csv in timing.output, and the section's markdown
+/// (after a title, the machine and the command line when `withMachine`: the section alone).
+Result<std::string> runLod(Renderer& renderer, const LodSection& lod,
+                           const std::vector<std::pair<int, int>>& sizes,
+                           const TimingOptions& timing, bool withMachine);
+
 /// Where benchmarks/plot_accuracy.py is: installed beside the command (share/lantern), else the
 /// source tree's; the bare name when neither exists.
 std::string plotScriptPath();

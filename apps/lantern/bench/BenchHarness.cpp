@@ -41,6 +41,8 @@ Result<void> timeInterleaved(Renderer& renderer, std::vector<TimedConfig>& confi
                 timed.push_back(ms);
                 c.frameMs.push_back(ms);
                 c.wallMs.push_back(wall);
+                c.clusterTriangles = stats.clusterTriangles;
+                c.clusterTrianglesDrawn = stats.clusterTrianglesDrawn;
                 if (f == plan.warmup + plan.frames - 1) last = std::move(*image);
             }
             c.roundMedians.push_back(median(timed));

@@ -59,6 +59,8 @@ struct TimedConfig {
     std::vector<double> frameMs;      ///< every timed frame (ms)
     std::vector<double> wallMs;       ///< every timed frame's render() wall time, with readback
     std::uint64_t nonFinite = 0;      ///< NaN/Inf values the renderer replaced (FrameStats)
+    /// The last timed frame's clustered triangles and those it drew (FrameStats).
+    std::uint64_t clusterTriangles = 0, clusterTrianglesDrawn = 0;
 
     double ms() const { return median(roundMedians); } ///< median of the round medians
     double minMs() const { return minimum(frameMs); }
