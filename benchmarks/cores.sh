@@ -5,7 +5,9 @@
 # 4, ... up to the machine's cores, three ways:
 #   threads    one batch, lavapipe with k rasteriser threads (LP_NUM_THREADS=k, its default);
 #   processes  k batches side by side, each a k-th of the list, lavapipe one thread each;
-#   both       k / 2 batches (at least one) of 2 threads each.
+#   both       k / 2 batches (at least one) of 2 threads each;
+#   --processes one batch that Lantern runs as k processes (`render --processes k`), one
+#              lavapipe thread each: what `processes` measures, done by Lantern itself.
 # Prints renders per second for each. Usage: benchmarks/cores.sh [COUNT=24]
 #   (LANTERN=path/to/lantern, default build/dev/apps/lantern/lantern; ASSETS=../shared/assets/gltf-samples)
 set -euo pipefail
@@ -25,16 +27,19 @@ for ((i = 0; i < count; ++i)); do echo "${good[i % ${#good[@]}]}"; done >"$out/l
 echo "cores: $count files (${#good[@]} distinct samples) x 4 views; machine: $cores cores"
 
 now() { date +%s.%N; }
-# batch K_CORES PROCESSES THREADS SIZE EXT: renders per second
+# batch K_CORES PROCESSES THREADS SIZE EXT [OWN]: renders per second (OWN: one command with
+# --processes PROCESSES instead of PROCESSES commands)
 batch() {
-    local k=$1 procs=$2 threads=$3 w=$4 h=$5 ext=$6
+    local k=$1 procs=$2 threads=$3 w=$4 h=$5 ext=$6 own=${7:-}
+    local flags=()
+    if [[ -n $own ]]; then flags=(--processes "$procs"); procs=1; fi
     split -n "l/$procs" -d "$out/list.txt" "$out/part."
     local t0 t1 dir="$out/img/$k-$procs-$threads-$w" failed=0
     mkdir -p "$dir"  # a new folder each run: Lantern overwrites no file it did not make
     t0=$(now)
     for part in "$out"/part.*; do
         LP_NUM_THREADS=$threads taskset -c "0-$((k - 1))" "$lantern" render --list "$part" \
-            --allow-folder "$assets" --views front,right,back,left --width "$w" --height "$h" \
+            "${flags[@]}" --allow-folder "$assets" --views front,right,back,left --width "$w" --height "$h" \
             -o "$dir/$(basename "$part")_{index}_{view}.$ext" >/dev/null 2>"$part.err" &
     done
     for job in $(jobs -p); do wait "$job" || failed=1; done
@@ -47,16 +52,18 @@ batch() {
 printf '%-6s %-10s %14s %14s\n' cores way "256x256 png/s" "1280x720 exr/s"
 k=1
 while ((k <= cores)); do
-    for way in threads processes both; do
+    for way in threads processes both --processes; do
         case $way in
         threads) procs=1 threads=$k ;;
         processes) procs=$k threads=1 ;;
         both) procs=$(((k + 1) / 2)) threads=$((k > 1 ? 2 : 1)) ;;
+        --processes) procs=$k threads=1 ;;
         esac
         ((k == 1)) && [[ $way != threads ]] && continue
         [[ $way == both ]] && ((k <= 2)) && continue  # the same as threads or processes
-        small=$(batch "$k" "$procs" "$threads" 256 256 png)
-        large=$(batch "$k" "$procs" "$threads" 1280 720 exr)
+        own=$([[ $way == --processes ]] && echo 1 || true)
+        small=$(batch "$k" "$procs" "$threads" 256 256 png "$own")
+        large=$(batch "$k" "$procs" "$threads" 1280 720 exr "$own")
         printf '%-6s %-10s %14s %14s\n' "$k" "$way" "$small" "$large"
     done
     ((k == cores)) && break

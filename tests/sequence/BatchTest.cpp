@@ -1,4 +1,4 @@
-// Batches (issue 21): one `lantern render` over many files times many views, with output
+// Batches: one `lantern render` over many files times many views, with output
 // templates, one device, finished outputs skipped, shards that partition the jobs, and files
 // that fail reported without stopping the batch (docs/sequences.md, "Batches").
 #include "TestSupport.h"
@@ -169,6 +169,72 @@ TEST(Batch, ShardsPartitionTheJobsExactlyAndWriteTheSameBytes) {
     EXPECT_EQ(std::set<std::string>(written.begin(), written.end()), names);
     EXPECT_EQ(written.size(), 6u) << "a job rendered by two shards";
     for (const auto& n : names) EXPECT_EQ(bytes(dir / "all" / n), bytes(dir / "shards" / n)) << n;
+}
+
+// --processes N runs N processes of the same command, each with its own device, splitting the
+// jobs by position (within --shard when one is given): the same files, byte for byte, every
+// path printed once as a whole line; a file that fails in one process fails the command; a
+// sequence splits its frames the same way; one picture stays one process.
+TEST(Batch, ProcessesSplitTheJobsAndWriteTheSameBytes) {
+    LANTERN_SKIP_IF_MISSING(lantern::test::missingVulkanDevice());
+    const auto dir = testOutputDir();
+    const auto tri = triangle(dir, "tri");
+    auto args = [&](const std::string& out, std::vector<std::string> more) {
+        auto a = small({"render", "builtin:spheres", tri.string(), "--views", "orbit:2,top", "-o",
+                        (dir / out / "{scene}_{view}.exr").string()});
+        a.insert(a.end(), more.begin(), more.end());
+        return a;
+    };
+    ASSERT_EQ(runLantern(args("one", {})).exitCode, 0);
+    const auto r = runLantern(args("two", {"--processes", "2"}));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::set<std::string> printed;
+    for (const auto& l : lines(r.out)) {
+        EXPECT_TRUE(fs::is_regular_file(l)) << "not a whole path: " << l;
+        EXPECT_TRUE(printed.insert(fs::path(l).filename().string()).second) << "printed twice: " << l;
+    }
+    const auto names = files(dir / "one");
+    ASSERT_EQ(names.size(), 6u);
+    EXPECT_EQ(printed, names);
+    EXPECT_EQ(files(dir / "two"), names);
+    for (const auto& n : names) EXPECT_EQ(bytes(dir / "one" / n), bytes(dir / "two" / n)) << n;
+    EXPECT_EQ(count(r.err, "lantern: batch: "), 2u) << "one tally per process: " << r.err;
+    EXPECT_NE(r.err.find("2 processes done"), std::string::npos) << r.err;
+
+    // Within a shard: the shard's jobs, split again.
+    ASSERT_EQ(runLantern(args("half1", {"--shard", "1/2"})).exitCode, 0);
+    const auto half = runLantern(args("half2", {"--shard", "1/2", "--processes", "3"}));
+    ASSERT_EQ(half.exitCode, 0) << half.err;
+    EXPECT_EQ(files(dir / "half1").size(), 3u);
+    EXPECT_EQ(files(dir / "half2"), files(dir / "half1"));
+
+    // A bad file in the middle: the others are written, the command fails.
+    { std::ofstream(dir / "bad.gltf") << "{ not json"; }
+    const auto bad = runLantern(small({"render", "builtin:spheres", (dir / "bad.gltf").string(),
+                                       tri.string(), "--processes", "2", "-o",
+                                       (dir / "bad" / "{scene}.exr").string()}));
+    EXPECT_EQ(bad.exitCode, 1) << bad.err;
+    EXPECT_EQ(files(dir / "bad"), (std::set<std::string>{"spheres.exr", "tri.exr"}));
+
+    // A sequence: its frames split over the processes, the same bytes.
+    auto sequence = [&](const std::string& out, const char* processes) {
+        return runLantern(small({"render", "builtin:spheres-animated", "--frames", "0-4", "-o",
+                                 (dir / out / "f_##.exr").string(), "--processes", processes}));
+    };
+    ASSERT_EQ(sequence("seq1", "1").exitCode, 0);
+    const auto seq = sequence("seq2", "2");
+    ASSERT_EQ(seq.exitCode, 0) << seq.err;
+    EXPECT_EQ(lines(seq.out).size(), 5u) << seq.out;
+    ASSERT_EQ(files(dir / "seq1").size(), 5u);
+    EXPECT_EQ(files(dir / "seq2"), files(dir / "seq1"));
+    for (const auto& n : files(dir / "seq1")) EXPECT_EQ(bytes(dir / "seq1" / n), bytes(dir / "seq2" / n)) << n;
+
+    // One picture: one process, and a warning says so.
+    const auto one = runLantern(small({"render", "builtin:spheres", "-o", (dir / "single.png").string(),
+                                       "--processes", "2"}));
+    EXPECT_EQ(one.exitCode, 0) << one.err;
+    EXPECT_NE(one.err.find("one picture renders in one process"), std::string::npos) << one.err;
+    EXPECT_EQ(lines(one.out).size(), 1u) << one.out;
 }
 
 TEST(Batch, CollidingOrUnknownTemplatesAreRefusedBeforeRendering) {

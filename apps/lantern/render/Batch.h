@@ -53,6 +53,7 @@ struct BatchRequest {
     std::vector<std::string> outputs; ///< -o templates
     std::vector<BatchFrame> frames;   ///< the frames every (scene, view) renders
     std::optional<Shard> shard;
+    int processes = 1;       ///< --processes: renderers in flight (0: one per core)
     bool overwrite = false;  ///< --overwrite: render even when the outputs exist
     bool dryRun = false;
     bool writeCamera = false;  ///< --write-camera: each image's camera JSON beside it, first
@@ -70,6 +71,7 @@ struct BatchCliArgs {
     std::vector<std::string> lists;
     std::string views;
     bool overwrite = false;
+    int processes = 1;  ///< --processes (0: one per core)
     void add(CLI::App& app);
 };
 
@@ -135,5 +137,17 @@ Result<std::vector<BatchJob>> planJobs(const std::vector<BatchScene>& scenes,
 /// Runs the batch: exit 0 when every job of the shard was rendered or skipped, 1 when any
 /// failed (each reported as it happens, a summary line at the end), 2 on usage errors.
 int runBatch(const BatchRequest& request);
+
+/// The processes a render runs as (--processes): 1 in a process that runProcesses started
+/// (LANTERN_BATCH_WORKER=J/N in its environment), one per core for 0, else `asked`.
+int processCount(int asked);
+
+/// In a process that runProcesses started: its part of `outer` (positions k with k mod N == J
+/// within the shard given, or of everything). Elsewhere: `outer`.
+Result<std::optional<Shard>> workerShard(std::optional<Shard> outer);
+
+/// Runs this program `count` times with this command line, each told its part, and waits for
+/// them (BatchProcesses.cpp), passing SIGINT and SIGTERM on: the worst of their exit codes.
+int runProcesses(int count);
 
 } // namespace lantern::cli

@@ -190,6 +190,12 @@ void BatchCliArgs::add(CLI::App& app) {
                    "Render every scene from these views, comma-separated: orbit:N (N views "
                    "around +Y, 30 degrees up), turntable:N (level), view names (three-quarter, "
                    "front, back, left, right, top, bottom, iso) or a .json pose file");
+    app.add_option("--processes", processes,
+                   "In a batch, renderers in flight: the jobs split by position over N "
+                   "processes, each with its own device (0: one per core); paths are printed as "
+                   "each process writes them")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 256));
     app.add_flag("--overwrite", overwrite,
                  "In a batch, render jobs whose outputs exist already (default: skip them)");
 }

@@ -66,7 +66,7 @@ Result<void> renderJob(const BatchRequest& r, Renderer& renderer, const Prepared
         if (clamped > 0)
             std::cerr << "lantern: warning: " << out << ": " << clamped
                       << " values exceeded the half range and were clamped to 65504\n";
-        std::cout << out << "\n";
+        std::cout << out + "\n" << std::flush;  // one write: whole lines when processes share stdout
     }
     return {};
 }

@@ -35,11 +35,15 @@ Result<SequenceOptions> sequenceOptions(const RenderArgs& a, const ExrOptions& e
         if (!range) return std::move(range).error();
         seq.frames = *range;
     }
+    std::optional<Shard> given;
     if (!a.shard.empty()) {
         auto shard = parseShard(a.shard);
         if (!shard) return std::move(shard).error();
-        seq.shard = *shard;
+        given = *shard;
     }
+    auto mine = workerShard(given);  // one of --processes' processes: its part
+    if (!mine) return std::move(mine).error();
+    if (*mine) seq.shard = **mine;
     seq.fps = a.fps;
     seq.outputs = outputs;
     seq.exr = exr;
@@ -291,6 +295,9 @@ int runBatchArgs(RenderArgs a) {
         if (!shard) return report(shard.error());
         r.shard = *shard;
     }
+    auto mine = workerShard(r.shard);
+    if (!mine) return report(mine.error());
+    r.shard = *mine;
     r.overwrite = a.batch.overwrite;
     r.dryRun = a.dryRun;
     r.writeCamera = a.writeCamera;
@@ -300,7 +307,8 @@ int runBatchArgs(RenderArgs a) {
     r.device = a.device.desc();
     r.verbose = a.device.verbose;
     r.checkDevice = [&a](const DeviceInfo& d) { return a.shading.checkDevice(d); };
-    return runBatch(r);
+    const int processes = processCount(a.batch.processes);
+    return processes > 1 && !r.dryRun ? runProcesses(processes) : runBatch(r);
 }
 
 // --report FILE: what the file uses and how this render draws each (the shading it is
@@ -428,8 +436,14 @@ Runner addRenderCommand(CLI::App& app) {
         if (!cmd->parsed()) return -1;
         if (auto r = takeParsedRenderOptions(*cmd, *args); !r) return report(r.error());
         const RenderArgs& a = *args;
-        return wantsBatch(a.scenes, a.batch.lists, a.batch.views, a.outputs) ? runBatchArgs(a)
-                                                                             : run(a);
+        const bool batch = wantsBatch(a.scenes, a.batch.lists, a.batch.views, a.outputs);
+        const bool sequence = !a.frames.empty() || !a.frameList.empty();
+        if (!batch && !sequence && a.batch.processes != 1)
+            std::fprintf(stderr, "lantern: warning: --processes splits batches and sequences; "
+                                 "one picture renders in one process\n");
+        if (!batch && sequence && !a.dryRun)
+            if (const int n = processCount(a.batch.processes); n > 1) return runProcesses(n);
+        return batch ? runBatchArgs(a) : run(a);
     };
 }
 

@@ -136,7 +136,7 @@ int runSequence(Renderer& renderer, const PreparedScene& prepared, const RenderO
     const SequenceReport& r = *result;
     for (int frame : r.framesWritten)
         for (const std::string& out : outputs)
-            std::cout << expandFramePattern(out, frame) << "\n";
+            std::cout << expandFramePattern(out, frame) + "\n" << std::flush;  // whole lines
     const std::size_t total = sequenceFrames(seq).size();
     std::fprintf(
         stderr,
