@@ -52,6 +52,34 @@ TEST_F(Renderer_, FramesAreBitIdentical) {
     EXPECT_EQ(a->rgba, b->rgba);
 }
 
+// The memory a scene costs: its host arrays (summarize's hostBytes: at least the positions,
+// normals and indices it holds) and the device memory its upload adds, given back when the
+// last PreparedScene goes.
+TEST_F(Renderer_, ReportsTheMemoryAPreparedSceneHolds) {
+    auto scene = builtinScene("teapot");
+    ASSERT_TRUE(scene);
+    std::size_t arrays = 0;
+    for (const Mesh& m : scene->meshes)
+        for (const Primitive& p : m.primitives)
+            arrays += p.positions.size() * 12 + p.normals.size() * 12 + p.indices.size() * 4;
+    const SceneSummary summary = summarize(*scene);
+    EXPECT_GE(summary.hostBytes, arrays);
+    EXPECT_LT(summary.hostBytes, 4 * arrays + (1u << 20));
+
+    const std::uint64_t before = renderer().deviceMemoryBytes();
+    {
+        auto prepared = renderer().prepare(std::make_shared<const Scene>(*scene));
+        ASSERT_TRUE(prepared) << prepared.error().describe();
+        const std::uint64_t uploaded = renderer().deviceMemoryBytes() - before;
+        EXPECT_GE(uploaded, arrays) << "the geometry lives on the device";
+        EXPECT_LT(uploaded, 8 * arrays + (1u << 20));
+        ASSERT_TRUE(renderer().render(*prepared, small(), 0.0));
+        EXPECT_GT(renderer().deviceMemoryBytes(), before + uploaded) << "the frame's targets";
+    }
+    const std::uint64_t targets = renderer().deviceMemoryBytes() - before;
+    EXPECT_LT(targets, 96u * 64u * 64u) << "the scene's memory was given back";
+}
+
 TEST_F(Renderer_, RefusesBadOptionsBeforeAllocating) {
     auto scene = builtinScene("spheres");
     ASSERT_TRUE(scene);

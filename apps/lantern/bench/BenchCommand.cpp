@@ -9,9 +9,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <utility>
 
 namespace lantern::cli {
 
@@ -59,6 +62,42 @@ Result<double> timeRenderView(Renderer& renderer, const PreparedScene& scene,
     return msSince(t0);
 }
 
+// The process's resident set now and at its peak (/proc/self/status VmRSS, VmHWM), bytes.
+std::pair<std::uint64_t, std::uint64_t> residentBytes() {
+    std::ifstream status("/proc/self/status");
+    std::uint64_t now = 0, peak = 0;
+    for (std::string line; std::getline(status, line);) {
+        const auto kib = [&] { return std::strtoull(line.c_str() + 6, nullptr, 10) * 1024; };
+        if (line.rfind("VmRSS:", 0) == 0) now = kib();
+        if (line.rfind("VmHWM:", 0) == 0) peak = kib();
+    }
+    return {now, peak};
+}
+
+// The last frame's draws and clustered triangles, and the memory per triangle: the host
+// scene's arrays, the device memory of the scene alone (after prepare) and with the frames'
+// targets and the levels of detail, and the process's resident set.
+void printCounts(const Renderer& renderer, const PreparedScene& prepared,
+                 std::uint64_t sceneDeviceBytes) {
+    const FrameStats& stats = renderer.lastFrameStats();
+    std::printf("%-34s %10zu\n", "draw calls per frame", stats.draws);
+    if (stats.clusterTriangles > 0)  // the culling pass's (and the levels of detail's) share
+        std::printf("%-34s %10llu of %llu (%.1f%%)\n", "clustered triangles drawn",
+                    static_cast<unsigned long long>(stats.clusterTrianglesDrawn),
+                    static_cast<unsigned long long>(stats.clusterTriangles),
+                    100.0 * double(stats.clusterTrianglesDrawn) / double(stats.clusterTriangles));
+    const SceneSummary summary = summarize(prepared.scene());
+    const double triangles = double(std::max<std::size_t>(summary.triangles, 1));
+    const auto [rss, peak] = residentBytes();
+    std::printf("%-34s %10s %10s\n", "memory", "MiB", "B/triangle");
+    for (auto [what, bytes] : {std::pair<const char*, std::uint64_t>{"host: scene arrays", summary.hostBytes},
+                               {"device: scene (after prepare)", sceneDeviceBytes},
+                               {"device: all (after the frames)", renderer.deviceMemoryBytes()},
+                               {"process resident now", rss},
+                               {"process resident peak", peak}})
+        std::printf("%-34s %10.1f %10.1f\n", what, double(bytes) / 1048576.0, double(bytes) / triangles);
+}
+
 int runFrame(const FrameArgs& a) {
     RenderOptions options;
     options.width = a.width;
@@ -81,6 +120,7 @@ int runFrame(const FrameArgs& a) {
     if (auto r = a.shading.checkDevice(renderer->device()); !r) return report(r.error());
     auto prepared = renderer->prepare(std::make_shared<const Scene>(std::move(*scene)));
     if (!prepared) return report(prepared.error());
+    const std::uint64_t sceneDeviceBytes = renderer->deviceMemoryBytes();
 
     std::vector<double> wall, gpu, write, total, inPlace;  // inPlace: renderView, not with AOVs
     double firstMs = 0.0;
@@ -117,13 +157,7 @@ int runFrame(const FrameArgs& a) {
                 aovs.empty() ? "none" : aovs.c_str(), renderer->device().name.c_str(), a.runs,
                 a.warmup);
     std::printf("%-34s %10s %10s\n", "", "median ms", "min ms");
-    const FrameStats& stats = renderer->lastFrameStats();
-    std::printf("%-34s %10zu\n", "draw calls per frame", stats.draws);
-    if (stats.clusterTriangles > 0)  // the culling pass's (and the levels of detail's) share
-        std::printf("%-34s %10llu of %llu (%.1f%%)\n", "clustered triangles drawn",
-                    static_cast<unsigned long long>(stats.clusterTrianglesDrawn),
-                    static_cast<unsigned long long>(stats.clusterTriangles),
-                    100.0 * double(stats.clusterTrianglesDrawn) / double(stats.clusterTriangles));
+    printCounts(*renderer, *prepared, sceneDeviceBytes);
     std::printf("%-34s %10.2f\n", "first frame (pipeline JIT)", firstMs);
     std::printf("%-34s %10.2f %10.2f\n", "render only: GPU render pass", median(gpu), minimum(gpu));
     std::printf("%-34s %10.2f %10.2f\n", "render only: render() + readback", median(wall),

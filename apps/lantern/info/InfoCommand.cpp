@@ -9,6 +9,7 @@
 #include <GLFW/glfw3.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -102,6 +103,19 @@ void printRoots(const InfoArgs& a, const Scene& scene, const SceneSummary& s, in
     }
 }
 
+// "185.8 MiB (24.6 B per triangle)": what the scene's arrays hold in host memory.
+std::string hostMemory(const SceneSummary& s) {
+    char text[96];
+    std::snprintf(text, sizeof text, "%.1f MiB", double(s.hostBytes) / 1048576.0);
+    std::string out = text;
+    if (s.triangles > 0) {
+        std::snprintf(text, sizeof text, " (%.1f B per triangle)",
+                      double(s.hostBytes) / double(s.triangles));
+        out += text;
+    }
+    return out;
+}
+
 void printCounts(const SceneSummary& s, const Kinds& k) {
     std::cout << "nodes: " << s.nodes << "\n"
               << "meshes: " << s.meshes << " (" << s.primitives << " primitives, " << s.triangles
@@ -109,6 +123,7 @@ void printCounts(const SceneSummary& s, const Kinds& k) {
               << (s.lines ? std::to_string(s.lines) + " lines, " : std::string())
               << (s.points ? std::to_string(s.points) + " points, " : std::string()) << s.vertices
               << " vertices)\n"
+              << "host memory: " << hostMemory(s) << "\n"
               << "materials: "
               << breakdown(s.materials, {{"phong", k.phong},
                                          {"pbr", k.pbr},
@@ -158,7 +173,8 @@ int printJson(const InfoArgs& a, const Scene& scene, int root) {
                    {"lines", s.lines},           {"points", s.points},
                    {"vertices", s.vertices},     {"materials", s.materials},
                    {"textures", s.textures},     {"lights", s.lights},
-                   {"cameras", s.cameras},       {"animations", s.animations}};
+                   {"cameras", s.cameras},       {"animations", s.animations},
+                   {"host_bytes", s.hostBytes}};
     RenderOptions options;
     options.root = root;
     auto features = explainScene(scene, options, a.time);

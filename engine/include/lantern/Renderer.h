@@ -223,6 +223,12 @@ public:
 
     const DeviceInfo& device() const;
 
+    /// Bytes of device memory this renderer's buffers and images hold now: every prepared
+    /// scene's geometry, textures, clusters and levels of detail, and the frames' targets and
+    /// staging buffers (the driver's own memory, pipelines included, is not counted). On
+    /// lavapipe device memory is host memory.
+    std::uint64_t deviceMemoryBytes() const;
+
     /// Validation-layer messages of Warning or Error severity seen so far.
     std::uint64_t validationMessageCount() const;
 

@@ -460,6 +460,9 @@ struct SceneSummary {
     std::size_t lines = 0, points = 0;  ///< line and point elements (glTF's other modes)
     std::size_t materials = 0, textures = 0, lights = 0, cameras = 0, animations = 0;
     std::size_t roots = 0;
+    /// Bytes the scene's vertex attributes, indices, morph targets, texture pixels and
+    /// animation keys hold in host memory (the arrays' capacities).
+    std::size_t hostBytes = 0;
     Bounds bounds;  ///< at time 0, default root
 };
 LANTERN_API SceneSummary summarize(const Scene& scene);

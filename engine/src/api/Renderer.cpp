@@ -124,6 +124,8 @@ std::uint64_t Renderer::validationMessageCount() const {
 
 const FrameStats& Renderer::lastFrameStats() const { return m_impl->stats; }
 
+std::uint64_t Renderer::deviceMemoryBytes() const { return m_impl->device->deviceBytes(); }
+
 Result<PreparedScene> Renderer::prepare(std::shared_ptr<const Scene> scene) {
     if (!scene) return makeError(ErrorCode::Usage, "prepare() needs a scene");
     LANTERN_TRY(scene->validate());

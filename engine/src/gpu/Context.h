@@ -122,6 +122,9 @@ public:
         if (m_log) m_log(level, message);
     }
     std::uint64_t validationMessageCount() const { return m_validationMessages.load(); }
+    /// Bytes of device memory Lantern's buffers and images hold now (CountedBytes).
+    std::uint64_t deviceBytes() const { return m_deviceBytes.load(); }
+    std::atomic<std::uint64_t>& deviceBytesCounter() { return m_deviceBytes; }
 
     /// Queue submissions must be externally synchronised (one queue, many users).
     std::mutex& queueMutex() { return *m_queueLock; }
@@ -159,6 +162,7 @@ private:
     std::mutex m_queueMutex;
     std::mutex* m_queueLock = &m_queueMutex;  ///< m_queueMutex, or the host's
     std::atomic<std::uint64_t> m_validationMessages{0};
+    std::atomic<std::uint64_t> m_deviceBytes{0};
     PFN_vkSetDebugUtilsObjectNameEXT m_setObjectName = nullptr;
 };
 

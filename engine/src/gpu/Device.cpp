@@ -105,6 +105,8 @@ Result<std::shared_ptr<Device>> Device::adopt(const ExternalDevice& external,
 const DeviceInfo& Device::info() const { return m_impl->info; }
 const DeviceLimits& Device::limits() const { return m_impl->limits; }
 bool Device::presentation() const { return m_impl->presentation; }
+std::uint64_t Device::deviceBytes() const { return m_impl->ctx->deviceBytes(); }
+
 std::uint64_t Device::validationMessageCount() const {
     return m_impl->ctx->validationMessageCount();
 }

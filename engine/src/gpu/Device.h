@@ -101,6 +101,8 @@ public:
     const DeviceLimits& limits() const;
     bool presentation() const;
     std::uint64_t validationMessageCount() const;
+    /// Bytes of device memory Lantern's buffers and images hold now.
+    std::uint64_t deviceBytes() const;
     void log(LogLevel level, const std::string& message) const;
 
     /// Uploads `scene` (which must have passed Scene::validate()).

@@ -4,6 +4,8 @@
 
 #include <vulkan/vulkan.h>
 
+#include <atomic>
+#include <cstdint>
 #include <utility>
 
 namespace lantern::gpu {
@@ -57,5 +59,37 @@ using UniqueShaderModule = DeviceHandle<VkShaderModule, vkDestroyShaderModule>;
 using UniqueRenderPass = DeviceHandle<VkRenderPass, vkDestroyRenderPass>;
 using UniqueFramebuffer = DeviceHandle<VkFramebuffer, vkDestroyFramebuffer>;
 using UniqueSwapchain = DeviceHandle<VkSwapchainKHR, vkDestroySwapchainKHR>;
+
+/// An allocation's bytes in a running total (Context::deviceBytes): added when made, taken off
+/// when the owner goes.
+class CountedBytes {
+public:
+    CountedBytes() = default;
+    CountedBytes(std::atomic<std::uint64_t>& total, std::uint64_t bytes)
+        : m_total(&total), m_bytes(bytes) {
+        total += bytes;
+    }
+    CountedBytes(const CountedBytes&) = delete;
+    CountedBytes& operator=(const CountedBytes&) = delete;
+    CountedBytes(CountedBytes&& o) noexcept
+        : m_total(std::exchange(o.m_total, nullptr)), m_bytes(o.m_bytes) {}
+    CountedBytes& operator=(CountedBytes&& o) noexcept {
+        if (this != &o) {
+            release();
+            m_total = std::exchange(o.m_total, nullptr);
+            m_bytes = o.m_bytes;
+        }
+        return *this;
+    }
+    ~CountedBytes() { release(); }
+
+private:
+    void release() {
+        if (m_total) *m_total -= m_bytes;
+        m_total = nullptr;
+    }
+    std::atomic<std::uint64_t>* m_total = nullptr;
+    std::uint64_t m_bytes = 0;
+};
 
 } // namespace lantern::gpu

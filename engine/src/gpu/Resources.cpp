@@ -67,6 +67,7 @@ Result<Buffer> createBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags 
     VkDeviceMemory mem = VK_NULL_HANDLE;
     LANTERN_VK_TRY(vkAllocateMemory(ctx.device(), &mai, nullptr, &mem));
     b.memory = UniqueMemory(ctx.device(), mem);
+    b.counted = CountedBytes(ctx.deviceBytesCounter(), req.size);
     LANTERN_VK_TRY(vkBindBufferMemory(ctx.device(), buffer, mem, 0));
     if (flags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) {
         LANTERN_VK_TRY(vkMapMemory(ctx.device(), mem, 0, VK_WHOLE_SIZE, 0, &b.mapped));
@@ -148,6 +149,7 @@ Result<Image> createImage(Context& ctx, const ImageDesc& desc) {
     VkDeviceMemory mem = VK_NULL_HANDLE;
     LANTERN_VK_TRY(vkAllocateMemory(ctx.device(), &mai, nullptr, &mem));
     img.memory = UniqueMemory(ctx.device(), mem);
+    img.counted = CountedBytes(ctx.deviceBytesCounter(), req.size);
     LANTERN_VK_TRY(vkBindImageMemory(ctx.device(), image, mem, 0));
     if (desc.hostReadable) LANTERN_TRY(mapImage(ctx, img, std::uint32_t(type)));
 

@@ -23,6 +23,7 @@ enum class MemoryUsage {
 struct Buffer {
     UniqueBuffer buffer;
     UniqueMemory memory;
+    CountedBytes counted;  ///< the memory's bytes in Context::deviceBytes
     VkDeviceSize size = 0;
     void* mapped = nullptr;  ///< persistently mapped for Upload/Readback (and host-visible DeviceLocal)
     bool coherent = true;
@@ -55,6 +56,7 @@ struct ImageDesc {
 struct Image {
     UniqueImage image;
     UniqueMemory memory;
+    CountedBytes counted;  ///< the memory's bytes in Context::deviceBytes
     UniqueImageView view;
     ImageDesc desc;
     /// A host-readable image: its pixels (mip 0) in the persistently mapped memory, and the

@@ -228,6 +228,33 @@ Bounds computeBounds(const Scene& scene, const Pose& pose) {
     return b;
 }
 
+namespace {
+
+template <class T>
+std::size_t bytesOf(const std::vector<T>& v) {
+    return v.capacity() * sizeof(T);
+}
+
+// What summarize() calls hostBytes: the large arrays a scene holds.
+std::size_t hostBytes(const Scene& scene) {
+    std::size_t n = 0;
+    for (const Mesh& m : scene.meshes)
+        for (const Primitive& p : m.primitives) {
+            n += bytesOf(p.positions) + bytesOf(p.normals) + bytesOf(p.colors) +
+                 bytesOf(p.texcoords) + bytesOf(p.texcoords1) + bytesOf(p.tangents) +
+                 bytesOf(p.joints0) + bytesOf(p.joints1) + bytesOf(p.weights0) +
+                 bytesOf(p.weights1) + bytesOf(p.indices);
+            for (const MorphTarget& t : p.targets) n += bytesOf(t.positions) + bytesOf(t.normals);
+        }
+    for (const Texture& t : scene.textures) n += bytesOf(t.rgba8);
+    for (const Animation& a : scene.animations)
+        for (const AnimationSampler& s : a.samplers)
+            n += bytesOf(s.times) + bytesOf(s.values) + bytesOf(s.weights);
+    return n;
+}
+
+} // namespace
+
 SceneSummary summarize(const Scene& scene) {
     SceneSummary s;
     s.nodes = scene.nodes.size();
@@ -246,6 +273,7 @@ SceneSummary summarize(const Scene& scene) {
             if (p.topology == Topology::Points) s.points += p.elementCount();
             s.vertices += p.positions.size();
         }
+    s.hostBytes = hostBytes(scene);
     if (!scene.roots.empty()) s.bounds = computeBounds(scene, evaluatePose(scene, -1, 0.0));
     return s;
 }
