@@ -156,13 +156,14 @@ Scene litSphereScene() {
     return scene;
 }
 
-// One sphere under one directional light at 1920x1080 (issue 18's frame), its float pixels
-// read back: arg 0 staged (LANTERN_TEST_READBACK=staged: copied into a buffer on the device,
-// then into the Image), arg 1 in place where the device allows it (the Image filled straight
-// from the rendered linear image), arg 2 in place into one Image kept across frames
-// (Renderer::render(..., Image& into): no fresh pages to fault in). Counters: gpu_ms, the render pass (GPU timestamps);
-// wait_ms, the fence wait and the readback into the Image. Needs a build with the testing
-// hooks (the tests' builds) to force the staged path; says so otherwise.
+// One sphere under one directional light at 1920x1080 (the frame lantern_peer_gl times against
+// OpenGL), its float pixels read back: arg 0 staged (LANTERN_TEST_READBACK=staged: copied into
+// a buffer on the device, then into the Image), arg 1 in place where the device allows it (the
+// Image filled straight from the rendered linear image), arg 2 in place into one Image kept
+// across frames (Renderer::render(..., Image& into): no fresh pages to fault in). Counters:
+// gpu_ms, the render pass (GPU timestamps); wait_ms, the fence wait and the readback into the
+// Image. Needs a build with the testing hooks (the tests' builds) to force the staged path; says
+// so otherwise.
 void BM_Readback1080p(benchmark::State& state) {
     const bool staged = state.range(0) == 0;
     struct Made {

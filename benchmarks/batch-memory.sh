@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Resident memory of one `lantern render` batch of many renders (issue 21 item 5; the C++ and
+# Resident memory of one `lantern render` batch of many renders (the C++ and
 # Python loops are lantern_memory_loop and memory_loop.py): a list file naming SCENE RENDERS/4
 # times, each rendered from four views at 64x64 PNG, so the batch loads the scene again for
 # every entry and renders RENDERS images in one process. The script samples the process's

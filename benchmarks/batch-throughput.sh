@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Batch throughput (issue 21, docs/sequences.md "Batches"): COUNT sample files x 4 views at
+# Batch throughput (docs/sequences.md "Batches"): COUNT sample files x 4 views at
 # 256x256 PNG, as one `lantern render` batch (one process, one device) against `lantern render`
 # run once per image, and F3D run once per image where f3d and Xvfb exist (F3D has no batch
 # mode: each image is a process). The files are the glTF samples of ../shared/assets repeated

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# What the glTF features of issue 35 cost a file that uses them, and that a file without them
-# pays nothing. Files made here (python3, no other module):
+# What the glTF features that exporters add (those below) cost a file that uses them, and that a
+# file without them pays nothing. Files made here (python3, no other module):
 # - materials-plain / materials-ext: 20,000 nodes, each with a mesh and a metallic-roughness
 #   material; -ext adds KHR_materials_ior, specular, clearcoat and sheen to every material.
 # - grid-base / grid-maps / grid-tangent-set1: a 1000 x 1000-quad grid (1,002,001 vertices,

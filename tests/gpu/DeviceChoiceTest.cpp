@@ -1,4 +1,4 @@
-// Choosing the device (issue 21): RendererDesc::deviceName and LANTERN_DEVICE, as an index into
+// Choosing the device: RendererDesc::deviceName and LANTERN_DEVICE, as an index into
 // listDevices() or a name, the explicit choice winning; a choice that matches nothing is
 // NoDevice listing the devices found; with no Vulkan driver at all, `lantern render` names the
 // manifests the loader read and how to install lavapipe.

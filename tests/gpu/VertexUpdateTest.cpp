@@ -1,4 +1,4 @@
-// Renderer::updateVertices (issue 21): the host moves a prepared scene's vertices in its Scene
+// Renderer::updateVertices: the host moves a prepared scene's vertices in its Scene
 // and the next render draws them where they now are, on the same renderer and upload; edits it
 // cannot take are refused naming the primitive.
 #include "TestSupport.h"

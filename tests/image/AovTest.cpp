@@ -1,4 +1,4 @@
-// Exact data passes (issue 21, docs/aovs.md): a glTF of known quads rendered with every AOV,
+// Exact data passes (docs/aovs.md): a glTF of known quads rendered with every AOV,
 // each pixel checked against where its centre's ray meets the quads' plane: the id planes
 // exactly (node, mesh, primitive, material, semantic from extras, the background's values),
 // depth and range against the ray, range = depth |ray| / |z|, the world normal against the

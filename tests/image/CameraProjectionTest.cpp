@@ -121,7 +121,7 @@ TEST_F(CameraProjection, KnownPointsLandWhereTheGlMatricesPutThem) {
     Scene scene = test::emptyScene();
     const glm::dmat4 worldFromQuad = quadPlacement();
     test::addRampQuad(scene, kQuadW, kQuadH, kId, worldFromQuad);
-    // Half a pixel is the bound; the estimator is good to ~0.01 px, so a tenth of a
+    // Half a pixel is the bound asked of the projections; the estimator is good to ~0.01 px, so a tenth of a
     // pixel still catches a pixel-centre (0.5 px) or y-flip error with a wide margin.
     const double tolerance = 0.1;
     double worst = 0.0;

@@ -1,4 +1,4 @@
-// Cryptomatte layers (issue 21, docs/aovs.md): MurmurHash3_x86_32 against published vectors, the
+// Cryptomatte layers (docs/aovs.md): MurmurHash3_x86_32 against published vectors, the
 // spec's float conversion, and a scene of two quads whose edges fall at known fractions of a
 // pixel, so each pixel's coverage is known exactly: 1 inside, 3/4 and 1/4 where the quads meet,
 // 1/2 against the background; the manifest; the EXR channels and header through a round trip,

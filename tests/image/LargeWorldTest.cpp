@@ -88,7 +88,7 @@ TEST_F(LargeWorld, SceneAndCameraMovedTogetherRenderTheSameImage) {
 }
 
 // Measures how far the scene can move before the image changes (the report's number); the
-// assertion is the bound, 1e7.
+// assertion is the bound the large-world work set, 1e7.
 TEST_F(LargeWorld, ReportsTheLargestTranslationThatStillMatches) {
     double largestMatching = 0.0;
     bool broken = false;

@@ -1,5 +1,5 @@
 // The lighting equation at its numeric extremes (numerics.md section 3.8, LN-1 to LN-14, and
-// the list): each case renders on the device, counts NaN/Inf at readback (before any
+// the edge cases listed in docs/lighting.md): each case renders on the device, counts NaN/Inf at readback (before any
 // scrub or clamp), and compares every pixel with the double-precision reference under the
 // same interpolation rule, plus the case's own pass criterion.
 #include "LightingCompare.h"

@@ -1,4 +1,4 @@
-// The installed package, as a host uses it (issue 10): `cmake --install` of this build into a
+// The installed package, as a host uses it: `cmake --install` of this build into a
 // temporary prefix (then moved elsewhere), and, against that prefix only, the two example
 // projects configured with find_package, built and run (the headless one writes an EXR that
 // is read back; the GLFW one presents frames in a window under Xvfb), a program compiled and

@@ -1,4 +1,4 @@
-"""Editing a scene between renders without a new renderer (issue 21, pyrender issue 43): a node
+"""Editing a scene between renders without a new renderer (pyrender issue 43): a node
 moved, vertices displaced, the picture moves by the pixels the orthographic camera predicts, and
 the scene is uploaded once."""
 import numpy as np

@@ -48,9 +48,9 @@ TEST(FuzzRegressions, EveryInputIsRefusedOrLoadedSafely) {
 }
 
 // The command-line fuzzer's inputs (tests/fuzz/CliFuzz.cpp): arguments one per line, given to
-// `lantern render builtin:spheres ... --dry-run`. Its regressions (the defects of issue 17
-// and anything it finds) and its seeds exit 0, 1 or 2, with one line of error at most and no
-// sanitizer report; the seeds are valid, so they exit 0.
+// `lantern render builtin:spheres ... --dry-run`. Its regressions (earlier command-line
+// defects, docs/robustness.md, and anything it finds) and its seeds exit 0, 1 or 2, with one
+// line of error at most and no sanitizer report; the seeds are valid, so they exit 0.
 TEST(FuzzRegressions, CommandLineInputsExitCleanly) {
     int inputs = 0;
     for (const char* folder : {"cli-regressions", "cli-seeds"}) {

@@ -1,5 +1,5 @@
-// HostileInputTest: the hostile corpus of issue 17, generated here (none of it is a file in
-// the tree): planted symlinks and dot-files beside outputs, names at the file system's limit,
+// HostileInputTest: the hostile corpus of docs/robustness.md, generated here (none of it is a
+// file in the tree): planted symlinks and dot-files beside outputs, names at the file system's limit,
 // URIs that escape the scene's folder through symlinks or name folders and FIFOs, small files
 // that ask for gigabytes, numbers that would become infinite, integers that are not, deep
 // and wide node graphs, and command-line values out of range. Each case states its expected

@@ -1,4 +1,4 @@
-// What the first hostile corpus left (the "hostile remainder"): an empty --frames is a
+// What the first hostile corpus left (its "hostile remainder"): an empty --frames is a
 // usage error; a background finite as a double but infinite as a float, and a camera so far out
 // that its matrices overflow, are refused before anything renders; a scene at FLT_MAX renders,
 // and its EXR header holds no Inf or NaN (the camera matrices are left out, with a warning).

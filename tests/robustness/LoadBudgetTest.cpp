@@ -1,4 +1,4 @@
-// Issue 17: the load's budget (--max-size) follows the memory a scene file really makes Lantern
+// The load's budget (--max-size) follows the memory a scene file really makes Lantern
 // hold: for glTF the parsed JSON and the models built from it included, for OBJ tinyobjloader's
 // model, for PLY, STL and OFF what their readers build. This binary counts every
 // operator new and delete (global replacements below) to find the true peak of a load, then

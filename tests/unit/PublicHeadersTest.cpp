@@ -188,8 +188,8 @@ TEST(PublicHeaders, MarkWhatTheLibraryExports) {
     }
 }
 
-// Issue 10: the `lantern` command and the viewer use the public API only, and so does the Python
-// module (issue 19). A quoted include names one of the app's own headers from its folder
+// The `lantern` command and the viewer use the public API only, and so does the Python
+// module. A quoted include names one of the app's own headers from its folder
 // ("common/CliSupport.h", "PythonScene.h").
 TEST(AppsUsePublicApiOnly, NothingFromEngineSrc) {
     const fs::path engineSrc = sourceDir() / "engine" / "src";
@@ -218,7 +218,7 @@ TEST(AppsUsePublicApiOnly, NothingFromEngineSrc) {
     }
 }
 
-// Issue 15: apps/lantern has one folder per subcommand and common/ for what several share. A
+// apps/lantern has one folder per subcommand and common/ for what several share. A
 // subcommand's files include their own folder's headers and common/'s, never another
 // subcommand's; common/ includes only common/. (main.cpp, beside the folders, wires them up.)
 TEST(AppsUsePublicApiOnly, SubcommandsIncludeOnlyTheirFolderAndCommon) {

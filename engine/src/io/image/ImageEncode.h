@@ -23,7 +23,7 @@ Result<void> checkImage(const Image& image, const std::filesystem::path& path);
 /// 8-bit RGBA, un-premultiplied, clamped to [0,1], sRGB-encoded (non-finite values read as 0).
 std::vector<unsigned char> pngPixels(const Image& image);
 
-/// How a PNG's rows are compressed. Lantern writes for speed (issue 18): zlib level 2 and the
+/// How a PNG's rows are compressed. Lantern writes for speed: zlib level 2 and the
 /// Up filter on every row encode a 1080p render 2.5 times faster than libpng's default (level
 /// 6, every filter tried per row; `everyFilter`) for a file 1.7 times larger
 /// (lantern_microbench --benchmark_filter=BM_WritePng; docs/performance.md).
