@@ -25,7 +25,7 @@ build_pkgs=(
 # The farm tests start a private single-node Slurm (scripts/slurm-single-node.sh).
 slurm_pkgs=(slurm-wlm slurmctld slurmd slurm-client munge)
 test_pkgs=(
-    xvfb xauth xdotool x11-utils openimageio-tools vulkan-tools
+    xvfb xauth xdotool x11-utils openimageio-tools vulkan-tools zsh fish man-db groff-base
     clang-14 libclang-rt-14-dev valgrind python3 librsvg2-bin
     gltfpack draco libosmesa6-dev
     "${slurm_pkgs[@]}" python3-yaml python3-pytest python3-matplotlib

@@ -102,6 +102,25 @@ TEST_F(Installed, GlfwExampleShowsFramesInAWindow) {
 #endif
 }
 
+// The man pages and the completions land where man and the shells look for them, and
+// `man lantern` finds the page through the prefix's MANPATH.
+TEST_F(Installed, ManPagesAndCompletionsAreWhereManAndTheShellsLook) {
+    for (const char* f : {"share/man/man1/lantern.1", "share/man/man1/lantern-render.1",
+                          "share/man/man1/lantern-bench-accuracy.1",
+                          "share/bash-completion/completions/lantern",
+                          "share/zsh/vendor-completions/_lantern",
+                          "share/fish/vendor_completions.d/lantern.fish"})
+        EXPECT_TRUE(fs::exists(m_prefix / f)) << f << " is not installed";
+    if (runProcess({"sh", "-c", "command -v man"}).exitCode != 0) {
+        std::cout << "man is not installed: the page was not opened\n";
+        return;
+    }
+    const auto man = runProcess({"man", "-P", "cat", "lantern-render"},
+                                {"MANPATH=" + (m_prefix / "share/man").string(), "MANWIDTH=80"});
+    EXPECT_EQ(man.exitCode, 0) << man.err;
+    EXPECT_NE(man.out.find("--shading"), std::string::npos) << man.out.substr(0, 400);
+}
+
 TEST_F(Installed, PkgConfigAloneCompilesAndLinksAHost) {
     const std::vector<std::string> env = {"PKG_CONFIG_PATH=" + (m_prefix / LANTERN_INSTALL_LIBDIR / "pkgconfig").string()};
     ProcessResult flags;

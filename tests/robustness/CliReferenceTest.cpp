@@ -1,12 +1,14 @@
 // The command line's contract: docs/cli.md is what `lantern help --markdown` generates from the
 // definition (so the two cannot drift), the README and every --help link only to files in the
 // project, the shared options have one name and one description in every subcommand, and a
-// mistyped subcommand or option gets the nearest valid name (exit 2).
+// mistyped subcommand or option gets the nearest valid name (exit 2); the man pages and the
+// bash, zsh and fish completions, generated from the same definition, name every option.
 #include "TestSupport.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <map>
 #include <regex>
@@ -202,6 +204,120 @@ TEST(CliVersion, PrintsWhatABugReportNeeds) {
     EXPECT_FALSE(b.buildType.empty() || b.compiler == "unknown");
     EXPECT_TRUE(std::regex_match(b.vulkanLoader, std::regex(R"(\d+\.\d+\.\d+|none)")))
         << b.vulkanLoader;
+}
+
+
+bool haveTool(const std::string& tool) {
+    return lantern::test::runProcess({"sh", "-c", "command -v " + tool}).exitCode == 0;
+}
+
+std::string manName(std::string path) {
+    std::replace(path.begin(), path.end(), ' ', '-');
+    return path;
+}
+
+// roff writes a hyphen as "\-".
+std::string roffName(const std::string& name) {
+    std::string out;
+    for (char c : name) out += c == '-' ? std::string("\\-") : std::string(1, c);
+    return out;
+}
+
+// One page per command, each naming every option of its command; groff formats every page
+// without a warning.
+TEST(CliReference, ManPagesNameEveryOption) {
+    const auto dir = lantern::test::testOutputDir();
+    const auto r = runLantern({"help", "--man-pages", dir.string()});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const bool groff = haveTool("groff");
+    if (!groff) std::cout << "groff is not installed: the pages are checked, not formatted\n";
+    for (const Json& c : commands()) {
+        const auto page = dir / (manName(c["path"].get<std::string>()) + ".1");
+        ASSERT_TRUE(std::filesystem::exists(page)) << page;
+        const std::string text = readText(page);
+        EXPECT_NE(text.find(".SH SYNOPSIS"), std::string::npos) << page;
+        for (const Json& o : c["options"])
+            for (const Json& name : o["names"])
+                EXPECT_NE(text.find(roffName(name.get<std::string>())), std::string::npos)
+                    << page << " " << name;
+        if (!groff) continue;
+        const auto g = lantern::test::runProcess({"groff", "-man", "-Tutf8", "-ww", "-z", page.string()});
+        EXPECT_EQ(g.exitCode, 0) << page;
+        EXPECT_EQ(g.err, "") << page;
+    }
+}
+
+// Each shell's script names every option of every command and parses in its shell.
+TEST(CliReference, CompletionsNameEveryOptionAndParse) {
+    const auto dir = lantern::test::testOutputDir();
+    for (const std::string shell : {"bash", "zsh", "fish"}) {
+        const auto r = runLantern({"help", "--completion", shell});
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        for (const Json& c : commands())
+            for (const Json& o : c["options"]) {
+                if (o["positional"].get<bool>()) continue;
+                for (const Json& n : o["names"]) {
+                    const std::string name = n.get<std::string>();
+                    const std::string word = shell != "fish"          ? name
+                                             : name.rfind("--", 0) == 0 ? " -l " + name.substr(2)
+                                                                        : " -s " + name.substr(1);
+                    EXPECT_NE(r.out.find(word), std::string::npos) << shell << " " << c["path"] << " " << name;
+                }
+            }
+        const auto file = dir / ("lantern." + shell);
+        std::ofstream(file) << r.out;
+        if (!haveTool(shell)) {
+            std::cout << shell << " is not installed: its script is not parsed\n";
+            continue;
+        }
+        const auto parsed = lantern::test::runProcess({shell, "-n", file.string()});
+        EXPECT_EQ(parsed.exitCode, 0) << shell << ": " << parsed.err;
+    }
+    const auto bad = runLantern({"help", "--completion", "tcsh"});
+    EXPECT_EQ(bad.exitCode, 2);
+    EXPECT_NE(bad.err.find("--completion"), std::string::npos) << bad.err;
+}
+
+// What bash and fish offer: subcommands, options, option values (after a list's comma) and
+// scene files by their extension.
+TEST(CliReference, CompletionsOfferSubcommandsOptionsValuesAndScenes) {
+    const auto dir = lantern::test::testOutputDir();
+    std::filesystem::create_directories(dir / "scenes" / "sub");
+    std::ofstream(dir / "scenes" / "a.gltf") << "{}";
+    std::ofstream(dir / "scenes" / "b.txt") << "x";
+    const auto script = dir / "lantern.bash";
+    std::ofstream(script) << runLantern({"help", "--completion", "bash"}).out;
+    auto bash = [&](const std::vector<std::string>& words) {
+        std::string array;
+        for (const std::string& w : words) array += " '" + w + "'";
+        const std::string code = "source '" + script.string() + "'; COMP_WORDS=(" + array +
+                                 "); COMP_CWORD=" + std::to_string(words.size() - 1) +
+                                 "; _lantern; printf '%s\\n' \"${COMPREPLY[@]}\"";
+        return lantern::test::runProcess({"bash", "-c", code}).out;
+    };
+    EXPECT_NE(bash({"lantern", "be"}).find("bench\n"), std::string::npos);
+    EXPECT_NE(bash({"lantern", "render", "--sha"}).find("--shading\n"), std::string::npos);
+    EXPECT_NE(bash({"lantern", "render", "--shading", "g"}).find("gouraud\n"), std::string::npos);
+    EXPECT_NE(bash({"lantern", "render", "--aov", "depth,no"}).find("depth,normal\n"), std::string::npos);
+    EXPECT_NE(bash({"lantern", "bench", "accuracy", "--lod-e"}).find("--lod-errors\n"), std::string::npos);
+    const std::string files = bash({"lantern", "render", (dir / "scenes").string() + "/"});
+    EXPECT_NE(files.find("a.gltf"), std::string::npos) << files;
+    EXPECT_NE(files.find("sub"), std::string::npos) << files;
+    EXPECT_EQ(files.find("b.txt"), std::string::npos) << files;
+    if (!haveTool("fish")) {
+        std::cout << "fish is not installed: its completions are not asked\n";
+        return;
+    }
+    const auto fishScript = dir / "lantern.fish";
+    std::ofstream(fishScript) << runLantern({"help", "--completion", "fish"}).out;
+    auto fish = [&](const std::string& line) {
+        return lantern::test::runProcess(
+                   {"fish", "--no-config", "-c", "source '" + fishScript.string() + "'; complete -C '" + line + "'"})
+            .out;
+    };
+    EXPECT_NE(fish("lantern ben").find("bench"), std::string::npos);
+    EXPECT_NE(fish("lantern render --shading ").find("gouraud"), std::string::npos);
+    EXPECT_NE(fish("lantern bench accuracy --lod-").find("--lod-errors"), std::string::npos);
 }
 
 } // namespace

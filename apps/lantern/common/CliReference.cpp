@@ -1,6 +1,7 @@
 // The command line's reference, generated from its CLI11 definition: `lantern help --markdown`
 // writes docs/cli.md (the contract, checked against the definition by a test), `--json` the
 // definition for tools and tests, and `lantern help COMMAND` a command's --help.
+#include "common/CliReference.h"
 #include "common/CliSupport.h"
 #include "common/Commands.h"
 #include "common/Suggest.h"
@@ -12,6 +13,34 @@
 #include <sstream>
 
 namespace lantern::cli {
+
+// The options a reference lists: every one but --help.
+std::vector<const CLI::Option*> listedOptions(const CLI::App& app) {
+    return app.get_options([&](const CLI::Option* o) {
+        return o != app.get_help_ptr() && !o->get_group().empty();
+    });
+}
+
+std::string optionNames(const CLI::Option& o) {
+    if (o.get_positional()) return o.get_name(true);
+    std::string out;
+    for (const std::string& s : o.get_snames())
+        out += (out.empty() ? "-" : ", -") + s;
+    for (const std::string& l : o.get_lnames())
+        out += (out.empty() ? "--" : ", --") + l;
+    return out;
+}
+
+bool isFlag(const CLI::Option& o) {
+    return o.get_items_expected_max() == 0;
+}
+bool isList(const CLI::Option& o) {
+    return o.get_delimiter() != '\0';
+}
+bool isRepeatable(const CLI::Option& o) {
+    return !isFlag(o) && !isList(o) && o.get_items_expected_max() > 1;
+}
+
 namespace {
 
 using Json = nlohmann::ordered_json;
@@ -75,33 +104,6 @@ Nothing is ever written half: an output file appears complete or not at all.
   mean --width?" (exit 2).
 )";
 
-// The options a reference lists: every one but --help.
-std::vector<const CLI::Option*> listedOptions(const CLI::App& app) {
-    return app.get_options([&](const CLI::Option* o) {
-        return o != app.get_help_ptr() && !o->get_group().empty();
-    });
-}
-
-std::string names(const CLI::Option& o) {
-    if (o.get_positional()) return o.get_name(true);
-    std::string out;
-    for (const std::string& s : o.get_snames())
-        out += (out.empty() ? "-" : ", -") + s;
-    for (const std::string& l : o.get_lnames())
-        out += (out.empty() ? "--" : ", --") + l;
-    return out;
-}
-
-bool isFlag(const CLI::Option& o) {
-    return o.get_items_expected_max() == 0;
-}
-bool isList(const CLI::Option& o) {
-    return o.get_delimiter() != '\0';
-}
-bool isRepeatable(const CLI::Option& o) {
-    return !isFlag(o) && !isList(o) && o.get_items_expected_max() > 1;
-}
-
 std::string valueText(const CLI::Option& o) {
     if (isFlag(o)) return "flag";
     std::string type = o.get_type_name();
@@ -136,7 +138,7 @@ void markdownCommand(std::ostringstream& md, const CLI::App& app, int depth) {
     if (!options.empty()) {
         md << "\n| option | value | default | meaning |\n|---|---|---|---|\n";
         for (const CLI::Option* o : options)
-            md << "| `" << names(*o) << "` | " << cell(valueText(*o)) << " | "
+            md << "| `" << optionNames(*o) << "` | " << cell(valueText(*o)) << " | "
                << cell(o->get_default_str()) << " | " << cell(o->get_description())
                << (o->get_required() ? " (required)" : "") << " |\n";
     }
@@ -180,11 +182,29 @@ Json jsonCommand(const CLI::App& app) {
 struct HelpArgs {
     std::vector<std::string> command;
     bool markdown = false, json = false;
+    std::string manPages, completion;
 };
 
+// --man-pages DIR: every page written; --completion SHELL: the script on stdout.
+int runManual(const CLI::App& root, const HelpArgs& a) {
+    if (!a.manPages.empty()) {
+        auto written = writeManPages(root, a.manPages);
+        if (!written) return report(written.error());
+        for (const std::string& path : *written) std::cout << path << "\n";
+        return kOk;
+    }
+    auto script = completionScript(root, a.completion);
+    if (!script) return report(script.error());
+    std::cout << *script;
+    return kOk;
+}
+
 int runHelp(const CLI::App& root, const HelpArgs& a) {
-    if (a.markdown && a.json)
-        return report(makeError(ErrorCode::Usage, "give --markdown or --json", "--markdown"));
+    if (int(a.markdown) + int(a.json) + int(!a.manPages.empty()) + int(!a.completion.empty()) > 1)
+        return report(makeError(ErrorCode::Usage,
+                                "give one of --markdown, --json, --man-pages and --completion",
+                                "--markdown"));
+    if (!a.manPages.empty() || !a.completion.empty()) return runManual(root, a);
     if (a.markdown) {
         std::cout << cliMarkdown(root);
         return kOk;
@@ -230,6 +250,11 @@ Runner addHelpCommand(CLI::App& app) {
     cmd->add_flag("--markdown", args->markdown,
                   "The reference of every subcommand and option as markdown (docs/cli.md)");
     cmd->add_flag("--json", args->json, "The command line's definition as JSON, for tools");
+    cmd->add_option("--man-pages", args->manPages,
+                    "Write the man pages (lantern.1 and one per subcommand) into this existing "
+                    "folder");
+    cmd->add_option("--completion", args->completion,
+                    "Print the completion script for this shell: bash, zsh or fish");
     const CLI::App* root = &app;
     return [args, cmd, root]() { return cmd->parsed() ? runHelp(*root, *args) : -1; };
 }

@@ -1,0 +1,319 @@
+// Man pages and shell completions generated from the command line's CLI11 definition, like
+// docs/cli.md, so that they cannot drift from it: `lantern help --man-pages DIR` writes
+// lantern(1) and one page per subcommand, `lantern help --completion bash|zsh|fish` prints a
+// completion script (subcommands, options, the values of options that take one of a few
+// names, scene files filtered by the formats Lantern reads).
+#include "common/CliReference.h"
+#include "common/Suggest.h"
+#include "common/TextFile.h"
+
+#include <lantern/Io.h>
+#include <lantern/Options.h>
+#include <lantern/Version.h>
+
+#include <algorithm>
+#include <map>
+#include <sstream>
+
+namespace lantern::cli {
+namespace {
+
+std::vector<std::string> split(const std::string& text, const std::string& separators) {
+    std::vector<std::string> out;
+    std::string word;
+    for (char c : text + separators[0]) {
+        if (separators.find(c) != std::string::npos) {
+            if (!word.empty()) out.push_back(word);
+            word.clear();
+        } else {
+            word += c;
+        }
+    }
+    return out;
+}
+
+// Every command in the order the reference lists them, the root first.
+void allCommands(const CLI::App& app, std::vector<const CLI::App*>& out) {
+    out.push_back(&app);
+    for (const CLI::App* sub : subcommandsOf(app)) allCommands(*sub, out);
+}
+
+// roff: backslashes escaped, hyphens as minus signs, no line starting with a control character.
+std::string roff(const std::string& text) {
+    std::string out;
+    for (char c : text) out += c == '\\' ? std::string("\\e") : c == '-' ? std::string("\\-") : std::string(1, c);
+    if (!out.empty() && (out[0] == '.' || out[0] == '\'')) out = "\\&" + out;
+    return out;
+}
+
+// An option's value type as its help names it ("INT", not "INT:INT in [1 - 16384]").
+std::string typeName(const CLI::Option& o) {
+    const std::string t = o.get_type_name();
+    return t.substr(0, t.find(':'));
+}
+
+std::string optionSynopsis(const CLI::Option& o) {
+    std::string text = "\\fB" + roff(optionNames(o)) + "\\fR";
+    if (!isFlag(o) && !o.get_positional()) text += " \\fI" + roff(typeName(o)) + "\\fR";
+    return text;
+}
+
+// A sentence: the text with a full stop.
+std::string sentence(std::string text) {
+    return text.empty() || text.back() == '.' ? text : text + '.';
+}
+
+// A shell word in single quotes.
+std::string shellQuoted(const std::string& text) {
+    std::string out = "'";
+    for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+// The long names (--name) and short names (-n) of a command's named options.
+std::vector<std::string> optionWords(const CLI::App& app) {
+    std::vector<std::string> words;
+    for (const CLI::Option* o : listedOptions(app)) {
+        if (o->get_positional()) continue;
+        for (const std::string& s : o->get_snames()) words.push_back("-" + s);
+        for (const std::string& l : o->get_lnames()) words.push_back("--" + l);
+    }
+    return words;
+}
+
+std::string joined(const std::vector<std::string>& words, const char* separator = " ") {
+    std::string out;
+    for (const std::string& w : words) out += (out.empty() ? "" : separator) + w;
+    return out;
+}
+
+std::vector<std::string> longNames(const CLI::Option& o) {
+    std::vector<std::string> out;
+    for (const std::string& l : o.get_lnames()) out.push_back("--" + l);
+    return out;
+}
+
+// The file patterns of scene files: "gltf glb obj ply stl off".
+std::vector<std::string> sceneExtensions() {
+    std::vector<std::string> out;
+    for (const std::string& e : sceneFileExtensions()) out.push_back(e.substr(1));
+    return out;
+}
+
+} // namespace
+
+std::vector<std::string> optionChoices(const CLI::Option& o) {
+    static const std::map<std::string, std::vector<std::string>> known = {
+        {"shading", {"flat", "gouraud", "phong"}},
+        {"specular", {"phong", "blinn"}},
+        {"transparency", {"exact", "sorted", "weighted"}},
+        {"shadow-filter", {"hardware", "pcf", "pcss"}},
+        {"compression", {"none", "rle", "zips", "zip", "piz", "pxr24", "b44", "b44a", "dwaa", "dwab"}},
+        {"view", {"three-quarter", "front", "back", "left", "right", "top", "bottom", "iso"}},
+        {"up", {"y", "z"}},
+        {"aov", split(aovNames(), ", ")},
+    };
+    for (const std::string& l : o.get_lnames())
+        if (auto it = known.find(l); it != known.end() && !it->second.empty()) return it->second;
+    return {};
+}
+
+std::string manPageName(const CLI::App& app) {
+    std::string name = commandPath(app);
+    std::replace(name.begin(), name.end(), ' ', '-');
+    return name;
+}
+
+std::string manPage(const CLI::App& app) {
+    const std::string name = manPageName(app);
+    std::string upper = name;
+    std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) { return char(std::toupper(c)); });
+    std::ostringstream m;
+    m << ".\\\" Generated by `lantern help --man-pages` from the command's definition.\n"
+      << ".TH " << roff(upper) << " 1 \"\" \"Lantern " << LANTERN_VERSION_STRING << "\" \"Lantern Manual\"\n"
+      << ".SH NAME\n" << roff(name) << " \\- " << roff(app.get_description()) << "\n"
+      << ".SH SYNOPSIS\n\\fB" << roff(commandPath(app)) << "\\fR";
+    for (const CLI::Option* o : listedOptions(app))
+        if (o->get_positional()) m << (o->get_required() ? " \\fI" : " [\\fI") << roff(o->get_name(true)) << (o->get_required() ? "\\fR" : "\\fR]");
+    if (!subcommandsOf(app).empty()) m << " \\fISUBCOMMAND\\fR";
+    m << " [\\fIoptions\\fR]\n.SH DESCRIPTION\n" << roff(app.get_description()) << ".\n";
+    if (!app.get_footer().empty()) m << ".PP\n" << roff(app.get_footer()) << "\n";
+    const auto options = listedOptions(app);
+    if (!options.empty()) m << ".SH OPTIONS\n";
+    for (const CLI::Option* o : options) {
+        m << ".TP\n" << optionSynopsis(*o) << "\n"
+          << roff(sentence(o->get_description() + (o->get_required() ? " (required)" : "")));
+        if (!o->get_default_str().empty()) m << " Default: " << roff(o->get_default_str()) << ".";
+        if (isList(*o)) m << " Comma-separated.";
+        m << "\n";
+    }
+    const auto subs = subcommandsOf(app);
+    if (!subs.empty()) {
+        m << ".SH SUBCOMMANDS\n";
+        for (const CLI::App* sub : subs)
+            m << ".TP\n\\fB" << roff(sub->get_name()) << "\\fR\n" << roff(sub->get_description())
+              << ". See \\fB" << roff(manPageName(*sub)) << "\\fR(1).\n";
+    }
+    m << ".SH EXIT STATUS\n0 success; 1 the input was refused; 2 usage error; 3 the renderer "
+         "failed; 128+N stopped by signal N.\n"
+      << ".SH SEE ALSO\n" << (app.get_parent() ? "\\fBlantern\\fR(1), " : "")
+      << "the reference of every option: \\fBlantern help \\-\\-markdown\\fR.\n";
+    return m.str();
+}
+
+Result<std::vector<std::string>> writeManPages(const CLI::App& root, const std::string& dir) {
+    std::vector<const CLI::App*> commands;
+    allCommands(root, commands);
+    std::vector<std::string> written;
+    for (const CLI::App* app : commands) {
+        const std::string path = dir + "/" + manPageName(*app) + ".1";
+        LANTERN_TRY(writeTextFile(path, manPage(*app)));
+        written.push_back(path);
+    }
+    return written;
+}
+
+namespace {
+
+std::string bashCompletion(const std::vector<const CLI::App*>& commands) {
+    std::ostringstream s;
+    s << "# bash completion for lantern, generated by `lantern help --completion bash`.\n"
+         "_lantern() {\n"
+         "    local cur=${COMP_WORDS[COMP_CWORD]} prev=${COMP_WORDS[COMP_CWORD-1]}\n"
+         "    local path=lantern i\n"
+         "    for ((i = 1; i < COMP_CWORD; i++)); do\n"
+         "        case \"$path ${COMP_WORDS[i]}\" in\n";
+    for (const CLI::App* app : commands)
+        if (app->get_parent()) s << "        " << shellQuoted(commandPath(*app)) << ") path=\"$path ${COMP_WORDS[i]}\" ;;\n";
+    s << "        esac\n    done\n    local words=\"\" values=\"\"\n    case \"$path\" in\n";
+    for (const CLI::App* app : commands) {
+        std::vector<std::string> words = optionWords(*app);
+        for (const CLI::App* sub : subcommandsOf(*app)) words.push_back(sub->get_name());
+        s << "    " << shellQuoted(commandPath(*app)) << ")\n        words=" << shellQuoted(joined(words)) << "\n        case \"$prev\" in\n";
+        for (const CLI::Option* o : listedOptions(*app))
+            if (auto choices = optionChoices(*o); !choices.empty() && !o->get_positional())
+                s << "        " << joined(longNames(*o), "|") << ") values=" << shellQuoted(joined(choices))
+                  << " ;;\n";
+        s << "        esac ;;\n";
+    }
+    s << "    esac\n"
+         "    if [[ -n $values ]]; then  # a list: complete the name after the last comma\n"
+         "        compopt -o nospace 2>/dev/null\n"
+         "        local head=\"\"\n"
+         "        [[ $cur == *,* ]] && head=\"${cur%,*},\"\n"
+         "        COMPREPLY=($(compgen -P \"$head\" -W \"$values\" -- \"${cur##*,}\"))\n"
+         "        return\n"
+         "    fi\n"
+         "    if [[ $cur == -* ]]; then\n"
+         "        COMPREPLY=($(compgen -W \"$words\" -- \"$cur\"))\n"
+         "        return\n"
+         "    fi\n"
+         "    local f\n"
+         "    compopt -o filenames 2>/dev/null\n"
+         "    COMPREPLY=($(compgen -W \"$words\" -- \"$cur\"))\n"
+         "    while IFS= read -r f; do\n"
+         "        case \"${f,,}\" in\n"
+         "        *." << joined(sceneExtensions(), "|*.") << ") COMPREPLY+=(\"$f\") ;;\n"
+         "        esac\n"
+         "    done < <(compgen -f -- \"$cur\")\n"
+         "    while IFS= read -r f; do COMPREPLY+=(\"$f\"); done < <(compgen -d -- \"$cur\")\n"
+         "}\n"
+         "complete -F _lantern lantern\n";
+    return s.str();
+}
+
+// zsh: the subcommand words are dropped from `words`, then _arguments completes the command's
+// options, their values and its scene files.
+std::string zshCompletion(const std::vector<const CLI::App*>& commands) {
+    std::ostringstream s;
+    s << "#compdef lantern\n# zsh completion for lantern, generated by `lantern help --completion zsh`.\n"
+         "_lantern() {\n"
+         "    local path=lantern\n"
+         "    while (( CURRENT > 2 )); do\n"
+         "        case \"$path ${words[2]}\" in\n";
+    for (const CLI::App* app : commands)
+        if (app->get_parent()) s << "        " << shellQuoted(commandPath(*app)) << ") path=\"$path ${words[2]}\"; shift words; (( CURRENT-- )) ;;\n";
+    s << "        *) break ;;\n        esac\n    done\n    case \"$path\" in\n";
+    const std::string files = "'*:scene:_files -g \"*.(" + joined(sceneExtensions(), "|") + ")(-.)\"'";
+    for (const CLI::App* app : commands) {
+        s << "    " << shellQuoted(commandPath(*app)) << ")\n        _arguments -s";
+        for (const CLI::Option* o : listedOptions(*app)) {
+            if (o->get_positional()) continue;
+            std::string description = o->get_description();
+            for (char& c : description)
+                if (c == '[' || c == ']' || c == ':') c = ' ';
+            std::string value;
+            if (!isFlag(*o)) {
+                auto choices = optionChoices(*o);
+                value = ":" + typeName(*o) + ":" + (choices.empty() ? std::string(" ") : "(" + joined(choices) + ")");
+            }
+            std::vector<std::string> names;
+            for (const std::string& sn : o->get_snames()) names.push_back("-" + sn);
+            for (const std::string& l : o->get_lnames()) names.push_back("--" + l);
+            for (const std::string& n : names)
+                s << " \\\n            " << shellQuoted(std::string(isRepeatable(*o) ? "*" : "") + n + "[" + description + "]" + value);
+        }
+        if (!subcommandsOf(*app).empty()) {
+            std::vector<std::string> subs;
+            for (const CLI::App* sub : subcommandsOf(*app)) subs.push_back(sub->get_name());
+            s << " \\\n            " << shellQuoted("1:command:(" + joined(subs) + ")");
+        } else {
+            s << " \\\n            " << files;
+        }
+        s << " ;;\n";
+    }
+    s << "    esac\n}\n_lantern \"$@\"\n";
+    return s.str();
+}
+
+// fish: each option under the condition that the command's words were seen.
+std::string fishCompletion(const std::vector<const CLI::App*>& commands) {
+    std::ostringstream s;
+    s << "# fish completion for lantern, generated by `lantern help --completion fish`.\n"
+         "complete -c lantern -f\n";
+    for (const CLI::App* app : commands) {
+        std::string condition;
+        std::vector<std::string> path = split(commandPath(*app), " ");
+        std::vector<std::string> subs;
+        for (const CLI::App* sub : subcommandsOf(*app)) subs.push_back(sub->get_name());
+        if (path.size() == 1) {
+            condition = "__fish_use_subcommand";
+        } else {
+            for (std::size_t i = 1; i < path.size(); ++i)
+                condition += (i > 1 ? "; and " : "") + std::string("__fish_seen_subcommand_from ") + path[i];
+            if (!subs.empty()) condition += "; and not __fish_seen_subcommand_from " + joined(subs);
+        }
+        for (const CLI::App* sub : subcommandsOf(*app))
+            s << "complete -c lantern -n " << shellQuoted(condition) << " -a " << sub->get_name() << " -d "
+              << shellQuoted(sub->get_description()) << "\n";
+        for (const CLI::Option* o : listedOptions(*app)) {
+            if (o->get_positional()) continue;
+            s << "complete -c lantern -n " << shellQuoted(condition);
+            for (const std::string& sn : o->get_snames()) s << " -s " << sn;
+            for (const std::string& l : o->get_lnames()) s << " -l " << l;
+            if (!isFlag(*o)) {
+                auto choices = optionChoices(*o);
+                s << (choices.empty() ? " -r" : " -x -a " + shellQuoted(joined(choices)));
+            }
+            s << " -d " << shellQuoted(o->get_description()) << "\n";
+        }
+        if (subs.empty() && path.size() > 1)
+            for (const std::string& e : sceneExtensions())
+                s << "complete -c lantern -n " << shellQuoted(condition) << " -k -a '(__fish_complete_suffix ." << e << ")'\n";
+    }
+    return s.str();
+}
+
+} // namespace
+
+Result<std::string> completionScript(const CLI::App& root, const std::string& shell) {
+    std::vector<const CLI::App*> commands;
+    allCommands(root, commands);
+    if (shell == "bash") return bashCompletion(commands);
+    if (shell == "zsh") return zshCompletion(commands);
+    if (shell == "fish") return fishCompletion(commands);
+    return makeError(ErrorCode::Usage, "no completion for \"" + shell + "\" (bash, zsh, fish)",
+                     "--completion");
+}
+
+} // namespace lantern::cli
