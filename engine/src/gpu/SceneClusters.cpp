@@ -107,7 +107,7 @@ Result<void> SceneClusters::append(const std::vector<ClusterData>& added) {
     return uploadToBuffer(m_ctx, m_clusters, kept, added.data(), bytes);
 }
 
-// Each level simplifies the one before to a quarter of its triangles (meshopt_simplify keeps
+// Each level simplifies the one before to half its triangles (meshopt_simplify keeps
 // the order of the triangles it keeps, so the runs stay coherent); its error is the sum of the
 // steps' (an upper bound of its distance from the full mesh). The chain stops where a step
 // cannot remove a fifth, or a level would have under 16 triangles.
@@ -128,7 +128,7 @@ Result<void> SceneClusters::ensureLevels() {
             std::vector<std::uint32_t> current = p.indices, next(p.indices.size());
             double error = 0.0;
             while (pc.levelCount < LANTERN_CULL_MAX_LEVELS && lod.size() < (1u << 30)) {
-                const std::size_t target = current.size() / 12 * 3;
+                const std::size_t target = current.size() / 6 * 3;
                 if (target < 3 * 16) break;
                 float stepError = 0.0f;
                 const std::size_t n = meshopt_simplify(next.data(), current.data(), current.size(), positions,
