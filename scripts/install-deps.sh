@@ -28,7 +28,7 @@ test_pkgs=(
     xvfb xauth xdotool x11-utils openimageio-tools vulkan-tools zsh fish man-db groff-base
     clang-14 libclang-rt-14-dev valgrind python3 librsvg2-bin
     gltfpack draco libosmesa6-dev
-    "${slurm_pkgs[@]}" python3-yaml python3-pytest python3-matplotlib
+    "${slurm_pkgs[@]}" python3-yaml python3-pytest python3-matplotlib python3-distributed
 )
 
 case "$what" in

@@ -158,7 +158,8 @@ TEST_F(Installed, PythonModuleImportsAndRendersFromThePrefix) {
                     "pybind11-dev missing, or a sanitizer build)";
 #else
     const fs::path packages = m_prefix / LANTERN_INSTALL_PYTHONDIR;
-    ASSERT_TRUE(fs::exists(packages / "lantern" / "__init__.py")) << packages;
+    for (const char* f : {"__init__.py", "_picture.py", "_pool.py", "__init__.pyi", "py.typed"})
+        EXPECT_TRUE(fs::exists(packages / "lantern" / f)) << f << " is not installed in " << packages;
     const char* script = R"(
 import lantern, sys
 print(lantern.__file__)
@@ -169,7 +170,7 @@ except lantern.Error as e:
     print("no device:", e)
     sys.exit(0)
 rgba = renderer.render(lantern.load("builtin:teapot"), width=32, height=24)
-print(rgba.shape, rgba.dtype)
+print(rgba.shape, rgba.dtype, type(rgba).__name__, rgba._repr_png_()[:4])
 )";
     ProcessResult run;
     const auto ran = runStep({LANTERN_INSTALL_PYTHON, "-c", script},
@@ -181,7 +182,7 @@ print(rgba.shape, rgba.dtype)
     EXPECT_NE(run.out.find(std::string("\n") + versionString() + "\n"), std::string::npos)
         << run.out;
     if (run.out.find("no device:") == std::string::npos) {
-        EXPECT_NE(run.out.find("(24, 32, 4) float32"), std::string::npos) << run.out;
+        EXPECT_NE(run.out.find("(24, 32, 4) float32 Picture b'\\x89PNG'"), std::string::npos) << run.out;
     }
 #endif
 }

@@ -7,9 +7,11 @@
     lantern.write_image("teapot.png", rgba)
 
 Keep one Renderer for many renders: it keeps the device, the compiled pipelines and the scene's
-upload between calls. docs/python.md is the guide.
+upload between calls. A rendered picture shows itself in a notebook (lantern.Picture);
+lantern.Pool renders a list of jobs over worker processes. docs/python.md is the guide.
 """
 import atexit as _atexit
+import functools as _functools
 
 from ._lantern import (  # noqa: F401  (the module's API)
     Error,
@@ -23,8 +25,34 @@ from ._lantern import (  # noqa: F401  (the module's API)
     write_image,
 )
 
-__all__ = ["Error", "Renderer", "Scene", "build_info", "builtin_scenes", "frames",
-           "list_devices", "load", "render", "write_image"]
+from ._pool import Pool, render_job  # noqa: F401
+
+try:  # NumPy is what a render returns; without it the rest of the module still imports
+    from ._picture import Picture, as_picture as _as_picture, png_bytes  # noqa: F401
+except ImportError:  # pragma: no cover
+    Picture = png_bytes = None
+
+    def _as_picture(array):
+        return array
+
+__all__ = ["Error", "Picture", "Pool", "Renderer", "Scene", "build_info", "builtin_scenes",
+           "frames", "list_devices", "load", "png_bytes", "render", "render_job", "write_image"]
+
+Error.__doc__ = ("Raised when rendering fails: no Vulkan device, the device lost, out of memory "
+                 "(a RuntimeError; a refused scene or option is a ValueError, a file an OSError)")
+
+_render_arrays = Renderer.render
+
+
+@_functools.wraps(_render_arrays)
+def _render_pictures(self, scene, **options):
+    result = _render_arrays(self, scene, **options)
+    if isinstance(result, tuple):
+        return (_as_picture(result[0]),) + tuple(result[1:])
+    return _as_picture(result)
+
+
+Renderer.render = _render_pictures
 
 
 def frames(renderer, scene, first=None, last=None, fps=24.0, **options):
