@@ -82,6 +82,9 @@ if(TARGET lantern_cli)
     install(FILES ${_lantern_manual}/_lantern DESTINATION ${CMAKE_INSTALL_DATADIR}/zsh/vendor-completions)
     install(FILES ${_lantern_manual}/lantern.fish
         DESTINATION ${CMAKE_INSTALL_DATADIR}/fish/vendor_completions.d)
+    # The freedesktop thumbnailer entry: file managers run `lantern thumbnail` for these types.
+    install(FILES ${PROJECT_SOURCE_DIR}/apps/lantern/thumbnail/lantern.thumbnailer
+        DESTINATION ${CMAKE_INSTALL_DATADIR}/thumbnailers)
 endif()
 
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/LanternConfig.cmake.in

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -119,6 +120,34 @@ TEST_F(Installed, ManPagesAndCompletionsAreWhereManAndTheShellsLook) {
                                 {"MANPATH=" + (m_prefix / "share/man").string(), "MANWIDTH=80"});
     EXPECT_EQ(man.exitCode, 0) << man.err;
     EXPECT_NE(man.out.find("--shading"), std::string::npos) << man.out.substr(0, 400);
+}
+
+// The thumbnailer entry as a file manager uses it: its Exec line, with %s, %i and %o replaced,
+// run with the prefix's bin on PATH, writes the PNG.
+TEST_F(Installed, TheThumbnailerEntryRunsAsAFileManagerRunsIt) {
+    const fs::path entry = m_prefix / "share/thumbnailers/lantern.thumbnailer";
+    ASSERT_TRUE(fs::exists(entry)) << entry;
+    std::ifstream in(entry);
+    std::string line, exec, mime;
+    while (std::getline(in, line)) {
+        if (line.rfind("Exec=", 0) == 0) exec = line.substr(5);
+        if (line.rfind("MimeType=", 0) == 0) mime = line.substr(9);
+    }
+    EXPECT_NE(mime.find("model/gltf-binary;"), std::string::npos) << mime;
+    EXPECT_NE(mime.find("model/gltf+json;"), std::string::npos) << mime;
+    ASSERT_FALSE(exec.empty()) << "no Exec line";
+    LANTERN_SKIP_IF_MISSING(missingVulkanDevice());
+    const fs::path input = sharedDir() / "assets/gltf-samples/Box/glTF-Binary/Box.glb";
+    const fs::path output = m_root.path() / "thumb.png";
+    std::vector<std::string> args;
+    std::istringstream words(exec);
+    for (std::string w; words >> w;)
+        args.push_back(w == "%s" ? "64" : w == "%i" ? input.string() : w == "%o" ? output.string() : w);
+    ASSERT_EQ(args.front(), "lantern");
+    args.front() = (m_prefix / "bin" / "lantern").string();
+    const auto run = runProcess(args);
+    EXPECT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_TRUE(fs::exists(output)) << "the thumbnail was not written";
 }
 
 TEST_F(Installed, PkgConfigAloneCompilesAndLinksAHost) {

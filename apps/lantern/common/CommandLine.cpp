@@ -28,6 +28,7 @@ std::vector<Runner> addAllCommands(CLI::App& app) {
     runners.push_back(addBenchCommand(app));
     runners.push_back(addFarmCommand(app));
     runners.push_back(addCompareCommand(app));
+    runners.push_back(addThumbnailCommand(app));
     runners.push_back(addHelpCommand(app));
     return runners;
 }

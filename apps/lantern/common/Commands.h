@@ -17,6 +17,7 @@ Runner addBenchCommand(CLI::App& app);
 Runner addViewCommand(CLI::App& app);
 Runner addFarmCommand(CLI::App& app); // docs/farm.md
 Runner addCompareCommand(CLI::App& app); // docs/testing-with-lantern.md
+Runner addThumbnailCommand(CLI::App& app); // a freedesktop thumbnailer
 
 /// `lantern help [COMMAND...] [--markdown|--json]`: the help of a command, or the reference of
 /// the whole command line generated from its definition (docs/cli.md is its output).
