@@ -69,6 +69,7 @@ if(TARGET lantern_cli)
         COMMAND ${CMAKE_COMMAND} -E rm -rf ${_lantern_manual}/man1
         COMMAND ${CMAKE_COMMAND} -E make_directory ${_lantern_manual}/man1
         COMMAND ${_lantern_help} help --man-pages ${_lantern_manual}/man1 > ${_lantern_manual}/pages.txt
+        COMMAND gzip -9nf ${_lantern_manual}/man1/*.1
         COMMAND ${_lantern_help} help --completion bash > ${_lantern_manual}/lantern
         COMMAND ${_lantern_help} help --completion zsh > ${_lantern_manual}/_lantern
         COMMAND ${_lantern_help} help --completion fish > ${_lantern_manual}/lantern.fish

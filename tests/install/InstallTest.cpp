@@ -106,8 +106,8 @@ TEST_F(Installed, GlfwExampleShowsFramesInAWindow) {
 // The man pages and the completions land where man and the shells look for them, and
 // `man lantern` finds the page through the prefix's MANPATH.
 TEST_F(Installed, ManPagesAndCompletionsAreWhereManAndTheShellsLook) {
-    for (const char* f : {"share/man/man1/lantern.1", "share/man/man1/lantern-render.1",
-                          "share/man/man1/lantern-bench-accuracy.1",
+    for (const char* f : {"share/man/man1/lantern.1.gz", "share/man/man1/lantern-render.1.gz",
+                          "share/man/man1/lantern-bench-accuracy.1.gz",
                           "share/bash-completion/completions/lantern",
                           "share/zsh/vendor-completions/_lantern",
                           "share/fish/vendor_completions.d/lantern.fish"})
