@@ -29,12 +29,12 @@ set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA ${PROJECT_SOURCE_DIR}/packaging/triggers)
 set(CPACK_DEBIAN_PACKAGE_CONTROL_STRICT_PERMISSION ON)
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 # /usr/share/doc/lantern: the copyright file and the changelog (gzipped, as Debian wants).
+# (Compressed at configure time: an install of the library alone builds no custom target.)
 set(_lantern_changelog ${PROJECT_BINARY_DIR}/packaging/changelog.gz)
-add_custom_command(OUTPUT ${_lantern_changelog}
-    COMMAND ${CMAKE_COMMAND} -E make_directory ${PROJECT_BINARY_DIR}/packaging
-    COMMAND gzip -9nc ${PROJECT_SOURCE_DIR}/packaging/changelog > ${_lantern_changelog}
-    DEPENDS ${PROJECT_SOURCE_DIR}/packaging/changelog)
-add_custom_target(lantern_changelog ALL DEPENDS ${_lantern_changelog})
+file(MAKE_DIRECTORY ${PROJECT_BINARY_DIR}/packaging)
+execute_process(COMMAND gzip -9nc ${PROJECT_SOURCE_DIR}/packaging/changelog
+    OUTPUT_FILE ${_lantern_changelog} COMMAND_ERROR_IS_FATAL ANY)
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/packaging/changelog)
 install(FILES ${PROJECT_SOURCE_DIR}/packaging/copyright ${_lantern_changelog}
     DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/lantern)
 include(CPack)

@@ -165,7 +165,7 @@ TEST(CliSuggest, MistypedNamesGetTheNearestValidName) {
         {{"info", "--devics"}, "did you mean --devices?"},
         {{"bench", "accuracy", "--resolutions", "64x48"}, "it is now --width"},
         {{"render", "builtin:spheres", "--frobnicate"}, "lantern render --help"},
-        {{"zzzzzz"}, "render, view, info, bench, farm, compare, help"},
+        {{"zzzzzz"}, "render, view, info, bench, farm, compare, thumbnail, help"},
         // An option's value that is one of the command's options: the option meant was
         // swallowed (CLI11 takes any next word), so `--device --dry-run` would render.
         {{"render", "builtin:spheres", "--device", "--dry-run"},

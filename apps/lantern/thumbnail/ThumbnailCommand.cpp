@@ -139,7 +139,7 @@ Runner addThumbnailCommand(CLI::App& app) {
                      "(a freedesktop thumbnailer)");
     cmd->add_option("input", a->input, "Scene file (glTF, GLB, OBJ, PLY, STL, OFF)")->required();
     cmd->add_option("output", a->output, "The PNG to write")->required();
-    cmd->add_option("-s,--size", a->size, "Thumbnail side in pixels")
+    cmd->add_option("-s,--side", a->size, "Thumbnail side in pixels")
         ->capture_default_str()
         ->check(CLI::Range(8, 4096));
     cmd->add_option("--max-size", a->maxBytes,
