@@ -33,10 +33,11 @@ test_pkgs=(
 
 case "$what" in
 build) pkgs=("${build_pkgs[@]}") ;;
+package) pkgs=("${build_pkgs[@]}" file dpkg-dev lintian) ;;  # scripts/package.sh: CPack's shlibdeps
 test | all) pkgs=("${build_pkgs[@]}" "${test_pkgs[@]}") ;;
 slurm) pkgs=("${slurm_pkgs[@]}") ;;
 *)
-    echo "usage: $0 [build|test|all|slurm]" >&2
+    echo "usage: $0 [build|test|all|slurm|package]" >&2
     exit 2
     ;;
 esac

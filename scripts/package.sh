@@ -4,7 +4,7 @@
 # installed. Prints the package's path. Usage: scripts/package.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/install-deps.sh build >&2
+scripts/install-deps.sh package >&2
 generator=()
 command -v ninja >/dev/null && generator=(-G Ninja)
 cmake -S . -B build/package "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=ON \
