@@ -8,6 +8,8 @@
 #          gltfpack and draco_transcoder, OSMesa for the OpenGL peer benchmark, a single-node Slurm for the farm tests, pytest and NumPy
 #          for the Python module's tests, matplotlib for the accuracy plot)
 #   slurm  only Slurm and munge (scripts/slurm-single-node.sh install)
+#   package the build tools and what scripts/package.sh adds: file and dpkg-dev (CPack's
+#          shlibdeps), lintian
 set -euo pipefail
 
 what=${1:-all}

@@ -22,7 +22,7 @@ step "lantern render"
 lantern render builtin:teapot -o t.png --width 64 --height 64 >/dev/null
 test -s t.png
 step "man lantern"
-man -P cat lantern | grep -q "lantern render"
+man -P cat lantern | grep -q "lantern-render(1)"
 man -P cat lantern-thumbnail | grep -q -- "--time-limit"
 step "bash completion"
 bash -c 'source /usr/share/bash-completion/bash_completion; _completion_loader lantern; complete -p lantern' | grep -q _lantern
