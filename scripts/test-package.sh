@@ -13,7 +13,7 @@ step() { echo "== $*" >&2; }
 export DEBIAN_FRONTEND=noninteractive
 step "install $deb"
 apt-get install -y --no-install-recommends "$deb" >&2
-apt-get install -y --no-install-recommends man-db python3-pytest pkg-config g++ cmake bash-completion >&2
+apt-get install -y --no-install-recommends man-db python3-pytest python3-matplotlib python3-distributed pkg-config g++ cmake bash-completion >&2
 echo "installed size: $(dpkg-query -W -f '${Installed-Size}' lantern) KiB; package $(stat -c %s "$deb") bytes"
 mapfile -t files < <(dpkg -L lantern | while read -r p; do [[ -f $p ]] && echo "$p"; done)
 work=$(mktemp -d)
@@ -36,7 +36,7 @@ step "python"
 python3 -c "import lantern, sys; print(lantern.__file__); r = lantern.render('builtin:teapot', width=32, height=24); assert r.shape == (24, 32, 4); assert lantern.Picture is not None"
 python3 -c "import lantern; assert lantern.__file__.startswith('/usr/lib/python3/dist-packages/')"
 for t in test_module test_render test_aov test_edit test_pool test_stubs; do
-    env -u PYTHONPATH LANTERN_CLI=/usr/bin/lantern LANTERN_SOURCE_DIR="$src" LANTERN_TEST_OUTPUT="$work/py" \
+    env -u PYTHONPATH LANTERN_PYTHON_BUILT=1 LANTERN_CLI=/usr/bin/lantern LANTERN_SOURCE_DIR="$src" LANTERN_TEST_OUTPUT="$work/py" \
         python3 "$src/tests/python/run_pytest.py" "$src/tests/python/$t.py" --needs-module >&2
 done
 step "CMake consumer"
