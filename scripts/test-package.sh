@@ -48,7 +48,7 @@ cat >"$work/pc.cpp" <<'CPP'
 #include <lantern/Lantern.h>
 #include <cstdio>
 int main() {
-    auto r = lantern::Renderer::create({});
+    auto r = lantern::Renderer::create(lantern::RendererDesc{});
     if (!r) return 1;
     auto scene = lantern::loadScene("builtin:teapot");
     lantern::RenderOptions o;
