@@ -25,7 +25,8 @@ set(CPACK_STRIP_FILES ON)
 # The shared libraries: a shlibs file, and dpkg's ldconfig trigger (packaging/triggers); CPack
 # also calls ldconfig from postinst and postrm, which the trigger makes redundant.
 set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS ON)
-set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA ${PROJECT_SOURCE_DIR}/packaging/triggers)
+set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA ${PROJECT_SOURCE_DIR}/packaging/triggers
+    ${PROJECT_SOURCE_DIR}/packaging/prerm)  # prerm: the module's __pycache__
 set(CPACK_DEBIAN_PACKAGE_CONTROL_STRICT_PERMISSION ON)
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 # /usr/share/doc/lantern: the copyright file and the changelog (gzipped, as Debian wants).
