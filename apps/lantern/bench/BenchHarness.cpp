@@ -147,20 +147,9 @@ std::string machineDescription(const Renderer& renderer) {
 }
 
 std::string commandLine() {
-    std::ifstream in("/proc/self/cmdline", std::ios::binary);
-    std::string all((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     std::string out;
-    std::size_t start = 0;
-    bool first = true;
-    while (start < all.size()) {
-        std::size_t end = all.find('\0', start);
-        if (end == std::string::npos) end = all.size();
-        std::string arg = all.substr(start, end - start);
-        if (first) arg = std::filesystem::path(arg).filename().string(); // "lantern"
-        out += (first ? "" : " ") + arg;
-        first = false;
-        start = end + 1;
-    }
+    for (const std::string& arg : processArguments())  // argv[0] as "lantern"
+        out += out.empty() ? std::filesystem::path(arg).filename().string() : " " + arg;
     return out;
 }
 

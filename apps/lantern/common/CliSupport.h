@@ -172,6 +172,8 @@ struct DeviceOptions {
 /// than the end of the process; the handler resets itself, so a second one ends the process
 /// at once. Sequences, batches and the viewer stop cleanly between frames or jobs.
 void installStopHandlers();
+/// This process's arguments as it was started (/proc/self/cmdline), argv[0] first.
+std::vector<std::string> processArguments();
 /// The signal that asked to stop since installStopHandlers() (0: none).
 int stopSignal();
 

@@ -12,8 +12,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <spawn.h>
 #include <string>
 #include <sys/wait.h>
@@ -30,20 +28,6 @@ constexpr const char* kWorkerVariable = "LANTERN_BATCH_WORKER";
 volatile std::sig_atomic_t g_signal = 0;
 
 extern "C" void rememberSignal(int sig) { g_signal = sig; }
-
-// This process's arguments as it was started (/proc/self/cmdline).
-std::vector<std::string> ownArguments() {
-    std::ifstream in("/proc/self/cmdline", std::ios::binary);
-    const std::string all((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    std::vector<std::string> args;
-    for (std::size_t start = 0; start < all.size();) {
-        std::size_t end = all.find('\0', start);
-        if (end == std::string::npos) end = all.size();
-        args.push_back(all.substr(start, end - start));
-        start = end + 1;
-    }
-    return args;
-}
 
 // Starts worker `index` of `count`: this program, these arguments, the worker variable added.
 Result<pid_t> startWorker(const std::string& program, const std::vector<std::string>& args,
@@ -131,7 +115,7 @@ int runProcesses(int count) {
         return report(makeError(ErrorCode::IoError, "cannot find this program (/proc/self/exe)",
                                 "--processes"));
     self[n] = '\0';
-    const std::vector<std::string> args = ownArguments();
+    const std::vector<std::string> args = processArguments();
     const auto start = std::chrono::steady_clock::now();
     std::fflush(stdout);
     std::vector<pid_t> pids;
