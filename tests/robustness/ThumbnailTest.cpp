@@ -115,7 +115,7 @@ TEST(Thumbnail, HostileFilesAreRefusedFastWithinTheBudgets) {
 }
 
 TEST(Thumbnail, AProcessHeldToASmallAddressSpaceFailsCleanly) {
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#if defined(LANTERN_ASAN) || defined(LANTERN_TSAN)
     GTEST_SKIP() << "a sanitizer build reserves terabytes of shadow memory: the thumbnailer does "
                     "not apply --memory-limit there";
 #else

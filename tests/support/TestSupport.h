@@ -19,15 +19,9 @@
 
 namespace lantern::test {
 
-/// True in an AddressSanitizer build (GCC's __SANITIZE_ADDRESS__, clang's __has_feature).
-#if defined(__SANITIZE_ADDRESS__)
+/// True in an AddressSanitizer build (LANTERN_ASAN: cmake/LanternSanitizers.cmake).
+#if defined(LANTERN_ASAN)
 inline constexpr bool kAddressSanitizer = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-inline constexpr bool kAddressSanitizer = true;
-#else
-inline constexpr bool kAddressSanitizer = false;
-#endif
 #else
 inline constexpr bool kAddressSanitizer = false;
 #endif
