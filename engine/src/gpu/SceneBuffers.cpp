@@ -10,6 +10,8 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <string_view>
+#include <unordered_map>
 
 namespace lantern::gpu {
 namespace {
@@ -91,9 +93,41 @@ FlatElement flatElement(const Primitive& p, const std::uint32_t (&v)[3]) {
 }
 
 
+// The streams laid out so far, by their bytes: a primitive whose index list, colours, texture
+// coordinates or tangents are byte for byte those of a primitive laid out before reads that
+// stream (a file that shares an accessor between meshes holds it once on the device too).
+// Positions and normals are never shared: updateVertices rewrites them per primitive.
+class SharedStreams {
+public:
+    // Where `v` goes: the offset of the same bytes laid out before, or a new range from `size`
+    // on (advanced past it, 16-byte aligned).
+    template <typename T>
+    VkDeviceSize place(const std::vector<T>& v, VkDeviceSize& size) {
+        const std::size_t bytes = v.size() * sizeof(T);
+        const std::size_t hash =
+            std::hash<std::string_view>{}(std::string_view(reinterpret_cast<const char*>(v.data()), bytes));
+        const auto [first, last] = m_byHash.equal_range(hash);
+        for (auto it = first; it != last; ++it)
+            if (it->second.bytes == bytes && std::memcmp(it->second.data, v.data(), bytes) == 0)
+                return it->second.offset;
+        const VkDeviceSize at = size;
+        size = align16(size + bytes);
+        m_byHash.emplace(hash, Entry{v.data(), bytes, at});
+        return at;
+    }
+
+private:
+    struct Entry {
+        const void* data;  // the Scene's array (alive while the buffer is filled)
+        std::size_t bytes;
+        VkDeviceSize offset;
+    };
+    std::unordered_multimap<std::size_t, Entry> m_byHash;
+};
+
 // Where primitive `p`'s streams go in the geometry buffer, from byte `size` on (advanced past
-// them, each 16-byte aligned).
-Result<PrimitiveBuffers> layOut(const Primitive& p, VkDeviceSize& size) {
+// the new ones, each 16-byte aligned).
+Result<PrimitiveBuffers> layOut(const Primitive& p, VkDeviceSize& size, SharedStreams& shared) {
     PrimitiveBuffers gp;
     const VkDeviceSize n = p.positions.size();
     if (n > std::numeric_limits<std::uint32_t>::max() ||
@@ -106,26 +140,11 @@ Result<PrimitiveBuffers> layOut(const Primitive& p, VkDeviceSize& size) {
     size = align16(size + n * 12);
     gp.normal = size;
     size = align16(size + n * 12);
-    if (!p.colors.empty()) {
-        gp.color = size;
-        size = align16(size + n * 16);
-    }
-    if (!p.texcoords.empty()) {
-        gp.texcoord = size;
-        size = align16(size + n * 8);
-    }
-    if (!p.texcoords1.empty()) {
-        gp.texcoord1 = size;
-        size = align16(size + n * 8);
-    }
-    if (!p.tangents.empty()) {
-        gp.tangent = size;
-        size = align16(size + n * 16);
-    }
-    if (!p.indices.empty()) {
-        gp.index = size;
-        size = align16(size + p.indices.size() * 4);
-    }
+    if (!p.colors.empty()) gp.color = shared.place(p.colors, size);
+    if (!p.texcoords.empty()) gp.texcoord = shared.place(p.texcoords, size);
+    if (!p.texcoords1.empty()) gp.texcoord1 = shared.place(p.texcoords1, size);
+    if (!p.tangents.empty()) gp.tangent = shared.place(p.tangents, size);
+    if (!p.indices.empty()) gp.index = shared.place(p.indices, size);
     return gp;
 }
 
@@ -149,10 +168,11 @@ Result<std::shared_ptr<SceneBuffers>> SceneBuffers::create(std::shared_ptr<Conte
     VkDeviceSize size = 32;
     g->m_defaultColor = 0;
     g->m_defaultTexcoord = 16;
+    SharedStreams shared;
     for (const Mesh& mesh : s.meshes) {
         g->m_meshFirst.push_back(g->m_primitives.size());
         for (const Primitive& p : mesh.primitives) {
-            auto gp = layOut(p, size);
+            auto gp = layOut(p, size, shared);
             if (!gp) return std::move(gp).error();
             g->m_primitives.push_back(*gp);
         }
@@ -173,20 +193,30 @@ Result<std::shared_ptr<SceneBuffers>> SceneBuffers::create(std::shared_ptr<Conte
     const float white[4] = {1, 1, 1, 1}, zero[4] = {0, 0, 0, 0};
     std::memcpy(dst + g->m_defaultColor, white, sizeof white);
     std::memcpy(dst + g->m_defaultTexcoord, zero, sizeof zero);
+    // Streams are laid out in this order, so one whose offset lies before the end of what was
+    // written is a shared one, written already.
+    VkDeviceSize written = 32;
+    const auto write = [&](VkDeviceSize offset, const auto& v) {
+        if (offset == kNoStream || offset < written) return;
+        put(dst, offset, v);
+        written = offset + v.size() * sizeof(v[0]);
+    };
     std::size_t k = 0;
     for (const Mesh& mesh : s.meshes)
         for (const Primitive& p : mesh.primitives) {
             const PrimitiveBuffers& gp = g->m_primitives[k++];
-            put(dst, gp.position, p.positions);
-            if (p.normals.empty())  // unlit lines and points: zero normals (the normal AOV)
+            write(gp.position, p.positions);
+            if (p.normals.empty()) {  // unlit lines and points: zero normals (the normal AOV)
                 std::memset(dst + gp.normal, 0, p.positions.size() * 12);
-            else
-                put(dst, gp.normal, p.normals);
-            if (gp.color != kNoStream) put(dst, gp.color, p.colors);
-            if (gp.texcoord != kNoStream) put(dst, gp.texcoord, p.texcoords);
-            if (gp.texcoord1 != kNoStream) put(dst, gp.texcoord1, p.texcoords1);
-            if (gp.tangent != kNoStream) put(dst, gp.tangent, p.tangents);
-            if (gp.index != kNoStream) put(dst, gp.index, p.indices);
+                written = gp.normal + p.positions.size() * 12;
+            } else {
+                write(gp.normal, p.normals);
+            }
+            write(gp.color, p.colors);
+            write(gp.texcoord, p.texcoords);
+            write(gp.texcoord1, p.texcoords1);
+            write(gp.tangent, p.tangents);
+            write(gp.index, p.indices);
         }
     LANTERN_TRY(endFill(c, g->m_geometry, *fill,
                         VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
