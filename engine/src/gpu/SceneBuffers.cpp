@@ -115,6 +115,11 @@ public:
         m_byHash.emplace(hash, Entry{v.data(), bytes, at});
         return at;
     }
+    // Writes each stream once, at its offset in `dst`.
+    void fill(char* dst) const {
+        for (const auto& entry : m_byHash)
+            std::memcpy(dst + entry.second.offset, entry.second.data, entry.second.bytes);
+    }
 
 private:
     struct Entry {
@@ -193,31 +198,17 @@ Result<std::shared_ptr<SceneBuffers>> SceneBuffers::create(std::shared_ptr<Conte
     const float white[4] = {1, 1, 1, 1}, zero[4] = {0, 0, 0, 0};
     std::memcpy(dst + g->m_defaultColor, white, sizeof white);
     std::memcpy(dst + g->m_defaultTexcoord, zero, sizeof zero);
-    // Streams are laid out in this order, so one whose offset lies before the end of what was
-    // written is a shared one, written already.
-    VkDeviceSize written = 32;
-    const auto write = [&](VkDeviceSize offset, const auto& v) {
-        if (offset == kNoStream || offset < written) return;
-        put(dst, offset, v);
-        written = offset + v.size() * sizeof(v[0]);
-    };
     std::size_t k = 0;
     for (const Mesh& mesh : s.meshes)
         for (const Primitive& p : mesh.primitives) {
             const PrimitiveBuffers& gp = g->m_primitives[k++];
-            write(gp.position, p.positions);
-            if (p.normals.empty()) {  // unlit lines and points: zero normals (the normal AOV)
+            put(dst, gp.position, p.positions);
+            if (p.normals.empty())  // unlit lines and points: zero normals (the normal AOV)
                 std::memset(dst + gp.normal, 0, p.positions.size() * 12);
-                written = gp.normal + p.positions.size() * 12;
-            } else {
-                write(gp.normal, p.normals);
-            }
-            write(gp.color, p.colors);
-            write(gp.texcoord, p.texcoords);
-            write(gp.texcoord1, p.texcoords1);
-            write(gp.tangent, p.tangents);
-            write(gp.index, p.indices);
+            else
+                put(dst, gp.normal, p.normals);
         }
+    shared.fill(dst);  // the other streams, each once however many primitives read it
     LANTERN_TRY(endFill(c, g->m_geometry, *fill,
                         VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                         VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_2_INDEX_READ_BIT |
